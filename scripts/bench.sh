@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Speed of exdyn on this machine (a benchmark, not a test: the machine is shared,
+# so run it when it is quiet and read the numbers as such).
+#   scripts/bench.sh            the decks below + the kernel benchmarks
+#   scripts/bench.sh --quick    small sizes only
+# Prints element-cycles per second (elements x steps / wall seconds of the time
+# loop) for hex8 and hex8r and the share of each phase of the step.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+scripts/install_deps.sh >/dev/null
+scripts/build.sh release >/dev/null
+exdyn=build/release/src/app/exdyn
+out="$(mktemp -d)"
+trap 'rm -rf "$out"' EXIT
+quick=0; [ "${1:-}" = "--quick" ] && quick=1
+
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores; $(date -u +%Y-%m-%dT%H:%MZ)"
+echo "exdyn $($exdyn --version | cut -d' ' -f2), threads: 1"
+printf '%-34s %-6s %10s %7s %12s  %s\n' case form elements steps "Mcycles/s" "phase shares (element forces / integration / output)"
+
+run_case() {  # label formulation deck overrides...
+  local label=$1 form=$2 deck=$3; shift 3
+  local name="bench_$$"
+  "$exdyn" run "$deck" --quiet --output "$out" --set name=$name --set "parts[0].formulation=$form" "$@"
+  /usr/bin/python3 - "$out/$name.json" "$label" "$form" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+p = s["phase_seconds"]; total = sum(p.values()) or 1.0
+share = lambda k: 100.0 * p[k] / total
+print(f"{sys.argv[2]:<34} {sys.argv[3]:<6} {s['mesh']['elements']:>10} {s['steps']:>7} "
+      f"{s['element_cycles_per_second'] / 1e6:>12.2f}  "
+      f"{share('element_forces'):.0f} % / {share('time_integration'):.0f} % / {share('output'):.0f} %")
+PY
+}
+
+for form in hex8 hex8r; do
+  run_case "plate reference 100x100x1" $form input/plate_impact_reference.yaml
+  if [ $quick = 0 ]; then
+    run_case "plate 400x400x1, 400 steps" $form input/plate_impact_reference.yaml \
+      --set "parts[0].elements=[400,1,400]" --set "parts[0].box={min: [-2.5e-3, 0, 0], max: [0, 6.25e-6, 2.5e-3]}" \
+      --set time.end_time=1.3e-7 --set output.every=100000
+    run_case "block 100x100x100, 20 steps" $form input/hourglass_block.yaml \
+      --set "parts[0].elements=[100,100,100]" --set time.end_time=3.0e-7 --set output.every=100000 \
+      --set "output.fields=[stress]"
+  fi
+done
+
+for b in build/release/bench/element/bench_element build/release/bench/contact/bench_local_search; do
+  if [ -x "$b" ]; then
+    echo; echo "== $(basename "$b")"
+    "$b" --benchmark_min_time=$([ $quick = 1 ] && echo 0.05 || echo 0.5)
+  fi
+done

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages exdyn needs that are missing (run as root).
+#   scripts/install_deps.sh           build and run dependencies
+#   scripts/install_deps.sh --test    also ParaView, xvfb and the Python packages of the tests
+set -euo pipefail
+packages=(cmake g++ make pkg-config libeigen3-dev libhdf5-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+          libgtest-dev libbenchmark-dev hdf5-tools python3-numpy python3-h5py python3-matplotlib)
+if [ "${1:-}" = "--test" ]; then
+  packages+=(paraview python3-paraview xvfb xauth)
+fi
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+echo "install_deps: installing ${missing[*]}"
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install_deps: done"

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, and runs every test:
+#   1. the Release build's GoogleTest suite (ctest), every deck of input/ included;
+#   2. ParaView opening the plate reference result (scripts/check_paraview.sh);
+#   3. the suite again in the AddressSanitizer + UBSan Debug build
+#      (skip with EXDYN_SKIP_ASAN=1 for a quick local run).
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$root"
+scripts/install_deps.sh --test
+scripts/build.sh release
+(cd build/release && ctest --output-on-failure -j "$(nproc)")
+scripts/check_paraview.sh
+if [ "${EXDYN_SKIP_ASAN:-0}" != "1" ]; then
+  scripts/build.sh asan
+  (cd build/asan && ctest --output-on-failure -j "$(nproc)")
+fi
+echo "test.sh: all tests passed"

@@ -1,0 +1,142 @@
+// exdyn: the command line (../shared/spec/cli.md). The one try/catch of the
+// program: bad input or usage -> exit 2; a failed run -> exit 1.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "app/project_command.hpp"
+#include "common/errors.hpp"
+#include "common/version.hpp"
+#include "input/deck_reader.hpp"
+#include "solver/simulation.hpp"
+
+namespace {
+
+constexpr int exit_success = 0;
+constexpr int exit_run_failed = 1;
+constexpr int exit_bad_input = 2;
+
+std::vector<exdyn::input::Override> parse_overrides(const std::vector<std::string>& arguments) {
+  std::vector<exdyn::input::Override> overrides;
+  for (const auto& argument : arguments) overrides.push_back(exdyn::input::parse_override(argument));
+  return overrides;
+}
+
+std::string format_duration(double seconds) {
+  char text[32];
+  if (seconds < 60.0)
+    std::snprintf(text, sizeof text, "%.1fs", seconds);
+  else if (seconds < 3600.0)
+    std::snprintf(text, sizeof text, "%dm%02ds", int(seconds) / 60, int(seconds) % 60);
+  else
+    std::snprintf(text, sizeof text, "%dh%02dm", int(seconds) / 3600, (int(seconds) / 60) % 60);
+  return text;
+}
+
+// One line, rewritten in place: step, time, dt, % done, ETA.
+void print_progress(const exdyn::solver::Progress& p) {
+  const double fraction = p.total_steps > 0 ? double(p.step) / double(p.total_steps) : 1.0;
+  const double eta = fraction > 0.0 ? p.wall_seconds * (1.0 - fraction) / fraction : 0.0;
+  std::fprintf(stderr, "\rstep %ld/%ld  t = %.6e s  dt = %.4e s  %5.1f %%  ETA %s   ", p.step, p.total_steps, p.time,
+               p.dt, 100.0 * fraction, format_duration(eta).c_str());
+  if (p.step == p.total_steps) std::fputc('\n', stderr);
+  std::fflush(stderr);
+}
+
+struct RunArguments {
+  std::string deck;
+  std::string output;
+  std::vector<std::string> sets;
+  int threads = 0;
+  bool quiet = false;
+};
+
+int run_command(const RunArguments& arguments) {
+  const exdyn::input::Deck deck = exdyn::input::read_deck(arguments.deck, parse_overrides(arguments.sets));
+  exdyn::solver::RunControls controls;
+  controls.output_directory = arguments.output;
+  controls.threads = arguments.threads;
+  if (!arguments.quiet && isatty(STDERR_FILENO)) controls.on_progress = print_progress;
+  try {
+    const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
+    if (!arguments.quiet)
+      std::printf("%s: completed %ld steps of dt = %.6g s in %.3f s (%.3g element-cycles/s); results in %s/%s.xmf\n",
+                  summary.name.c_str(), summary.steps, summary.dt, summary.wall_seconds,
+                  summary.element_cycles_per_second,
+                  (arguments.output.empty() ? deck.output.directory : arguments.output).c_str(), deck.name.c_str());
+  } catch (const exdyn::RunFailure&) {
+    if (controls.on_progress) std::fputc('\n', stderr);
+    throw;
+  }
+  return exit_success;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"exdyn: explicit dynamics with penalty node-to-segment contact"};
+  app.set_version_flag("--version", std::string("exdyn ") + exdyn::version);
+  app.require_subcommand(1);
+
+  RunArguments run_arguments;
+  CLI::App* run = app.add_subcommand("run", "Run a deck and write NAME.h5, NAME.xmf and NAME.json");
+  run->add_option("deck", run_arguments.deck, "The input deck (YAML)")->required();
+  run->add_option("--output", run_arguments.output, "Output directory (overrides output.directory)");
+  run->add_option("--set", run_arguments.sets, "Override one deck value before validation: KEY=VALUE")
+      ->allow_extra_args(false);
+  run->add_option("--threads", run_arguments.threads, "Threads (this version computes on one)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("--quiet", run_arguments.quiet, "No progress line and no summary line");
+
+  std::string check_deck;
+  std::vector<std::string> check_sets;
+  CLI::App* check = app.add_subcommand("check", "Validate a deck and print it with every default filled in");
+  check->add_option("deck", check_deck, "The input deck (YAML)")->required();
+  check->add_option("--set", check_sets, "Override one deck value before validation: KEY=VALUE")
+      ->allow_extra_args(false);
+
+  exdyn::app::ProjectCommandOptions project_options;
+  CLI::App* project = app.add_subcommand("project", "Run the local contact search on stand-alone cases (CSV)");
+  project->add_option("cases", project_options.cases_file, "The cases file (YAML)")->required();
+  project->add_option("--method", project_options.methods, "M[,M...] or all")->capture_default_str();
+  project->add_option("--initial-guess", project_options.initial_guess, "lsp, center, corners, all or a,b")
+      ->capture_default_str();
+  project->add_option("--tolerance", project_options.tolerance, "Stop when the step in xi is at most this")
+      ->capture_default_str();
+  project->add_option("--max-iterations", project_options.max_iterations, "Iteration limit")
+      ->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int status = app.exit(error);
+    return status == 0 ? exit_success : exit_bad_input;
+  }
+
+  try {
+    if (*run) return run_command(run_arguments);
+    if (*check) {
+      const exdyn::input::Deck deck = exdyn::input::read_deck(check_deck, parse_overrides(check_sets));
+      std::cout << exdyn::input::to_yaml(deck);
+      return exit_success;
+    }
+    if (*project) {
+      exdyn::app::run_project_command(project_options, std::cout);
+      return exit_success;
+    }
+  } catch (const exdyn::InputError& error) {
+    std::cerr << "exdyn: error: " << error.what() << '\n';
+    return exit_bad_input;
+  } catch (const exdyn::RunFailure& failure) {
+    std::cerr << "exdyn: run failed: " << failure.what() << '\n';
+    return exit_run_failed;
+  } catch (const std::exception& error) {
+    std::cerr << "exdyn: run failed: " << error.what() << '\n';
+    return exit_run_failed;
+  }
+  return exit_bad_input;
+}

@@ -1,0 +1,56 @@
+// Global contact search: which (slave point, master segment) pairs are close
+// enough to need a local search. A uniform bucket grid, filled by a counting
+// sort, so the cost is linear in the number of points, segments and pairs.
+//
+// A pair is a candidate when the point lies inside the segment's axis-aligned
+// bounding box inflated by the capture distance. A point within distance d of a
+// segment lies inside its box inflated by d, so with capture distance
+// d_c = d_contact + margin every pair that comes within d_contact stays a
+// candidate until some node has moved more than margin / 2 (ContactCandidates).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "common/nodal_vectors.hpp"
+
+namespace exdyn::contact {
+
+struct Box {
+  std::array<double, 3> lo{};
+  std::array<double, 3> hi{};
+};
+
+struct CandidatePair {
+  std::uint32_t point = 0;    // index into the list of slave points
+  std::uint32_t segment = 0;  // index into the list of segments
+  friend bool operator==(const CandidatePair&, const CandidatePair&) = default;
+};
+
+// Working arrays of the bucket grid, kept between searches so that a search
+// allocates nothing once they have grown to size.
+struct BucketWorkspace {
+  std::vector<std::uint32_t> point_cell;    // cell of each point
+  std::vector<std::uint32_t> cell_start;    // CSR offsets of the points of each cell
+  std::vector<std::uint32_t> cell_points;   // point ids, grouped by cell
+  std::vector<std::uint32_t> pair_count;    // candidates per point (for the output sort)
+  std::vector<CandidatePair> unsorted;
+};
+
+// Bounding box of each quadrilateral segment (node ids into `x`), inflated by
+// `capture` in every direction.
+void segment_boxes(const NodalVectors& x, const std::vector<std::array<std::uint32_t, 4>>& segments, double capture,
+                   std::vector<Box>& boxes);
+
+// Every (point, segment) pair with the point inside the segment's box, sorted by
+// point then segment. `points` holds the slave points' coordinates.
+// cell_size <= 0 chooses the cell edge automatically (the mean box extent,
+// enlarged if needed so that the grid has at most about 4 cells per item).
+void bucket_search(const NodalVectors& points, const std::vector<Box>& boxes, double cell_size,
+                   BucketWorkspace& workspace, std::vector<CandidatePair>& pairs);
+
+// The same set by testing every pair (the reference for tests).
+void brute_force_search(const NodalVectors& points, const std::vector<Box>& boxes, std::vector<CandidatePair>& pairs);
+
+}  // namespace exdyn::contact

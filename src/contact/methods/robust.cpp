@@ -1,0 +1,309 @@
+// `robust`: the closest point of the segment itself, xi in [-1,1]^2, in every
+// case (docs/local-search.md, "The robust method"):
+//  1. seeds: f on a 5 x 5 grid over [-1,1]^2 (and at the clamped initial
+//     guess); every discrete local minimum of the grid is a seed, best first
+//     (at most max_seeds);
+//  2. from each seed, Newton with an active set on the bounds: a bound whose
+//     gradient points out of the square is held; the free variables take the
+//     Newton step when their Hessian is positive definite, otherwise a step
+//     with |eigenvalues| (damped Newton, plus a move along the negative
+//     curvature); the step is projected onto the square and halved until f
+//     decreases (Armijo);
+//  3. at the end, a Hessian check on the free variables: negative curvature
+//     means a saddle or maximum of the reduced problem, so the search restarts
+//     from a point moved along that direction;
+//  4. the best point over all seeds is the answer.
+#include <algorithm>
+
+#include "contact/methods/kernel_support.hpp"
+
+namespace exdyn::contact {
+namespace {
+
+using namespace detail;
+
+constexpr int grid_points = 5;       // per direction, including the edges
+constexpr int max_seeds = 4;         // Newton runs, at most
+constexpr int max_restarts = 3;      // Hessian-check restarts per seed
+constexpr double armijo = 1.0e-4;    // sufficient decrease
+constexpr double escape_step = 0.25; // parametric move off a saddle or maximum
+
+inline double clamp1(double x) { return std::clamp(x, -1.0, 1.0); }
+inline Xi clamp_box(Xi x) { return {clamp1(x[0]), clamp1(x[1])}; }
+
+// Active bound: at the bound with the gradient pointing out of the square.
+inline bool held(double x, double g) { return (x >= 1.0 && g < 0.0) || (x <= -1.0 && g > 0.0); }
+
+struct Run {
+  Xi xi;
+  double f;
+  bool converged;
+};
+
+template <int Terms>
+class RobustSearch {
+ public:
+  RobustSearch(const Surface<Terms>& s, const Vec3& ys, const ProjectionSettings& settings, ProjectionResult& counts)
+      : s_(s), ys_(ys), settings_(settings), counts_(counts) {
+    const double size = std::sqrt(size2(s));
+    f_noise_ = 1.0e-14 * (size * size + dot(ys - s.c[0], ys - s.c[0]));
+  }
+
+  // Constrained damped Newton from `start` (inside the square), with the
+  // Hessian check and its restarts.
+  Run descend(Xi start) {
+    Xi xi = start;
+    Local l = evaluate_local(s_, ys_, xi);
+    ++counts_.evaluations;
+    bool converged = false;
+    for (int restart = 0; restart <= max_restarts; ++restart) {
+      converged = newton(xi, l);
+      // Hessian check on the free variables.
+      const bool free0 = !held(xi[0], l.g[0]), free1 = !held(xi[1], l.g[1]);
+      const double zero = curvature_zero(l);
+      Xi direction{0.0, 0.0};
+      if (free0 && free1) {
+        const Xi lambda = eigenvalues(l.H);
+        if (lambda[0] < -zero) direction = eigenvector(l.H, lambda[0]);
+      } else if (free0) {
+        if (l.H.xx < -zero) direction = {1.0, 0.0};
+      } else if (free1) {
+        if (l.H.yy < -zero) direction = {0.0, 1.0};
+      }
+      if (direction[0] == 0.0 && direction[1] == 0.0) break;
+      // Move along +-direction, whichever lowers f; none does: stay.
+      const Xi plus = clamp_box(xi + scaled(escape_step, direction));
+      const Xi minus = clamp_box(xi - scaled(escape_step, direction));
+      const Local lp = evaluate_local(s_, ys_, plus);
+      const Local lm = evaluate_local(s_, ys_, minus);
+      counts_.evaluations += 2;
+      const Local& better = lp.f <= lm.f ? lp : lm;
+      if (!(better.f < l.f)) break;
+      xi = lp.f <= lm.f ? plus : minus;
+      l = better;
+    }
+    return {xi, l.f, converged};
+  }
+
+  // Steps until |step| <= tolerance; returns whether that test was met.
+  bool newton(Xi& xi, Local& l) {
+    for (int k = 0; k < settings_.max_iterations; ++k) {
+      ++counts_.iterations;
+      const Xi p = direction(xi, l);
+      if (p[0] == 0.0 && p[1] == 0.0) return true;  // a corner held by both bounds, or g = 0
+      LineSearch outcome = line_search(xi, l, p);
+      if (outcome == LineSearch::full_step_within_tolerance) return true;
+      if (outcome == LineSearch::no_decrease) {
+        // The projected Newton step may fail to descend when a bound and the
+        // off-diagonal of H interact: fall back to the projected gradient.
+        const Xi q = gradient_direction(xi, l);
+        if (q[0] == 0.0 && q[1] == 0.0) return true;
+        outcome = line_search(xi, l, q);
+        if (outcome != LineSearch::accepted) return true;  // no descent left: a local minimum
+      }
+    }
+    return false;
+  }
+
+ private:
+  enum class LineSearch { accepted, full_step_within_tolerance, no_decrease };
+
+  // Projected backtracking along p: halve until f decreases enough (Armijo).
+  LineSearch line_search(Xi& xi, Local& l, Xi p) {
+    double t = 1.0;
+    for (;;) {
+      const Xi trial = clamp_box(xi + scaled(t, p));
+      const Xi step = trial - xi;
+      const double step_norm = norm2(step);
+      if (step_norm <= settings_.tolerance) {
+        if (t < 1.0) return LineSearch::no_decrease;
+        xi = trial;  // the full step is within the tolerance: the stopping test is met
+        if (step_norm > 0.0) {
+          l = evaluate_local(s_, ys_, xi);
+          ++counts_.evaluations;
+        }
+        return LineSearch::full_step_within_tolerance;
+      }
+      const Local lt = evaluate_local(s_, ys_, trial);
+      ++counts_.evaluations;
+      if (lt.f <= l.f + armijo * std::min(dot2(l.g, step), 0.0) + f_noise_) {
+        xi = trial;
+        l = lt;
+        return LineSearch::accepted;
+      }
+      t *= 0.5;
+    }
+  }
+
+  // -g on the free variables, with the exact step along it when the curvature
+  // is positive, else a parametric length of 2.
+  Xi gradient_direction(Xi xi, const Local& l) const {
+    Xi p{held(xi[0], l.g[0]) ? 0.0 : -l.g[0], held(xi[1], l.g[1]) ? 0.0 : -l.g[1]};
+    const double pp = dot2(p, p);
+    if (!(pp > 0.0)) return {0.0, 0.0};
+    const double curvature = dot2(p, l.H * p);
+    const double alpha = curvature > 0.0 ? pp / curvature : 2.0 / std::sqrt(pp);
+    return scaled(alpha, p);
+  }
+
+  double curvature_zero(const Local& l) const {
+    const double r_norm = std::sqrt(l.f);
+    return eigenvalue_tolerance *
+           2.0 * (l.A.xx + l.A.yy + r_norm * (norm(l.p.y11) + 2.0 * norm(l.p.y12) + norm(l.p.y22)));
+  }
+
+  static Xi eigenvector(const Sym2& H, double lambda) {
+    // (H - lambda I) v = 0: take the longer of the two row-derived candidates.
+    const Xi v1{H.xy, lambda - H.xx};
+    const Xi v2{lambda - H.yy, H.xy};
+    const Xi v = dot2(v1, v1) >= dot2(v2, v2) ? v1 : v2;
+    const double length = norm2(v);
+    return length > 0.0 ? scaled(1.0 / length, v) : Xi{1.0, 0.0};
+  }
+
+  // The search direction on the free variables.
+  Xi direction(Xi xi, const Local& l) const {
+    const bool free0 = !held(xi[0], l.g[0]), free1 = !held(xi[1], l.g[1]);
+    const double zero = curvature_zero(l);
+    if (free0 && free1) {
+      const double d = det(l.H);
+      if (l.H.xx > zero && d > zero * zero && !is_singular(l.H))
+        return scaled(-1.0, inverse(l.H) * l.g);  // Newton
+      // Damped Newton: H's eigenvalues replaced by max(|lambda|, zero).
+      const Xi lambda = eigenvalues(l.H);
+      Xi p{0.0, 0.0};
+      for (int i = 0; i < 2; ++i) {
+        const Xi v = eigenvector(l.H, lambda[i]);
+        const double gv = dot2(v, l.g);
+        p = p - scaled(gv / std::max(std::fabs(lambda[i]), zero), v);
+      }
+      // Also go down along the negative curvature (escapes a saddle where g = 0).
+      if (lambda[0] < -zero) {
+        const Xi v = eigenvector(l.H, lambda[0]);
+        const double sign = dot2(v, l.g) > 0.0 ? -1.0 : 1.0;
+        p = p + scaled(sign * escape_step, v);
+      }
+      return p;
+    }
+    if (free0 || free1) {
+      const int j = free0 ? 0 : 1;
+      const double h = j == 0 ? l.H.xx : l.H.yy;
+      Xi p{0.0, 0.0};
+      if (h > zero) {
+        p[j] = -l.g[j] / h;
+      } else if (l.g[j] != 0.0) {
+        p[j] = l.g[j] > 0.0 ? -2.0 : 2.0;  // no positive curvature: downhill to the far bound, then halve
+      }
+      return p;
+    }
+    return {0.0, 0.0};
+  }
+
+  const Surface<Terms>& s_;
+  Vec3 ys_;
+  const ProjectionSettings& settings_;
+  ProjectionResult& counts_;
+  double f_noise_ = 0.0;
+};
+
+// f on the grid, row by row: y(u, v) = A(v) + u B(v) + u^2 C(v).
+template <int Terms>
+void grid_values(const Surface<Terms>& s, const Vec3& ys, std::array<double, grid_points * grid_points>& f) {
+  const auto& c = s.c;
+  for (int j = 0; j < grid_points; ++j) {
+    const double v = -1.0 + 2.0 * j / (grid_points - 1);
+    Vec3 A = ys - (c[0] + v * c[2]);
+    Vec3 B = c[1] + v * c[3];
+    Vec3 C{};
+    if constexpr (Terms == 8) {
+      A = A - (v * v) * c[5];
+      B = B + (v * v) * c[7];
+      C = c[4] + v * c[6];
+    }
+    for (int i = 0; i < grid_points; ++i) {
+      const double u = -1.0 + 2.0 * i / (grid_points - 1);
+      const Vec3 r = A - u * (B + u * C);
+      f[j * grid_points + i] = dot(r, r);
+    }
+  }
+}
+
+template <int Terms>
+ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, const ProjectionSettings& settings) {
+  ProjectionResult result;
+  std::array<double, grid_points * grid_points> f{};
+  grid_values(s, ys, f);
+  result.evaluations = grid_points * grid_points;
+
+  // Seeds: the grid's discrete local minima (ties broken by index), best first.
+  struct Seed {
+    double f;
+    Xi xi;
+  };
+  std::array<Seed, max_seeds> seeds{};
+  int seed_count = 0;
+  for (int j = 0; j < grid_points; ++j) {
+    for (int i = 0; i < grid_points; ++i) {
+      const int index = j * grid_points + i;
+      bool minimum = true;
+      for (int dj = -1; dj <= 1 && minimum; ++dj) {
+        for (int di = -1; di <= 1; ++di) {
+          const int jj = j + dj, ii = i + di;
+          if ((di == 0 && dj == 0) || jj < 0 || ii < 0 || jj >= grid_points || ii >= grid_points) continue;
+          const int other = jj * grid_points + ii;
+          if (f[other] < f[index] || (f[other] == f[index] && other < index)) {
+            minimum = false;
+            break;
+          }
+        }
+      }
+      if (!minimum) continue;
+      const Seed seed{f[index], {-1.0 + 2.0 * i / (grid_points - 1), -1.0 + 2.0 * j / (grid_points - 1)}};
+      // Insert sorted; drop the worst beyond max_seeds.
+      int at = std::min(seed_count, max_seeds - 1);
+      if (seed_count == max_seeds && !(seed.f < seeds[at].f)) continue;
+      while (at > 0 && seed.f < seeds[at - 1].f) {
+        seeds[at] = seeds[at - 1];
+        --at;
+      }
+      seeds[at] = seed;
+      seed_count = std::min(seed_count + 1, max_seeds);
+    }
+  }
+  // The caller's guess replaces the best seed when it is better.
+  if (finite(xi0)) {
+    const Xi guess = clamp_box(xi0);
+    const double f_guess = evaluate_f(s, ys, guess);
+    ++result.evaluations;
+    if (f_guess < seeds[0].f) seeds[0] = {f_guess, guess};
+  }
+
+  RobustSearch<Terms> search(s, ys, settings, result);
+  Run best{seeds[0].xi, std::numeric_limits<double>::infinity(), false};
+  for (int k = 0; k < seed_count; ++k) {
+    const Run run = search.descend(seeds[k].xi);
+    if (run.f < best.f) best = run;
+  }
+  result.xi = best.xi;
+  result.converged = best.converged;
+  result.failure = best.converged ? FailureReason::none : FailureReason::max_iterations;
+  // On an edge or a corner with the gradient pointing out of the square.
+  const Local l = evaluate_local(s, ys, best.xi);
+  const double gradient_floor =
+      stationary_gradient_tolerance * 2.0 * std::sqrt(l.A.xx + l.A.yy) * (std::sqrt(l.f) + std::sqrt(size2(s)));
+  for (int a = 0; a < 2; ++a)
+    if (held(best.xi[a], l.g[a]) && std::fabs(l.g[a]) > gradient_floor) result.on_boundary = true;
+  return result;
+}
+
+}  // namespace
+
+ProjectionResult project_robust(const Segment& segment, const Vec3& point, Xi xi0,
+                                const ProjectionSettings& settings) {
+  return detail::dispatch(segment, point, xi0, settings,
+                          [](const auto& s, const Vec3& ys, Xi x, const ProjectionSettings& st) {
+                            return robust_kernel(s, ys, x, st);
+                          });
+}
+
+}  // namespace exdyn::contact

@@ -1,0 +1,201 @@
+// Element blocks: reference data, the gather -> kernel -> scatter loop, lumped
+// mass and the stable time step (docs/theory.md, "Element library").
+#include "element/element_block.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "common/errors.hpp"
+#include "element/hex8.hpp"
+#include "element/hex8r.hpp"
+
+namespace exdyn::element {
+namespace {
+
+// block.reference = [layout, 0, element 0 data, element 1 data, ...]; the two
+// header entries keep the element data 16-byte aligned.
+enum class ReferenceLayout { hex8_general = 1, hex8_parallelepiped = 2, hex8r = 3 };
+constexpr std::size_t header_size = 2;
+
+ReferenceLayout layout_of(const ElementBlock& block) {
+  EXDYN_ASSERT(block.reference.size() >= header_size);
+  return static_cast<ReferenceLayout>(static_cast<int>(block.reference[0]));
+}
+
+std::size_t stride_of(ReferenceLayout layout) {
+  switch (layout) {
+    case ReferenceLayout::hex8_general: return hex8::reference_size;
+    case ReferenceLayout::hex8_parallelepiped: return hex8::parallelepiped_reference_size;
+    case ReferenceLayout::hex8r: return hex8r::reference_size;
+  }
+  return 0;
+}
+
+ElementVectors gather(const NodalVectors& v, const std::uint32_t* nodes) {
+  ElementVectors local;
+  const double* x = v.x.data();
+  const double* y = v.y.data();
+  const double* z = v.z.data();
+  for (int k = 0; k < 8; ++k) {
+    const std::uint32_t n = nodes[k];
+    local.x[k] = x[n];
+    local.y[k] = y[n];
+    local.z[k] = z[n];
+  }
+  return local;
+}
+
+void scatter_add(const ElementVectors& local, const std::uint32_t* nodes, NodalVectors& v) {
+  double* x = v.x.data();
+  double* y = v.y.data();
+  double* z = v.z.data();
+  for (int k = 0; k < 8; ++k) {
+    const std::uint32_t n = nodes[k];
+    x[n] += local.x[k];
+    y[n] += local.y[k];
+    z[n] += local.z[k];
+  }
+}
+
+// The element loop, one instantiation per kernel: kernel(reference, u, f, stress)
+// returns the element's energies.
+template <class Kernel>
+ElementEnergies element_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
+                             std::size_t stride, const NodalVectors& u, NodalVectors& f_int, double* stress,
+                             Kernel kernel) {
+  ElementEnergies total;
+  const double* reference = block.reference.data() + header_size;
+  for (std::uint32_t e = begin; e < end; ++e) {
+    const std::uint32_t* nodes = block.connectivity + 8 * static_cast<std::size_t>(e);
+    const ElementVectors u_local = gather(u, nodes);
+    ElementVectors f_local;
+    material::SymTensor element_stress;
+    const ElementEnergies energies = kernel(reference + stride * e, u_local, f_local, element_stress);
+    scatter_add(f_local, nodes, f_int);
+    total.strain += energies.strain;
+    total.hourglass += energies.hourglass;
+    if (stress != nullptr) {
+      double* out = stress + 6 * (static_cast<std::size_t>(block.first_element) + e);
+      for (int k = 0; k < 6; ++k) out[k] = element_stress[k];
+    }
+  }
+  return total;
+}
+
+[[noreturn]] void throw_inverted(std::uint32_t global_element, double det_jacobian) {
+  throw InputError("element " + std::to_string(global_element) +
+                   ": the reference hexahedron is inverted or degenerate (smallest det J = " +
+                   std::to_string(det_jacobian) + "); check the node order (VTK hexahedron)");
+}
+
+}  // namespace
+
+ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
+                                double hourglass_coefficient, std::uint32_t first_element, std::uint32_t count,
+                                const std::uint32_t* connectivity, const NodalVectors& x_ref) {
+  ElementBlock block;
+  block.formulation = formulation;
+  block.material = material;
+  block.hourglass_coefficient = hourglass_coefficient;
+  block.first_element = first_element;
+  block.count = count;
+  block.connectivity = connectivity;
+
+  ReferenceLayout layout = ReferenceLayout::hex8r;
+  if (formulation == input::Formulation::hex8) {
+    layout = ReferenceLayout::hex8_parallelepiped;
+    for (std::uint32_t e = 0; e < count; ++e) {
+      if (!hex8::is_parallelepiped(gather(x_ref, connectivity + 8 * static_cast<std::size_t>(e)))) {
+        layout = ReferenceLayout::hex8_general;
+        break;
+      }
+    }
+  }
+  const std::size_t stride = stride_of(layout);
+  block.reference.assign(header_size + stride * count, 0.0);
+  block.reference[0] = static_cast<double>(static_cast<int>(layout));
+  for (std::uint32_t e = 0; e < count; ++e) {
+    const ElementVectors x = gather(x_ref, connectivity + 8 * static_cast<std::size_t>(e));
+    double* reference = block.reference.data() + header_size + stride * e;
+    double min_det_jacobian = 0.0;
+    switch (layout) {
+      case ReferenceLayout::hex8_general: min_det_jacobian = hex8::make_reference(x, reference); break;
+      case ReferenceLayout::hex8_parallelepiped:
+        min_det_jacobian = hex8::make_parallelepiped_reference(x, reference);
+        break;
+      case ReferenceLayout::hex8r:
+        min_det_jacobian = hex8r::make_reference(x, material.mu, hourglass_coefficient, reference);
+        break;
+    }
+    if (!(min_det_jacobian > 0.0)) throw_inverted(first_element + e, min_det_jacobian);
+  }
+  return block;
+}
+
+ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t element_begin,
+                                    std::uint32_t element_end, const NodalVectors& u, NodalVectors& f_int,
+                                    double* stress) {
+  EXDYN_ASSERT(element_begin <= element_end && element_end <= block.count);
+  const double lambda = block.material.lambda, mu = block.material.mu;
+  const ReferenceLayout layout = layout_of(block);
+  const std::size_t stride = stride_of(layout);
+  switch (layout) {
+    case ReferenceLayout::hex8_general:
+      return element_loop(block, element_begin, element_end, stride, u, f_int, stress,
+                          [lambda, mu](const double* reference, const ElementVectors& u_local,
+                                       ElementVectors& f_local, material::SymTensor& s) {
+                            return ElementEnergies{hex8::internal_forces(reference, lambda, mu, u_local, f_local, s),
+                                                   0.0};
+                          });
+    case ReferenceLayout::hex8_parallelepiped:
+      return element_loop(block, element_begin, element_end, stride, u, f_int, stress,
+                          [lambda, mu](const double* reference, const ElementVectors& u_local,
+                                       ElementVectors& f_local, material::SymTensor& s) {
+                            return ElementEnergies{
+                                hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s),
+                                0.0};
+                          });
+    case ReferenceLayout::hex8r:
+      return element_loop(block, element_begin, element_end, stride, u, f_int, stress,
+                          [lambda, mu](const double* reference, const ElementVectors& u_local,
+                                       ElementVectors& f_local, material::SymTensor& s) {
+                            const hex8r::Energies e = hex8r::internal_forces(reference, lambda, mu, u_local,
+                                                                             f_local, s);
+                            return ElementEnergies{e.strain, e.hourglass};
+                          });
+  }
+  return {};
+}
+
+ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVectors& u, NodalVectors& f_int,
+                                    double* stress) {
+  return add_internal_forces(block, 0, block.count, u, f_int, stress);
+}
+
+bool uses_parallelepiped_kernel(const ElementBlock& block) {
+  return !block.reference.empty() && layout_of(block) == ReferenceLayout::hex8_parallelepiped;
+}
+
+double critical_time_step(const ElementBlock& block, const NodalVectors& x_ref) {
+  const double wave_speed = block.material.dilatational_wave_speed();  // c1 = sqrt((lambda + 2 mu) / rho)
+  double shortest = std::numeric_limits<double>::infinity();
+  for (std::uint32_t e = 0; e < block.count; ++e) {
+    const ElementVectors x = gather(x_ref, block.connectivity + 8 * static_cast<std::size_t>(e));
+    shortest = std::min(shortest, hex8::characteristic_length(x));
+  }
+  return shortest / wave_speed;
+}
+
+void add_lumped_mass(const ElementBlock& block, const NodalVectors& x_ref, std::vector<double>& mass) {
+  EXDYN_ASSERT(mass.size() == x_ref.size());
+  const double rho = block.material.density;
+  for (std::uint32_t e = 0; e < block.count; ++e) {
+    const std::uint32_t* nodes = block.connectivity + 8 * static_cast<std::size_t>(e);
+    const std::array<double, 8> integral = hex8::shape_function_integrals(gather(x_ref, nodes));
+    for (int k = 0; k < 8; ++k) mass[nodes[k]] += rho * integral[k];  // m_I += rho integral N_I dV
+  }
+}
+
+}  // namespace exdyn::element

@@ -1,0 +1,149 @@
+// The one-point hexahedron with Flanagan-Belytschko hourglass stiffness
+// (docs/theory.md, "hex8r"). Small strain, total (not incremental) form, so the
+// element is linear and conservative: f = (K_mean + K_hourglass) u.
+//
+//   b_jI = integral of dN_I/dx_j dV      (the uniform-strain B vectors, m^2)
+//   H    = (1/V) sum_I u_I (x) b_I        (mean displacement gradient)
+//   gamma_alpha = h_alpha - (h_alpha . x_j) b_j / V    (alpha = 1..4)
+//   q_i,alpha = sum_I gamma_alpha,I u_iI,  Q = k q
+//   f_iI = sigma_ij b_jI + sum_alpha Q_i,alpha gamma_alpha,I
+//   E_strain = V sigma : eps / 2,  E_hourglass = k/2 sum q^2
+//   k = coefficient * 2 mu * (b_jI b_jI) / (8 V)       (N/m; PRONTO3D/Presto scaling)
+//
+// Computed in the mode basis of hex8.hpp: with c_m the modes of u,
+// H = sum_m c_m (x) beta_m (beta_mj = phi_m . b_j / V) and q_alpha = 8 c_(3+alpha) - H g_alpha
+// (g_alpha,j = h_alpha . x_j), so the element never forms b or gamma node by node.
+#pragma once
+
+#include <array>
+
+#include "element/hex8.hpp"
+
+namespace exdyn::element::hex8r {
+
+// The uniform-strain B vectors b_jI = integral of dN_I/dx_j dV (m^2) by the
+// 2x2x2 rule, which is exact for them (the integrand has degree <= 2 in each
+// natural coordinate); equal to the closed form dV/dx_jI of Flanagan-Belytschko.
+inline std::array<std::array<double, 8>, 3> b_vectors(const ElementVectors& x_ref) {
+  const hex8::GaussGeometry geometry = hex8::gauss_geometry(x_ref);
+  std::array<std::array<double, 8>, 3> b{};
+  for (int g = 0; g < 8; ++g) {
+    const Vector3& s = hex8::node_natural_coordinates[g];
+    const std::array<Vector3, 8> dn = hex8::shape_function_derivatives(
+        hex8::gauss_abscissa * s[0], hex8::gauss_abscissa * s[1], hex8::gauss_abscissa * s[2]);
+    const Matrix3& inverse_jacobian = geometry.inverse_jacobian[g];
+    for (int node = 0; node < 8; ++node)
+      for (int j = 0; j < 3; ++j)
+        b[j][node] += geometry.det_jacobian[g] *
+                      (dn[node][0] * inverse_jacobian[j] + dn[node][1] * inverse_jacobian[3 + j] +
+                       dn[node][2] * inverse_jacobian[6 + j]);
+  }
+  return b;
+}
+
+// The hourglass stiffness k (N/m) of one element:
+//   k = coefficient * 2 mu * (b_jI b_jI) / (8 V),
+// the stiffness form of Flanagan and Belytschko (1981) with the scaling of
+// Sandia's PRONTO3D/Presto uniform-gradient hexahedron. For a cube of side h,
+// b.b = 3 h^4 / 2 and k = 0.375 coefficient mu h.
+inline double hourglass_stiffness(double mu, double coefficient, double b_dot_b, double volume) {
+  return coefficient * 2.0 * mu * b_dot_b / (8.0 * volume);
+}
+
+// Reference data per element (reference_size doubles):
+//   [0, 21)  beta_mj = phi_m . b_j / V for modes m = 1..7 (row m-1), 1/m
+//   [21, 33) g_alpha,j = h_alpha . x_j for alpha = 0..3 (modes 4..7), m
+//   33: V (m^3), 34: 1/V, 35: k (N/m)
+inline constexpr int reference_size = 36;
+
+// Fills reference[0..reference_size). Returns the smallest det J at the 2x2x2
+// Gauss points (<= 0: inverted).
+inline double make_reference(const ElementVectors& x_ref, double mu, double hourglass_coefficient,
+                             double* reference) {
+  const hex8::GaussGeometry geometry = hex8::gauss_geometry(x_ref);
+  const double volume = geometry.volume;
+  const std::array<std::array<double, 8>, 3> b = b_vectors(x_ref);
+  const hex8::ElementModes x_modes = hex8::modes_from_nodal(x_ref);
+  double b_dot_b = 0.0;
+  for (int j = 0; j < 3; ++j) {
+    // phi_m . b_j = 8 * (mode m of b_j).
+    const std::array<double, 8> b_modes = hex8::modes_from_nodal(b[j]);
+    for (int m = 1; m < 8; ++m) reference[3 * (m - 1) + j] = 8.0 * b_modes[m] / volume;
+    for (int node = 0; node < 8; ++node) b_dot_b += b[j][node] * b[j][node];
+  }
+  for (int alpha = 0; alpha < 4; ++alpha) {
+    reference[21 + 3 * alpha + 0] = 8.0 * x_modes.x[4 + alpha];
+    reference[21 + 3 * alpha + 1] = 8.0 * x_modes.y[4 + alpha];
+    reference[21 + 3 * alpha + 2] = 8.0 * x_modes.z[4 + alpha];
+  }
+  reference[33] = volume;
+  reference[34] = 1.0 / volume;
+  reference[35] = hourglass_stiffness(mu, hourglass_coefficient, b_dot_b, volume);
+  return geometry.min_det_jacobian;
+}
+
+struct Energies {
+  double strain = 0.0;     // V sigma : eps / 2, J
+  double hourglass = 0.0;  // k/2 sum q^2, J
+};
+
+// f = (K_mean + K_hourglass) u for one element (N), its stress (Pa) and energies (J).
+inline Energies internal_forces(const double* reference, double lambda, double mu, const ElementVectors& u,
+                                ElementVectors& f, material::SymTensor& stress) {
+  const hex8::ElementModes c = hex8::modes_from_nodal(u);
+  const double* beta = reference;
+  const double* g = reference + 21;
+  const double volume = reference[33], inverse_volume = reference[34], k = reference[35];
+
+  // H_ij = sum_m c_m,i beta_mj.
+  Matrix3 h{};
+  for (int m = 1; m < 8; ++m) {
+    const Vector3 cm = c[m];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) h[3 * i + j] += cm[i] * beta[3 * (m - 1) + j];
+  }
+  stress = hex8::stress_from_gradient(lambda, mu, h);
+  Energies energies;
+  energies.strain = 0.5 * volume * material::strain_energy_density(stress, hex8::symmetric_part(h));
+
+  // q_alpha,i = h_alpha . u_i - g_alpha . H_i  and  Q = k q.
+  double q[4][3];
+  for (int alpha = 0; alpha < 4; ++alpha) {
+    const Vector3 ch = c[4 + alpha];
+    for (int i = 0; i < 3; ++i)
+      q[alpha][i] = 8.0 * ch[i] - (g[3 * alpha] * h[3 * i] + g[3 * alpha + 1] * h[3 * i + 1] +
+                                   g[3 * alpha + 2] * h[3 * i + 2]);
+  }
+  double q_squared = 0.0;
+  for (int alpha = 0; alpha < 4; ++alpha)
+    for (int i = 0; i < 3; ++i) q_squared += q[alpha][i] * q[alpha][i];
+  energies.hourglass = 0.5 * k * q_squared;
+
+  // f_iI = S_ij b_jI + sum_alpha Q_i,alpha h_alpha,I with S = sigma - (1/V) sum_alpha Q_alpha (x) g_alpha.
+  const double sm[3][3] = {{stress[0], stress[3], stress[5]},
+                           {stress[3], stress[1], stress[4]},
+                           {stress[5], stress[4], stress[2]}};
+  double s[3][3];
+  const double k_over_volume = k * inverse_volume;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      s[i][j] = sm[i][j] - k_over_volume * (q[0][i] * g[j] + q[1][i] * g[3 + j] + q[2][i] * g[6 + j] +
+                                            q[3][i] * g[9 + j]);
+  // Mode forces F'_m = (V/8) sum_j S_ij beta_mj (+ Q for the hourglass modes);
+  // b_jI = (V/8) sum_m phi_m(I) beta_mj, so f_I = sum_m phi_m(I) F'_m.
+  const double volume_8 = 0.125 * volume;
+  std::array<double, 8> fx{}, fy{}, fz{};
+  std::array<std::array<double, 8>*, 3> fm{&fx, &fy, &fz};
+  for (int m = 1; m < 8; ++m)
+    for (int i = 0; i < 3; ++i)
+      (*fm[i])[m] = volume_8 * (s[i][0] * beta[3 * (m - 1)] + s[i][1] * beta[3 * (m - 1) + 1] +
+                                s[i][2] * beta[3 * (m - 1) + 2]);
+  for (int alpha = 0; alpha < 4; ++alpha)
+    for (int i = 0; i < 3; ++i) (*fm[i])[4 + alpha] += k * q[alpha][i];
+  f.x = hex8::nodal_from_modes(fx);
+  f.y = hex8::nodal_from_modes(fy);
+  f.z = hex8::nodal_from_modes(fz);
+  return energies;
+}
+
+}  // namespace exdyn::element::hex8r

@@ -1,0 +1,150 @@
+// The deck, parsed: plain option structs with every default filled in.
+// Only input/deck_reader.cpp touches YAML; physics code sees these structs.
+// Every key of ../shared/spec/input-deck.md maps to one field here
+// (docs/input.md documents each).
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "contact/search_names.hpp"
+
+namespace exdyn::input {
+
+using Vec3 = std::array<double, 3>;
+
+enum class MaterialModel { linear_elastic };
+
+struct MaterialOptions {
+  std::string name;
+  MaterialModel model = MaterialModel::linear_elastic;
+  double density = 0.0;          // rho > 0, mass per volume
+  double youngs_modulus = 0.0;   // E > 0, force per area
+  double poissons_ratio = 0.0;   // nu in (-1, 0.5)
+
+  bool operator==(const MaterialOptions&) const = default;
+};
+
+enum class Formulation {
+  hex8,   // 8-node brick, 2x2x2 Gauss points
+  hex8r,  // 8-node brick, one point, Flanagan-Belytschko hourglass stiffness
+};
+
+struct PartOptions {
+  std::string name;
+  Vec3 box_min{};
+  Vec3 box_max{};
+  std::array<int, 3> elements{};  // nx, ny, nz >= 1
+  std::string material;           // a key of `materials`
+  int material_index = -1;        // index into Deck::materials
+  Formulation formulation = Formulation::hex8;
+  double hourglass_coefficient = 0.05;  // hex8r only
+  Vec3 initial_velocity{};
+
+  bool operator==(const PartOptions&) const = default;
+};
+
+// The six faces of a structured box part.
+enum class BoxSide { xmin, xmax, ymin, ymax, zmin, zmax };
+
+// A named face `<part>.<side>`.
+struct FaceRef {
+  int part = -1;  // index into Deck::parts
+  BoxSide side = BoxSide::xmin;
+
+  bool operator==(const FaceRef&) const = default;
+};
+
+struct BoundaryConditionOptions {
+  std::vector<FaceRef> faces;
+  std::array<bool, 3> fix{false, false, false};  // x, y, z velocity held at zero
+
+  bool operator==(const BoundaryConditionOptions&) const = default;
+};
+
+struct PenaltyOptions {
+  // Exactly one of the two: automatic rule times `scale`, or a fixed stiffness.
+  double scale = 1.0;
+  std::optional<double> stiffness;  // force per length
+  double damping = 0.2;             // viscous contact damping, fraction of critical (docs/input.md)
+
+  bool operator==(const PenaltyOptions&) const = default;
+};
+
+struct GlobalSearchOptions {
+  std::optional<double> cell_size;  // bucket cell edge (length); unset = automatic
+
+  bool operator==(const GlobalSearchOptions&) const = default;
+};
+
+struct LocalSearchOptions {
+  contact::SearchMethod method = contact::SearchMethod::bfgs;
+  double tolerance = 1.0e-10;  // stop when |step in (xi1, xi2)| <= tolerance
+  int max_iterations = 100;
+  contact::InitialGuess initial_guess = contact::InitialGuess::lsp;
+
+  bool operator==(const LocalSearchOptions&) const = default;
+};
+
+struct ContactOptions {
+  std::string name;
+  std::vector<FaceRef> slave;
+  std::vector<FaceRef> master;
+  bool two_pass = true;
+  PenaltyOptions penalty;
+  GlobalSearchOptions search;
+  LocalSearchOptions local_search;
+
+  bool operator==(const ContactOptions&) const = default;
+};
+
+struct TimeOptions {
+  double end_time = 0.0;
+  double courant = 0.9;       // used when dt is not given
+  std::optional<double> dt;   // fixed step; exclusive with an explicit courant
+
+  bool operator==(const TimeOptions&) const = default;
+};
+
+enum class OutputField { displacement, velocity, acceleration, stress, von_mises, contact_force, gap };
+
+inline constexpr std::array<OutputField, 7> all_output_fields{
+    OutputField::displacement, OutputField::velocity,      OutputField::acceleration,
+    OutputField::stress,       OutputField::von_mises,     OutputField::contact_force,
+    OutputField::gap};
+
+struct OutputOptions {
+  std::string directory = "results";
+  int every = 100;          // steps between field outputs (first and last always written)
+  std::vector<OutputField> fields{all_output_fields.begin(), all_output_fields.end()};
+  int history_every = 1;    // steps between energy history rows
+
+  bool operator==(const OutputOptions&) const = default;
+};
+
+// Every struct compares member by member, so that a test can check that reading
+// to_yaml(deck) back gives the same deck.
+struct Deck {
+  std::string source_file;  // path the deck was read from
+  std::string name;
+  std::vector<MaterialOptions> materials;  // in file order
+  std::vector<PartOptions> parts;
+  std::vector<BoundaryConditionOptions> boundary_conditions;
+  std::vector<ContactOptions> contact;
+  TimeOptions time;
+  OutputOptions output;
+
+  bool operator==(const Deck&) const = default;
+};
+
+// Names as they appear in a deck, for messages and the `check` echo.
+const char* name(MaterialModel model);
+const char* name(Formulation formulation);
+const char* name(BoxSide side);
+const char* name(OutputField field);
+// "<part>.<side>"
+std::string face_name(const Deck& deck, const FaceRef& face);
+
+}  // namespace exdyn::input

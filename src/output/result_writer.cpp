@@ -1,0 +1,650 @@
+// HDF5 + XDMF result writer (../shared/spec/output.md,
+// ../shared/tools/paraview/README.md "Recommended layout").
+//
+// Every public operation opens NAME.h5, writes whole datasets from one buffer,
+// and closes the file again: HDF5 1.10 locks an open file, and ParaView aborts
+// on a locked file, so the file is only held while we write. The .xmf is
+// rewritten (temporary + rename) only after the HDF5 file is closed, so it
+// never names a step that is not complete on disk.
+#include "output/result_writer.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
+#include <system_error>
+#include <thread>
+#include <utility>
+
+#include "output/atomic_file.hpp"
+
+namespace exdyn::output {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------
+// Fields: dataset name, where it lives, and how XDMF describes it.
+
+enum class Center { node, cell };
+
+struct FieldLayout {
+  input::OutputField field;
+  const char* dataset;         // name in /steps/NNNNNN and in ParaView
+  Center center;
+  int components;              // 1 = stored as (n,), otherwise (n, components)
+  const char* attribute_type;  // XDMF AttributeType
+};
+
+// Canonical order: datasets and XDMF attributes appear in this order whatever
+// the order of the deck's list, so that files of different runs compare.
+// Stress is "Matrix" E x 6: every ParaView 5.11 XDMF reader keeps 6 components
+// labelled XX YY ZZ XY YZ XZ ("Tensor6" is expanded to 9 by the Xdmf2 reader).
+constexpr std::array<FieldLayout, 7> field_layouts{{
+    {input::OutputField::displacement, "displacement", Center::node, 3, "Vector"},
+    {input::OutputField::velocity, "velocity", Center::node, 3, "Vector"},
+    {input::OutputField::acceleration, "acceleration", Center::node, 3, "Vector"},
+    {input::OutputField::stress, "stress", Center::cell, 6, "Matrix"},
+    {input::OutputField::von_mises, "von_mises", Center::cell, 1, "Scalar"},
+    {input::OutputField::contact_force, "contact_force", Center::node, 3, "Vector"},
+    {input::OutputField::gap, "gap", Center::node, 1, "Scalar"},
+}};
+
+using HistoryColumn = std::pair<const char*, double HistoryRow::*>;
+constexpr std::array<HistoryColumn, 7> history_columns{{
+    {"time", &HistoryRow::time},
+    {"kinetic_energy", &HistoryRow::kinetic_energy},
+    {"internal_energy", &HistoryRow::internal_energy},
+    {"contact_energy", &HistoryRow::contact_energy},
+    {"hourglass_energy", &HistoryRow::hourglass_energy},
+    {"external_work", &HistoryRow::external_work},
+    {"total_energy", &HistoryRow::total_energy},
+}};
+
+// Chunk of the extendable 1-D datasets (/time, /history/*): 8 KiB, so that
+// appending a few rows at a time does not rewrite large chunks.
+constexpr hsize_t series_chunk_rows = 1024;
+
+// ---------------------------------------------------------------------------
+// HDF5 plumbing
+
+// Owns one HDF5 identifier and closes it with the matching H5?close. The
+// unchecked close in the destructor only runs on an error path; the file
+// itself is closed with a checked call (Hdf5File::close).
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = std::exchange(other.id_, H5I_INVALID_HID);
+      closer_ = other.closer_;
+    }
+    return *this;
+  }
+  ~Handle() { reset(); }
+
+  hid_t get() const { return id_; }
+  hid_t release() { return std::exchange(id_, H5I_INVALID_HID); }
+  void reset() {
+    if (id_ >= 0 && closer_ != nullptr) closer_(id_);
+    id_ = H5I_INVALID_HID;
+  }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+// HDF5 prints its error stack to stderr by default. While we are inside the
+// library we switch that off and put the stack into the exception message
+// instead, then restore whatever handler the program had.
+class Hdf5ErrorPrintingOff {
+ public:
+  Hdf5ErrorPrintingOff() {
+    H5Eget_auto2(H5E_DEFAULT, &function_, &client_data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~Hdf5ErrorPrintingOff() { H5Eset_auto2(H5E_DEFAULT, function_, client_data_); }
+  Hdf5ErrorPrintingOff(const Hdf5ErrorPrintingOff&) = delete;
+  Hdf5ErrorPrintingOff& operator=(const Hdf5ErrorPrintingOff&) = delete;
+
+ private:
+  H5E_auto2_t function_ = nullptr;
+  void* client_data_ = nullptr;
+};
+
+// The innermost messages of the current HDF5 error stack, e.g.
+// "unable to lock file, errno = 11, error message = 'Resource temporarily unavailable'".
+std::string hdf5_error_stack() {
+  std::vector<std::string> messages;
+  auto collect = [](unsigned, const H5E_error2_t* error, void* data) -> herr_t {
+    auto& list = *static_cast<std::vector<std::string>*>(data);
+    if (error->desc != nullptr && error->desc[0] != '\0') list.emplace_back(error->desc);
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect, &messages);
+  H5Eclear2(H5E_DEFAULT);
+  std::string text;
+  // The deepest three say what went wrong; the outer ones repeat the call chain.
+  const std::size_t first = messages.size() > 3 ? messages.size() - 3 : 0;
+  for (std::size_t i = first; i < messages.size(); ++i) {
+    if (!text.empty()) text += "; ";
+    text += messages[i];
+  }
+  // Some HDF5 messages contain a ctime() date with its newline; keep the message on one line.
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text.empty() ? std::string("no HDF5 error detail") : text;
+}
+
+// Errors name the file and the object: "HDF5: cannot write dataset
+// /steps/000010/stress in results/run.h5 (...)".
+class Hdf5Errors {
+ public:
+  explicit Hdf5Errors(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw std::runtime_error("HDF5 file " + file_ + ": " + what + " (" + hdf5_error_stack() + ")");
+  }
+  hid_t check(hid_t id, const std::string& what) const {
+    if (id < 0) fail(what);
+    return id;
+  }
+  void check(herr_t status, const char* what, const std::string& object) const {
+    if (status < 0) fail(std::string(what) + " " + object);
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+};
+
+// One session with the file: opened (or created) by the constructor, closed
+// with a checked H5Fclose by close(). H5F_CLOSE_SEMI makes H5Fclose fail if an
+// object inside is still open, so a leaked handle cannot keep the file (and
+// its lock) alive silently.
+class Hdf5File {
+ public:
+  enum class Mode { create, append };
+
+  Hdf5File(const Hdf5Errors& errors, Mode mode) : errors_(errors) {
+    Handle access(errors_.check(H5Pcreate(H5P_FILE_ACCESS), "cannot create file access list for"),
+                  H5Pclose);
+    errors_.check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "cannot set close degree of",
+                  "file");
+    if (mode == Mode::create) {
+      file_ = Handle(errors_.check(H5Fcreate(errors_.file().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT,
+                                             access.get()),
+                                   "cannot create file"),
+                     H5Fclose);
+    } else {
+      file_ = Handle(open_for_append(access.get()), H5Fclose);
+    }
+  }
+
+  hid_t get() const { return file_.get(); }
+
+  void close() {
+    const herr_t status = H5Fclose(file_.release());
+    errors_.check(status, "cannot close", "file (an object inside is still open?)");
+  }
+
+ private:
+  // A reader that holds the file open (h5py, h5dump, a ParaView session)
+  // keeps HDF5 1.10's lock; such readers are short-lived, so wait a little
+  // before turning it into a run failure.
+  hid_t open_for_append(hid_t access) const {
+    using namespace std::chrono_literals;
+    const auto deadline = std::chrono::steady_clock::now() + 10s;
+    for (;;) {
+      const hid_t id = H5Fopen(errors_.file().c_str(), H5F_ACC_RDWR, access);
+      if (id >= 0) return id;
+      if (!fs::exists(errors_.file())) errors_.fail("cannot open file for writing: it no longer exists");
+      if (std::chrono::steady_clock::now() >= deadline) {
+        errors_.fail("cannot open file for writing for 10 s (another program holding it open?)");
+      }
+      H5Eclear2(H5E_DEFAULT);
+      std::this_thread::sleep_for(100ms);
+    }
+  }
+
+  const Hdf5Errors& errors_;
+  Handle file_;
+};
+
+Handle create_group(const Hdf5Errors& errors, hid_t parent, const std::string& path) {
+  return Handle(errors.check(H5Gcreate2(parent, path.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                             "cannot create group " + path),
+                H5Gclose);
+}
+
+// Creates a fixed-size dataset `path` of shape `dims` and writes it in one call.
+void write_dataset(const Hdf5Errors& errors, hid_t file, const std::string& path,
+                   const std::vector<hsize_t>& dims, hid_t file_type, hid_t memory_type,
+                   const void* data) {
+  Handle space(errors.check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                            "cannot create dataspace for " + path),
+               H5Sclose);
+  Handle dataset(errors.check(H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT,
+                                         H5P_DEFAULT, H5P_DEFAULT),
+                              "cannot create dataset " + path),
+                 H5Dclose);
+  errors.check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+               "cannot write dataset", path);
+}
+
+// An empty float64 series (0,) extendable without limit, chunked.
+void create_series(const Hdf5Errors& errors, hid_t file, const std::string& path) {
+  const hsize_t dims[1] = {0};
+  const hsize_t max_dims[1] = {H5S_UNLIMITED};
+  const hsize_t chunk[1] = {series_chunk_rows};
+  Handle space(errors.check(H5Screate_simple(1, dims, max_dims), "cannot create dataspace for " + path),
+               H5Sclose);
+  Handle properties(errors.check(H5Pcreate(H5P_DATASET_CREATE), "cannot create properties for " + path),
+                    H5Pclose);
+  errors.check(H5Pset_chunk(properties.get(), 1, chunk), "cannot set chunking of", path);
+  Handle dataset(errors.check(H5Dcreate2(file, path.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                                         properties.get(), H5P_DEFAULT),
+                              "cannot create dataset " + path),
+                 H5Dclose);
+}
+
+// Appends `values` to the series `path`, which holds `rows_on_disk` rows.
+void append_series(const Hdf5Errors& errors, hid_t file, const std::string& path, hsize_t rows_on_disk,
+                   const std::vector<double>& values) {
+  Handle dataset(errors.check(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "cannot open dataset " + path),
+                 H5Dclose);
+  const hsize_t count[1] = {values.size()};
+  const hsize_t new_size[1] = {rows_on_disk + values.size()};
+  const hsize_t offset[1] = {rows_on_disk};
+  errors.check(H5Dset_extent(dataset.get(), new_size), "cannot extend dataset", path);
+  Handle file_space(errors.check(H5Dget_space(dataset.get()), "cannot get dataspace of " + path), H5Sclose);
+  errors.check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, offset, nullptr, count, nullptr),
+               "cannot select rows of", path);
+  Handle memory_space(errors.check(H5Screate_simple(1, count, nullptr), "cannot create dataspace for " + path),
+                      H5Sclose);
+  errors.check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
+                        values.data()),
+               "cannot write dataset", path);
+}
+
+void write_scalar_attribute(const Hdf5Errors& errors, hid_t object, const std::string& object_path,
+                            const char* name, hid_t file_type, hid_t memory_type, const void* value) {
+  const std::string what = object_path + "@" + name;
+  Handle space(errors.check(H5Screate(H5S_SCALAR), "cannot create dataspace for " + what), H5Sclose);
+  Handle attribute(errors.check(H5Acreate2(object, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                                "cannot create attribute " + what),
+                   H5Aclose);
+  errors.check(H5Awrite(attribute.get(), memory_type, value), "cannot write attribute", what);
+}
+
+// ---------------------------------------------------------------------------
+// XDMF text
+
+// %.17g: the shortest form that round-trips every double, so distinct times
+// stay distinct (ParaView merges equal times and shows an empty mesh).
+std::string format_time(double time) {
+  std::array<char, 32> text{};
+  const auto result =
+      std::to_chars(text.data(), text.data() + text.size(), time, std::chars_format::general, 17);
+  return std::string(text.data(), result.ptr);
+}
+
+std::string xml_escape(std::string_view text) {
+  std::string escaped;
+  escaped.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&': escaped += "&amp;"; break;
+      case '<': escaped += "&lt;"; break;
+      case '>': escaped += "&gt;"; break;
+      case '"': escaped += "&quot;"; break;
+      case '\'': escaped += "&apos;"; break;
+      default: escaped += c;
+    }
+  }
+  return escaped;
+}
+
+std::string step_group_name(long step) {
+  std::array<char, 32> text{};
+  std::snprintf(text.data(), text.size(), "%06ld", step);
+  return text.data();
+}
+
+constexpr std::string_view xdmf_head =
+    "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
+    "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
+    "  <Domain>\n"
+    "    <Grid Name=\"TimeSeries\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+constexpr std::string_view xdmf_tail =
+    "    </Grid>\n"
+    "  </Domain>\n"
+    "</Xdmf>\n";
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+
+struct ResultWriter::Impl {
+  fs::path h5_file;
+  fs::path xmf_file;
+  std::string h5_reference;  // "NAME.h5", relative to the .xmf's directory, XML-escaped
+  Hdf5Errors errors;
+  std::size_t node_count = 0;
+  std::size_t element_count = 0;
+  std::vector<const FieldLayout*> fields;  // requested, canonical order, no duplicates
+
+  std::vector<double> buffer;  // interleaved (AoS) staging and zeros; reused
+  std::vector<HistoryRow> pending_history;
+  hsize_t history_rows_on_disk = 0;
+  hsize_t steps_on_disk = 0;
+  std::optional<double> last_time;
+  long last_step = -1;
+  std::vector<std::string> step_xml;  // one <Grid> per written step
+
+  Impl(const fs::path& directory, const std::string& name)
+      : h5_file(directory / (name + ".h5")),
+        xmf_file(directory / (name + ".xmf")),
+        h5_reference(xml_escape(name + ".h5")),
+        errors(h5_file.string()) {}
+
+  void write_mesh(const MeshView& mesh);
+  void write_history(hid_t file);
+  void write_field(hid_t file, const std::string& group, const FieldLayout& layout, const StepData& data);
+  std::string grid_xml(const StepData& data, const std::string& group) const;
+  void write_xdmf() const;
+  void remove_stale_xdmf() const;
+
+  std::size_t rows(Center center) const { return center == Center::node ? node_count : element_count; }
+  // A zeroed staging buffer of `count` values, for a requested field the solver did not provide.
+  const double* zeros(std::size_t count) {
+    buffer.assign(std::max(buffer.size(), count), 0.0);
+    return buffer.data();
+  }
+};
+
+void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
+  Hdf5File file(errors, Hdf5File::Mode::create);
+  create_group(errors, file.get(), "/mesh");
+  create_group(errors, file.get(), "/steps");
+  create_group(errors, file.get(), "/history");
+
+  // Coordinates: SoA in memory, (N, 3) row-major on disk.
+  const NodalVectors& x = *mesh.x_ref;
+  buffer.resize(std::max(buffer.size(), 3 * node_count));
+  for (std::size_t i = 0; i < node_count; ++i) {
+    buffer[3 * i] = x.x[i];
+    buffer[3 * i + 1] = x.y[i];
+    buffer[3 * i + 2] = x.z[i];
+  }
+  write_dataset(errors, file.get(), "/mesh/coordinates", {node_count, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                buffer.data());
+
+  // Connectivity: uint32 in memory; int64 on disk, the type every XDMF reader
+  // and numpy index with (a uint32 DataItem would need NumberType="UInt").
+  {
+    const std::vector<std::uint32_t>& connectivity = *mesh.connectivity;
+    std::vector<std::int64_t> connectivity64(connectivity.begin(), connectivity.end());
+    write_dataset(errors, file.get(), "/mesh/connectivity", {element_count, 8}, H5T_STD_I64LE,
+                  H5T_NATIVE_INT64, connectivity64.data());
+  }
+
+  // Part index per element; a mesh without parts is one part, index 0.
+  if (mesh.element_part != nullptr) {
+    write_dataset(errors, file.get(), "/mesh/part", {element_count}, H5T_STD_I32LE, H5T_NATIVE_INT32,
+                  mesh.element_part->data());
+  } else {
+    const std::vector<std::int32_t> single_part(element_count, 0);
+    write_dataset(errors, file.get(), "/mesh/part", {element_count}, H5T_STD_I32LE, H5T_NATIVE_INT32,
+                  single_part.data());
+  }
+
+  create_series(errors, file.get(), "/time");
+  for (const auto& [column, member] : history_columns) {
+    create_series(errors, file.get(), std::string("/history/") + column);
+  }
+  file.close();
+}
+
+void ResultWriter::Impl::write_history(hid_t file) {
+  if (pending_history.empty()) return;
+  std::vector<double> column_values(pending_history.size());
+  for (const auto& [column, member] : history_columns) {
+    for (std::size_t i = 0; i < pending_history.size(); ++i) column_values[i] = pending_history[i].*member;
+    append_series(errors, file, std::string("/history/") + column, history_rows_on_disk, column_values);
+  }
+}
+
+void ResultWriter::Impl::write_field(hid_t file, const std::string& group, const FieldLayout& layout,
+                                     const StepData& data) {
+  const std::string path = group + "/" + layout.dataset;
+  const std::size_t n = rows(layout.center);
+  std::vector<hsize_t> dims{n};
+  if (layout.components > 1) dims.push_back(static_cast<hsize_t>(layout.components));
+
+  const double* values = nullptr;
+  const NodalVectors* vectors = nullptr;
+  switch (layout.field) {
+    case input::OutputField::displacement: vectors = data.displacement; break;
+    case input::OutputField::velocity: vectors = data.velocity; break;
+    case input::OutputField::acceleration: vectors = data.acceleration; break;
+    case input::OutputField::contact_force: vectors = data.contact_force; break;
+    case input::OutputField::stress: values = data.stress; break;
+    case input::OutputField::von_mises: values = data.von_mises; break;
+    case input::OutputField::gap: values = data.gap; break;
+  }
+  if (layout.components == 3) {
+    if (vectors == nullptr) {
+      values = zeros(3 * n);
+    } else {
+      buffer.resize(std::max(buffer.size(), 3 * n));
+      for (std::size_t i = 0; i < n; ++i) {
+        buffer[3 * i] = vectors->x[i];
+        buffer[3 * i + 1] = vectors->y[i];
+        buffer[3 * i + 2] = vectors->z[i];
+      }
+      values = buffer.data();
+    }
+  } else if (values == nullptr) {
+    values = zeros(n * static_cast<std::size_t>(layout.components));
+  }
+  // Stress arrives in ParaView's order xx yy zz xy yz xz and is written as-is.
+  write_dataset(errors, file, path, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values);
+}
+
+std::string ResultWriter::Impl::grid_xml(const StepData& data, const std::string& group) const {
+  const std::string nodes = std::to_string(node_count);
+  const std::string elements = std::to_string(element_count);
+  auto data_item = [&](const std::string& dims, const char* number_type, const std::string& path) {
+    return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + number_type +
+           "\" Precision=\"8\" Format=\"HDF\">" + h5_reference + ":" + path + "</DataItem>\n";
+  };
+  std::string xml;
+  xml.reserve(1600);
+  xml += "      <Grid Name=\"step_" + group + "\" GridType=\"Uniform\">\n";
+  xml += "        <Time Value=\"" + format_time(data.time) + "\"/>\n";
+  xml += "        <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" + elements +
+         "\" NodesPerElement=\"8\">\n";
+  xml += "          " + data_item(elements + " 8", "Int", "/mesh/connectivity");
+  xml += "        </Topology>\n";
+  xml += "        <Geometry GeometryType=\"XYZ\">\n";
+  xml += "          " + data_item(nodes + " 3", "Float", "/mesh/coordinates");
+  xml += "        </Geometry>\n";
+  for (const FieldLayout* layout : fields) {
+    std::string dims = layout->center == Center::node ? nodes : elements;
+    if (layout->components > 1) dims += " " + std::to_string(layout->components);
+    xml += "        <Attribute Name=\"" + std::string(layout->dataset) + "\" AttributeType=\"" +
+           layout->attribute_type + "\" Center=\"" + (layout->center == Center::node ? "Node" : "Cell") +
+           "\">\n";
+    xml += "          " + data_item(dims, "Float", "/steps/" + group + "/" + layout->dataset);
+    xml += "        </Attribute>\n";
+  }
+  xml += "      </Grid>\n";
+  return xml;
+}
+
+void ResultWriter::Impl::write_xdmf() const {
+  std::vector<std::string_view> parts;
+  parts.reserve(step_xml.size() + 2);
+  parts.push_back(xdmf_head);
+  for (const std::string& grid : step_xml) parts.push_back(grid);
+  parts.push_back(xdmf_tail);
+  write_file_atomically(xmf_file, parts);
+}
+
+void ResultWriter::Impl::remove_stale_xdmf() const {
+  for (fs::path stale : {xmf_file, fs::path(xmf_file.string() + ".tmp")}) {
+    std::error_code error;
+    fs::remove(stale, error);
+    if (error) throw std::runtime_error("cannot remove " + stale.string() + " of an earlier run: " + error.message());
+  }
+}
+
+// ---------------------------------------------------------------------------
+
+ResultWriter::ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
+                           const std::vector<input::OutputField>& fields) {
+  // Names end up in "NAME.h5:/path" inside the .xmf, which the XDMF readers
+  // split at the colon; a slash would put the files somewhere else.
+  if (name.empty() || name.find_first_of(":/\\") != std::string::npos) {
+    throw std::invalid_argument("result name '" + name + "' must be non-empty and contain no ':', '/' or '\\'");
+  }
+  if (mesh.x_ref == nullptr || mesh.connectivity == nullptr) {
+    throw std::invalid_argument("ResultWriter: mesh coordinates and connectivity are required");
+  }
+  const std::size_t node_count = mesh.x_ref->size();
+  if (mesh.x_ref->y.size() != node_count || mesh.x_ref->z.size() != node_count) {
+    throw std::invalid_argument("ResultWriter: coordinate components differ in length");
+  }
+  if (mesh.connectivity->size() % 8 != 0) {
+    throw std::invalid_argument("ResultWriter: connectivity length " + std::to_string(mesh.connectivity->size()) +
+                                " is not a multiple of 8");
+  }
+  const std::size_t element_count = mesh.connectivity->size() / 8;
+  if (mesh.element_part != nullptr && mesh.element_part->size() != element_count) {
+    throw std::invalid_argument("ResultWriter: " + std::to_string(mesh.element_part->size()) +
+                                " part indices for " + std::to_string(element_count) + " elements");
+  }
+  // ParaView reads an out-of-range node index without complaint and draws garbage.
+  for (std::size_t i = 0; i < mesh.connectivity->size(); ++i) {
+    if ((*mesh.connectivity)[i] >= node_count) {
+      throw std::invalid_argument("ResultWriter: element " + std::to_string(i / 8) + " names node " +
+                                  std::to_string((*mesh.connectivity)[i]) + " of " + std::to_string(node_count));
+    }
+  }
+
+  fs::create_directories(directory);
+  impl_ = std::make_unique<Impl>(fs::path(directory), name);
+  impl_->node_count = node_count;
+  impl_->element_count = element_count;
+  for (const FieldLayout& layout : field_layouts) {
+    if (std::find(fields.begin(), fields.end(), layout.field) != fields.end()) impl_->fields.push_back(&layout);
+  }
+
+  // The .xmf appears with the first step, not here: a temporal collection
+  // with no grid crashes ParaView 5.11's "XDMF Reader" (Xdmf2: "Grid has 0
+  // children", SIGSEGV; the two Xdmf3 readers show an empty dataset). A .xmf
+  // left by an earlier run goes first, before the .h5 it names is truncated
+  // (ParaView aborts on a missing dataset).
+  impl_->remove_stale_xdmf();
+  const Hdf5ErrorPrintingOff quiet;
+  impl_->write_mesh(mesh);
+}
+
+ResultWriter::~ResultWriter() {
+  // Last chance for history rows of a run that ended without flush() (an
+  // exception unwinding the solver). A destructor cannot throw, and the run is
+  // already ending, so a failure here is dropped; flush() is the checked path.
+  if (impl_ == nullptr || impl_->pending_history.empty()) return;
+  try {
+    flush();
+  } catch (...) {
+  }
+}
+
+void ResultWriter::add_history(const HistoryRow& row) { impl_->pending_history.push_back(row); }
+
+void ResultWriter::write_step(const StepData& data) {
+  Impl& w = *impl_;
+  if (!std::isfinite(data.time)) {
+    throw std::logic_error("ResultWriter: step " + std::to_string(data.step) + " has a non-finite time");
+  }
+  if (w.last_time && !(data.time > *w.last_time)) {
+    throw std::logic_error("ResultWriter: step " + std::to_string(data.step) + " at time " + format_time(data.time) +
+                           " does not come after the last written time " + format_time(*w.last_time));
+  }
+  if (data.step < 0 || data.step <= w.last_step) {
+    throw std::logic_error("ResultWriter: step number " + std::to_string(data.step) +
+                           " does not come after the last written step " + std::to_string(w.last_step));
+  }
+
+  // Sizes are checked before the file is touched, so a caller's mistake leaves no partial step.
+  auto check_nodes = [&](const NodalVectors* vectors, const char* what) {
+    if (vectors == nullptr) return;
+    if (vectors->x.size() != w.node_count || vectors->y.size() != w.node_count ||
+        vectors->z.size() != w.node_count) {
+      throw std::logic_error("ResultWriter: step " + std::to_string(data.step) + ": " + what + " has " +
+                             std::to_string(vectors->size()) + " nodes, the mesh " + std::to_string(w.node_count));
+    }
+  };
+  check_nodes(data.displacement, "displacement");
+  check_nodes(data.velocity, "velocity");
+  check_nodes(data.acceleration, "acceleration");
+  check_nodes(data.contact_force, "contact_force");
+
+  const Hdf5ErrorPrintingOff quiet;
+  const std::string group_name = step_group_name(data.step);
+  const std::string group_path = "/steps/" + group_name;
+  {
+    Hdf5File file(w.errors, Hdf5File::Mode::append);
+    {
+      Handle group = create_group(w.errors, file.get(), group_path);
+      write_scalar_attribute(w.errors, group.get(), group_path, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                             &data.time);
+      const std::int64_t step = data.step;
+      write_scalar_attribute(w.errors, group.get(), group_path, "step", H5T_STD_I64LE, H5T_NATIVE_INT64, &step);
+    }
+    for (const FieldLayout* layout : w.fields) w.write_field(file.get(), group_path, *layout, data);
+    append_series(w.errors, file.get(), "/time", w.steps_on_disk, {data.time});
+    w.write_history(file.get());
+    file.close();
+  }
+  // Only now is the step on disk: record it, then let readers see it.
+  w.steps_on_disk += 1;
+  w.history_rows_on_disk += w.pending_history.size();
+  w.pending_history.clear();
+  w.last_time = data.time;
+  w.last_step = data.step;
+  w.step_xml.push_back(w.grid_xml(data, group_name));
+  w.write_xdmf();
+}
+
+void ResultWriter::flush() {
+  Impl& w = *impl_;
+  if (w.pending_history.empty()) return;
+  const Hdf5ErrorPrintingOff quiet;
+  Hdf5File file(w.errors, Hdf5File::Mode::append);
+  w.write_history(file.get());
+  file.close();
+  w.history_rows_on_disk += w.pending_history.size();
+  w.pending_history.clear();
+}
+
+std::string ResultWriter::h5_path() const { return impl_->h5_file.string(); }
+std::string ResultWriter::xmf_path() const { return impl_->xmf_file.string(); }
+
+}  // namespace exdyn::output

@@ -1,0 +1,74 @@
+// Results on disk (../shared/spec/output.md): NAME.h5 (mesh once, one group per
+// written step, energy history) and NAME.xmf (XDMF 3 temporal collection).
+// After every step the HDF5 file is closed and the .xmf replaced atomically
+// (temporary file + rename), so a reader never sees a step that is not on disk.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/nodal_vectors.hpp"
+#include "input/options.hpp"
+
+namespace exdyn::output {
+
+struct MeshView {
+  const NodalVectors* x_ref = nullptr;            // N reference node coordinates
+  const std::vector<std::uint32_t>* connectivity = nullptr;  // 8 E, VTK hexahedron order
+  const std::vector<std::int32_t>* element_part = nullptr;   // E
+};
+
+// The fields of one step. A null pointer is written as zeros when the field is
+// requested in the deck (e.g. contact_force in a run without contact).
+struct StepData {
+  long step = 0;
+  double time = 0.0;
+  const NodalVectors* displacement = nullptr;
+  const NodalVectors* velocity = nullptr;
+  const NodalVectors* acceleration = nullptr;
+  const NodalVectors* contact_force = nullptr;
+  const double* stress = nullptr;     // 6 E: xx yy zz xy yz xz per element
+  const double* von_mises = nullptr;  // E
+  const double* gap = nullptr;        // N
+};
+
+struct HistoryRow {
+  double time = 0.0;
+  double kinetic_energy = 0.0;
+  double internal_energy = 0.0;
+  double contact_energy = 0.0;
+  double hourglass_energy = 0.0;
+  double external_work = 0.0;
+  double total_energy = 0.0;
+};
+
+class ResultWriter {
+ public:
+  // Creates (or overwrites) DIRECTORY/NAME.h5 with /mesh; creates DIRECTORY if
+  // needed. NAME.xmf is written from the first step on (ParaView's Xdmf2 reader
+  // crashes on a collection with no step); a NAME.xmf of an earlier run is removed.
+  ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
+               const std::vector<input::OutputField>& fields);
+  ~ResultWriter();
+  ResultWriter(const ResultWriter&) = delete;
+  ResultWriter& operator=(const ResultWriter&) = delete;
+
+  // Buffers a history row; rows are flushed to /history at every write_step and flush().
+  void add_history(const HistoryRow& row);
+  // Writes /steps/NNNNNN, appends to /time, flushes history, closes the file,
+  // then rewrites the .xmf atomically. Steps must be written in increasing time.
+  void write_step(const StepData& data);
+  // Flushes buffered history rows (end of run).
+  void flush();
+
+  std::string h5_path() const;
+  std::string xmf_path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace exdyn::output

@@ -1,0 +1,84 @@
+#include "output/summary.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string_view>
+#include <vector>
+
+#include "output/atomic_file.hpp"
+
+namespace exdyn::output {
+namespace {
+
+// ordered_json keeps the keys in the order of ../shared/spec/output.md, so a
+// person reading the file finds them where the spec shows them.
+using Json = nlohmann::ordered_json;
+
+// JSON has no NaN or infinity. A non-finite value (a diverged energy, a rate
+// of a run that never started its time loop) is written as null, which every
+// JSON reader accepts and no reader can mistake for a number.
+Json number(double value) {
+  if (!std::isfinite(value)) return nullptr;
+  return value;
+}
+
+Json to_json(const RunSummary& s) {
+  Json phases;
+  phases["element_forces"] = number(s.phase_seconds.element_forces);
+  phases["contact_global_search"] = number(s.phase_seconds.contact_global_search);
+  phases["contact_local_search"] = number(s.phase_seconds.contact_local_search);
+  phases["contact_forces"] = number(s.phase_seconds.contact_forces);
+  phases["time_integration"] = number(s.phase_seconds.time_integration);
+  phases["output"] = number(s.phase_seconds.output);
+
+  Json energy;
+  energy["initial_total"] = number(s.energy.initial_total);
+  energy["final_total"] = number(s.energy.final_total);
+  energy["max_relative_error"] = number(s.energy.max_relative_error);
+
+  Json contact;
+  contact["projections"] = s.contact.projections;
+  contact["mean_iterations"] = number(s.contact.mean_iterations);
+  contact["max_iterations"] = s.contact.max_iterations;
+  contact["not_converged"] = s.contact.not_converged;
+  contact["saddle_points"] = s.contact.saddle_points;
+  contact["max_penetration_over_h"] = number(s.contact.max_penetration_over_h);
+  contact["penalty_stiffness"] = number(s.contact.penalty_stiffness);
+
+  Json mesh;
+  mesh["nodes"] = s.nodes;
+  mesh["elements"] = s.elements;
+
+  Json j;
+  j["name"] = s.name;
+  j["status"] = s.status;
+  j["message"] = s.message;
+  j["exdyn_version"] = s.exdyn_version;
+  j["threads"] = s.threads;
+  j["mesh"] = std::move(mesh);
+  j["steps"] = s.steps;
+  j["dt"] = number(s.dt);
+  j["end_time"] = number(s.end_time);
+  j["wall_seconds"] = number(s.wall_seconds);
+  j["element_cycles_per_second"] = number(s.element_cycles_per_second);
+  j["phase_seconds"] = std::move(phases);
+  j["energy"] = std::move(energy);
+  j["contact"] = std::move(contact);
+  return j;
+}
+
+}  // namespace
+
+void write_summary(const std::string& path, const RunSummary& summary) {
+  // A failure message may quote bytes of the deck that are not UTF-8; replace
+  // them (U+FFFD) rather than throw, because the summary of a failed run must
+  // still be written.
+  const std::string text =
+      to_json(summary).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
+  const std::filesystem::path file(path);
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+  write_file_atomically(file, {std::string_view(text)});
+}
+
+}  // namespace exdyn::output

@@ -1,0 +1,55 @@
+// The run summary NAME.json (../shared/spec/output.md), written at the end of
+// every run, a failed one too.
+#pragma once
+
+#include <string>
+
+namespace exdyn::output {
+
+struct PhaseSeconds {
+  double element_forces = 0.0;
+  double contact_global_search = 0.0;
+  double contact_local_search = 0.0;
+  double contact_forces = 0.0;
+  double time_integration = 0.0;
+  double output = 0.0;
+};
+
+struct EnergySummary {
+  double initial_total = 0.0;
+  double final_total = 0.0;
+  double max_relative_error = 0.0;  // max |E_total(t) - E_total(0)| / max(E seen)
+};
+
+struct ContactSummary {
+  long projections = 0;
+  double mean_iterations = 0.0;
+  long max_iterations = 0;
+  long not_converged = 0;
+  long saddle_points = 0;
+  double max_penetration_over_h = 0.0;
+  double penalty_stiffness = 0.0;
+};
+
+struct RunSummary {
+  std::string name;
+  std::string status = "completed";  // "completed" or "failed"
+  std::string message;
+  std::string exdyn_version;
+  int threads = 1;
+  long nodes = 0;
+  long elements = 0;
+  long steps = 0;
+  double dt = 0.0;
+  double end_time = 0.0;
+  double wall_seconds = 0.0;
+  double element_cycles_per_second = 0.0;  // elements x steps / wall seconds of the time loop
+  PhaseSeconds phase_seconds;
+  EnergySummary energy;
+  ContactSummary contact;
+};
+
+// Writes the summary as JSON to `path` (atomically: temporary file + rename).
+void write_summary(const std::string& path, const RunSummary& summary);
+
+}  // namespace exdyn::output

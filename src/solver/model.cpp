@@ -1,0 +1,85 @@
+#include "solver/model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/errors.hpp"
+#include "material/elastic.hpp"
+
+namespace exdyn::solver {
+
+Model build_model(const input::Deck& deck) {
+  Model model;
+  model.mesh = mesh::build_mesh(deck);
+  const std::size_t node_count = model.mesh.node_count();
+  model.mass.assign(node_count, 0.0);
+  for (std::size_t p = 0; p < deck.parts.size(); ++p) {
+    const input::PartOptions& part = deck.parts[p];
+    const input::MaterialOptions& m = deck.materials.at(static_cast<std::size_t>(part.material_index));
+    const mesh::PartRange& range = model.mesh.parts[p];
+    model.blocks.push_back(element::make_element_block(
+        part.formulation, material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density),
+        part.hourglass_coefficient, range.first_element, range.element_count,
+        model.mesh.connectivity.data() + 8 * std::size_t(range.first_element), model.mesh.x_ref));
+    element::add_lumped_mass(model.blocks.back(), model.mesh.x_ref, model.mass);
+  }
+  model.inverse_mass.resize(node_count);
+  for (std::size_t i = 0; i < node_count; ++i) {
+    EXDYN_ASSERT(model.mass[i] > 0.0);  // every node belongs to an element
+    model.inverse_mass[i] = 1.0 / model.mass[i];
+  }
+  for (const auto& bc : deck.boundary_conditions)
+    for (const auto& face_ref : bc.faces) {
+      const mesh::Face face = mesh::face_of(model.mesh, face_ref.part, face_ref.side);
+      for (int c = 0; c < 3; ++c)
+        if (bc.fix[c]) model.fixed_nodes[c].insert(model.fixed_nodes[c].end(), face.nodes.begin(), face.nodes.end());
+    }
+  for (auto& nodes : model.fixed_nodes) {
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  }
+  return model;
+}
+
+NodalVectors initial_velocity(const input::Deck& deck, const Model& model) {
+  NodalVectors v(model.mesh.node_count());
+  for (std::size_t p = 0; p < deck.parts.size(); ++p) {
+    const mesh::PartRange& range = model.mesh.parts[p];
+    for (int c = 0; c < 3; ++c) {
+      auto& component = v.component(c);
+      std::fill(component.begin() + range.first_node, component.begin() + range.first_node + range.node_count,
+                deck.parts[p].initial_velocity[c]);
+    }
+  }
+  apply_fixed_components(model, v);
+  return v;
+}
+
+void apply_fixed_components(const Model& model, NodalVectors& field) {
+  for (int c = 0; c < 3; ++c) {
+    auto& component = field.component(c);
+    for (const std::uint32_t node : model.fixed_nodes[c]) component[node] = 0.0;
+  }
+}
+
+double critical_time_step(const Model& model) {
+  double dt = std::numeric_limits<double>::infinity();
+  for (const auto& block : model.blocks) dt = std::min(dt, element::critical_time_step(block, model.mesh.x_ref));
+  return dt;
+}
+
+TimeStepping time_stepping(const input::TimeOptions& time, double critical_dt) {
+  TimeStepping result;
+  result.dt = time.dt ? *time.dt : time.courant * critical_dt;
+  // Steps to reach end_time; a ratio within round-off of an integer counts as
+  // that integer (end_time = 448 dt must give 448 steps, not 449).
+  const double ratio = time.end_time / result.dt;
+  const double nearest = std::round(ratio);
+  result.steps = static_cast<long>(std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio) ? nearest
+                                                                                               : std::ceil(ratio));
+  result.steps = std::max(result.steps, 1L);
+  return result;
+}
+
+}  // namespace exdyn::solver

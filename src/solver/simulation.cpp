@@ -1,0 +1,262 @@
+// The time loop: central differences with a lumped mass matrix.
+//
+//   a^n       = M^-1 (f_ext^n - f_int(u^n))            (fixed components: a = 0)
+//   v^{n+1/2} = v^{n-1/2} + dt a^n                      (v^{-1/2} = v^0 - dt/2 a^0)
+//   u^{n+1}   = u^n + dt v^{n+1/2}
+//
+// Energy at step n (docs/theory.md, "Energy"): internal energy from u^n, kinetic
+// energy from the two half-step velocities around n, K^n = 1/2 sum m v^{n-1/2}.v^{n+1/2},
+// the form that the central-difference scheme conserves exactly for a linear
+// elastic model, so the energy balance checks the forces and the mass to round-off.
+#include "solver/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "common/version.hpp"
+#include "output/result_writer.hpp"
+#include "solver/model.hpp"
+
+namespace exdyn::solver {
+
+namespace {
+
+struct State {
+  long step = 0;
+  double time = 0.0;
+  NodalVectors displacement;    // u^n, m
+  NodalVectors velocity;        // v^{n-1/2}, then v^{n+1/2} after update_velocities, m/s
+  NodalVectors acceleration;    // a^n, m/s^2
+  NodalVectors internal_force;  // f_int(u^n), N
+  std::vector<double> stress;   // 6 per element: xx yy zz xy yz xz, Pa
+};
+
+struct Energies {
+  double kinetic = 0.0;
+  double internal = 0.0;
+  double hourglass = 0.0;
+  double contact = 0.0;
+  double external_work = 0.0;
+  double total() const { return kinetic + internal + hourglass + contact - external_work; }
+};
+
+// f_int(u^n) and the stresses of every element; returns the strain and hourglass energies.
+element::ElementEnergies compute_internal_forces(const Model& model, State& state) {
+  state.internal_force.fill(0.0);
+  element::ElementEnergies total;
+  for (const auto& block : model.blocks) {
+    const element::ElementEnergies e =
+        element::add_internal_forces(block, state.displacement, state.internal_force, state.stress.data());
+    total.strain += e.strain;
+    total.hourglass += e.hourglass;
+  }
+  return total;
+}
+
+// a = M^-1 (-f_int); the fixed components get a = 0 so that they keep v = 0.
+void compute_accelerations(const Model& model, State& state) {
+  const std::size_t n = model.mesh.node_count();
+  for (int c = 0; c < 3; ++c) {
+    const double* f = state.internal_force.component(c).data();
+    double* a = state.acceleration.component(c).data();
+    const double* inverse_mass = model.inverse_mass.data();
+    for (std::size_t i = 0; i < n; ++i) a[i] = -f[i] * inverse_mass[i];
+  }
+  apply_fixed_components(model, state.acceleration);
+}
+
+// v^{n+1/2} = v^{n-1/2} + dt a^n; returns K^n = 1/2 sum m v^{n-1/2}.v^{n+1/2} (J).
+double update_velocities(const Model& model, State& state, double dt) {
+  const std::size_t n = model.mesh.node_count();
+  double twice_kinetic = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    double* v = state.velocity.component(c).data();
+    const double* a = state.acceleration.component(c).data();
+    const double* m = model.mass.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double v_new = v[i] + dt * a[i];
+      twice_kinetic += m[i] * v[i] * v_new;
+      v[i] = v_new;
+    }
+  }
+  return 0.5 * twice_kinetic;
+}
+
+// u^{n+1} = u^n + dt v^{n+1/2}.
+void update_displacements(State& state, double dt) {
+  for (int c = 0; c < 3; ++c) {
+    double* u = state.displacement.component(c).data();
+    const double* v = state.velocity.component(c).data();
+    const std::size_t n = state.displacement.size();
+    for (std::size_t i = 0; i < n; ++i) u[i] += dt * v[i];
+  }
+}
+
+// Names the first node with a non-finite displacement, velocity or acceleration.
+std::string describe_non_finite(const State& state) {
+  const std::pair<const char*, const NodalVectors*> fields[] = {
+      {"acceleration", &state.acceleration}, {"velocity", &state.velocity}, {"displacement", &state.displacement}};
+  for (const auto& [label, field] : fields)
+    for (int c = 0; c < 3; ++c) {
+      const auto& values = field->component(c);
+      for (std::size_t i = 0; i < values.size(); ++i)
+        if (!std::isfinite(values[i]))
+          return std::string("non-finite ") + label + " at node " + std::to_string(i) + " (component " +
+                 "xyz"[c] + ")";
+    }
+  return "non-finite energy";
+}
+
+// Writes the fields of step n: v^n = v^{n+1/2} - dt/2 a^n (the velocity update is done).
+class StepWriter {
+ public:
+  StepWriter(output::ResultWriter& writer, const Model& model) : writer_(writer), model_(model) {
+    velocity_.resize(model.mesh.node_count());
+    von_mises_.resize(model.mesh.element_count());
+  }
+  void write(const State& state, double dt) {
+    for (int c = 0; c < 3; ++c) {
+      const auto& v = state.velocity.component(c);
+      const auto& a = state.acceleration.component(c);
+      auto& out = velocity_.component(c);
+      for (std::size_t i = 0; i < v.size(); ++i) out[i] = v[i] - 0.5 * dt * a[i];
+    }
+    for (std::size_t e = 0; e < von_mises_.size(); ++e) {
+      material::SymTensor s;
+      std::copy_n(state.stress.data() + 6 * e, 6, s.begin());
+      von_mises_[e] = material::von_mises(s);
+    }
+    output::StepData data;
+    data.step = state.step;
+    data.time = state.time;
+    data.displacement = &state.displacement;
+    data.velocity = &velocity_;
+    data.acceleration = &state.acceleration;
+    data.stress = state.stress.data();
+    data.von_mises = von_mises_.data();
+    writer_.write_step(data);
+  }
+
+ private:
+  output::ResultWriter& writer_;
+  const Model& model_;
+  NodalVectors velocity_;
+  std::vector<double> von_mises_;
+};
+
+}  // namespace
+
+output::RunSummary run_simulation(const input::Deck& deck, const RunControls& controls) {
+  if (!deck.contact.empty())
+    throw InputError(SourceLocation{deck.source_file, 0, 0}, "contact",
+                     "contact pairs are read but the contact pass is not in this version of exdyn; "
+                     "remove the contact section");
+  Stopwatch total_watch;
+  output::RunSummary summary;
+  summary.name = deck.name;
+  summary.exdyn_version = exdyn::version;
+  summary.threads = 1;
+  summary.end_time = deck.time.end_time;
+
+  const Model model = build_model(deck);
+  const TimeStepping stepping = time_stepping(deck.time, critical_time_step(model));
+  const double dt = stepping.dt;
+  summary.nodes = static_cast<long>(model.mesh.node_count());
+  summary.elements = static_cast<long>(model.mesh.element_count());
+  summary.dt = dt;
+
+  const std::string directory = controls.output_directory.empty() ? deck.output.directory : controls.output_directory;
+  output::ResultWriter writer(directory, deck.name,
+                              output::MeshView{&model.mesh.x_ref, &model.mesh.connectivity, &model.mesh.element_part},
+                              deck.output.fields);
+  const std::string summary_path = (std::filesystem::path(directory) / (deck.name + ".json")).string();
+
+  State state;
+  const std::size_t node_count = model.mesh.node_count();
+  state.displacement.resize(node_count);
+  state.acceleration.resize(node_count);
+  state.internal_force.resize(node_count);
+  state.stress.assign(6 * model.mesh.element_count(), 0.0);
+  state.velocity = initial_velocity(deck, model);
+  StepWriter step_writer(writer, model);
+
+  output::PhaseSeconds& phase = summary.phase_seconds;
+  Stopwatch loop_watch;
+  double last_progress = -1.0;
+  double initial_total = 0.0, largest_energy = 0.0, max_energy_error = 0.0;
+  try {
+    for (state.step = 0;; ++state.step) {
+      state.time = static_cast<double>(state.step) * dt;
+      Energies energy;
+      {
+        ScopedTimer timer(phase.element_forces);
+        const element::ElementEnergies element_energy = compute_internal_forces(model, state);
+        energy.internal = element_energy.strain;
+        energy.hourglass = element_energy.hourglass;
+      }
+      {
+        ScopedTimer timer(phase.time_integration);
+        compute_accelerations(model, state);
+        if (state.step == 0) {  // v^{-1/2} = v^0 - dt/2 a^0
+          for (int c = 0; c < 3; ++c) {
+            auto& v = state.velocity.component(c);
+            const auto& a = state.acceleration.component(c);
+            for (std::size_t i = 0; i < node_count; ++i) v[i] -= 0.5 * dt * a[i];
+          }
+        }
+        energy.kinetic = update_velocities(model, state, dt);
+      }
+      const double total = energy.total();
+      if (!std::isfinite(total))
+        throw RunFailure(describe_non_finite(state) + " at step " + std::to_string(state.step) + ", time " +
+                             std::to_string(state.time) + " s",
+                         state.step, state.time);
+      if (state.step == 0) initial_total = total;
+      largest_energy = std::max({largest_energy, std::abs(total), energy.kinetic, energy.internal + energy.hourglass});
+      if (largest_energy > 0.0)
+        max_energy_error = std::max(max_energy_error, std::abs(total - initial_total) / largest_energy);
+
+      const bool last = state.step == stepping.steps;
+      {
+        ScopedTimer timer(phase.output);
+        if (state.step % deck.output.history_every == 0 || last)
+          writer.add_history({state.time, energy.kinetic, energy.internal, energy.contact, energy.hourglass,
+                              energy.external_work, total});
+        if (state.step % deck.output.every == 0 || last) step_writer.write(state, dt);
+      }
+      summary.energy = {initial_total, total, max_energy_error};
+      if (controls.on_progress && (last || loop_watch.seconds() - last_progress >= 0.25)) {
+        last_progress = loop_watch.seconds();
+        controls.on_progress({state.step, stepping.steps, state.time, dt, last_progress});
+      }
+      if (last) break;
+      {
+        ScopedTimer timer(phase.time_integration);
+        update_displacements(state, dt);
+      }
+    }
+  } catch (const RunFailure& failure) {
+    writer.flush();
+    summary.status = "failed";
+    summary.message = failure.what();
+    summary.steps = state.step;
+    summary.wall_seconds = total_watch.seconds();
+    output::write_summary(summary_path, summary);
+    throw;
+  }
+  writer.flush();
+  const double loop_seconds = loop_watch.seconds();
+  summary.steps = stepping.steps;
+  summary.wall_seconds = total_watch.seconds();
+  summary.element_cycles_per_second =
+      loop_seconds > 0.0 ? static_cast<double>(summary.elements) * static_cast<double>(stepping.steps) / loop_seconds
+                         : 0.0;
+  output::write_summary(summary_path, summary);
+  return summary;
+}
+
+}  // namespace exdyn::solver

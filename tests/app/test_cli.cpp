@@ -1,0 +1,109 @@
+// The command line (../shared/spec/cli.md) through the real executable: exit
+// statuses, `check`, `--set`, and that bad input writes nothing.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "../support/temp_dir.hpp"
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out;  // stdout and stderr
+};
+
+Result exdyn(const std::string& arguments) {
+  const std::string command = std::string(EXDYN_EXECUTABLE) + " " + arguments + " 2>&1";
+  Result result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), int(buffer.size()), pipe)) result.out += buffer.data();
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+std::string deck(const std::string& name) { return std::string(EXDYN_SOURCE_DIR) + "/input/" + name; }
+
+TEST(Cli, VersionAndHelpExitZero) {
+  const auto version = exdyn("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_NE(version.out.find("exdyn 0.1.0"), std::string::npos) << version.out;
+  for (const char* args : {"--help", "run --help", "check --help", "project --help"}) {
+    const auto help = exdyn(args);
+    EXPECT_EQ(help.status, 0) << args;
+  }
+  EXPECT_NE(exdyn("run --help").out.find("--set"), std::string::npos);
+}
+
+TEST(Cli, BadUsageExitsTwo) {
+  EXPECT_EQ(exdyn("").status, 2);
+  EXPECT_EQ(exdyn("frobnicate").status, 2);
+  EXPECT_EQ(exdyn("run").status, 2);
+  EXPECT_EQ(exdyn("run " + deck("wave_bar.yaml") + " --set time.courant").status, 2);
+  EXPECT_EQ(exdyn("run /nonexistent/deck.yaml").status, 2);
+}
+
+TEST(Cli, CheckPrintsTheResolvedDeckWithDefaultsAndOverrides) {
+  const auto result = exdyn("check " + deck("wave_bar.yaml") + " --set time.courant=0.25");
+  ASSERT_EQ(result.status, 0) << result.out;
+  EXPECT_NE(result.out.find("courant: 0.25"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("formulation: hex8"), std::string::npos) << result.out;  // a default filled in
+  EXPECT_NE(result.out.find("history_every: 1"), std::string::npos) << result.out;
+}
+
+TEST(Cli, CheckOutputIsAValidDeckThatChecksToTheSameText) {
+  exdyn::testing::TempDir directory;
+  const auto first = exdyn("check " + deck("plate_impact_reference.yaml"));
+  ASSERT_EQ(first.status, 0) << first.out;
+  std::ofstream(directory.file("echo.yaml")) << first.out;
+  const auto second = exdyn("check " + directory.file("echo.yaml"));
+  ASSERT_EQ(second.status, 0) << second.out;
+  EXPECT_EQ(second.out, first.out);
+}
+
+TEST(Cli, BadDeckExitsTwoNamesTheKeyAndWritesNothing) {
+  exdyn::testing::TempDir directory;
+  const std::string out = directory.file("out");
+  const auto result = exdyn("run " + deck("wave_bar.yaml") + " --set materials.steel.density=-7800 --output " + out);
+  EXPECT_EQ(result.status, 2);
+  EXPECT_NE(result.out.find("materials.steel.density"), std::string::npos) << result.out;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, RunWritesTheThreeFilesAndOneSummaryLineWhenNotATerminal) {
+  exdyn::testing::TempDir directory;
+  const auto result = exdyn("run " + deck("wave_bar.yaml") + " --output " + directory.path().string());
+  ASSERT_EQ(result.status, 0) << result.out;
+  for (const char* suffix : {".h5", ".xmf", ".json"})
+    EXPECT_TRUE(std::filesystem::exists(directory.file(std::string("wave_bar") + suffix))) << suffix;
+  // stdout is a pipe here: no progress line, only the final summary line.
+  EXPECT_EQ(std::count(result.out.begin(), result.out.end(), '\n'), 1) << result.out;
+  EXPECT_NE(result.out.find("completed"), std::string::npos);
+  const auto quiet = exdyn("run " + deck("wave_bar.yaml") + " --quiet --output " + directory.path().string());
+  EXPECT_EQ(quiet.status, 0);
+  EXPECT_EQ(quiet.out, "");
+}
+
+TEST(Cli, SetOverridesTheOutputInterval) {
+  exdyn::testing::TempDir directory;
+  const auto result = exdyn("run " + deck("wave_bar.yaml") + " --quiet --set output.every=1000 --output " +
+                            directory.path().string());
+  ASSERT_EQ(result.status, 0) << result.out;
+  std::ifstream xmf(directory.file("wave_bar.xmf"));
+  const std::string text((std::istreambuf_iterator<char>(xmf)), std::istreambuf_iterator<char>());
+  std::size_t grids = 0;
+  for (std::size_t at = text.find("<Time "); at != std::string::npos; at = text.find("<Time ", at + 1)) ++grids;
+  EXPECT_EQ(grids, 2u);  // the first and the last step only
+}
+
+}  // namespace

@@ -1,0 +1,295 @@
+// Element blocks: gather/scatter, lumped mass, stable step, and the plate-impact
+// chain (../shared/reference/plate-impact.md) through the element loop.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "element/element_block.hpp"
+#include "element/hex8.hpp"
+#include "reference_elements.hpp"
+
+namespace exdyn::element {
+namespace {
+
+const material::ElasticConstants steel = material::elastic_constants(2.1e11, 0.3, 7800.0);
+
+// A structured box of nx x ny x nz elements of sides h, node (i, j, k) at
+// index i + (nx+1) (j + (ny+1) k), elements in VTK order.
+struct Box {
+  NodalVectors x_ref;
+  std::vector<std::uint32_t> connectivity;
+  std::uint32_t count = 0;
+};
+
+Box make_box(int nx, int ny, int nz, double h) {
+  Box box;
+  const auto node = [&](int i, int j, int k) {
+    return static_cast<std::uint32_t>(i + (nx + 1) * (j + (ny + 1) * k));
+  };
+  box.x_ref.resize(static_cast<std::size_t>((nx + 1) * (ny + 1) * (nz + 1)));
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) {
+        box.x_ref.x[node(i, j, k)] = i * h;
+        box.x_ref.y[node(i, j, k)] = j * h;
+        box.x_ref.z[node(i, j, k)] = k * h;
+      }
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const std::uint32_t element[8] = {node(i, j, k),         node(i + 1, j, k),     node(i + 1, j + 1, k),
+                                          node(i, j + 1, k),     node(i, j, k + 1),     node(i + 1, j, k + 1),
+                                          node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
+        box.connectivity.insert(box.connectivity.end(), element, element + 8);
+        ++box.count;
+      }
+  return box;
+}
+
+ElementVectors gather(const NodalVectors& v, const std::uint32_t* nodes) {
+  ElementVectors local;
+  for (int I = 0; I < 8; ++I) {
+    local.x[I] = v.x[nodes[I]];
+    local.y[I] = v.y[nodes[I]];
+    local.z[I] = v.z[nodes[I]];
+  }
+  return local;
+}
+
+// A 2x2x2 box of side 1 with every node moved randomly by up to 0.15.
+Box distorted_patch(std::mt19937_64& rng) {
+  Box box = make_box(2, 2, 2, 0.5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (std::size_t n = 0; n < box.x_ref.size(); ++n) {
+    box.x_ref.x[n] += 0.075 * unit(rng);
+    box.x_ref.y[n] += 0.075 * unit(rng);
+    box.x_ref.z[n] += 0.075 * unit(rng);
+  }
+  return box;
+}
+
+void check_block_against_hand_summed_elements(input::Formulation formulation) {
+  std::mt19937_64 rng(41);
+  const Box box = distorted_patch(rng);
+  const std::uint32_t first_element = 5;
+  const double coefficient = 0.05;
+  const ElementBlock block = make_element_block(formulation, steel, coefficient, first_element, box.count,
+                                                box.connectivity.data(), box.x_ref);
+  EXPECT_FALSE(uses_parallelepiped_kernel(block));
+  NodalVectors u(box.x_ref.size());
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (std::size_t n = 0; n < u.size(); ++n) {
+    u.x[n] = 1e-4 * unit(rng);
+    u.y[n] = 1e-4 * unit(rng);
+    u.z[n] = 1e-4 * unit(rng);
+  }
+  NodalVectors f_int(box.x_ref.size());
+  const double sentinel = -12345.0;
+  std::vector<double> stress(6 * (first_element + box.count + 2), sentinel);
+  const ElementEnergies energies = add_internal_forces(block, u, f_int, stress.data());
+
+  // By hand: each element through the plain reference implementation, assembled.
+  Eigen::VectorXd f_expected = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(u.size()));
+  double strain = 0.0, hourglass = 0.0;
+  for (std::uint32_t e = 0; e < box.count; ++e) {
+    const std::uint32_t* nodes = box.connectivity.data() + 8 * e;
+    const ElementVectors x = gather(box.x_ref, nodes), u_local = gather(u, nodes);
+    const testing::ReferenceResult ref =
+        formulation == input::Formulation::hex8
+            ? testing::reference_hex8(x, steel.lambda, steel.mu, u_local)
+            : testing::reference_hex8r(x, steel.lambda, steel.mu, coefficient, u_local);
+    for (int I = 0; I < 8; ++I)
+      for (int i = 0; i < 3; ++i) f_expected(3 * nodes[I] + i) += ref.force(3 * I + i);
+    strain += ref.strain_energy;
+    hourglass += ref.hourglass_energy;
+    const double scale = ref.mean_stress.cwiseAbs().maxCoeff();
+    for (int k = 0; k < 6; ++k)
+      EXPECT_NEAR(stress[6 * (first_element + e) + k], ref.mean_stress(k), 1e-12 * scale);
+  }
+  for (std::size_t n = 0; n < u.size(); ++n) {
+    const Eigen::Index i = static_cast<Eigen::Index>(n);
+    EXPECT_NEAR(f_int.x[n], f_expected(3 * i), 1e-12 * f_expected.norm());
+    EXPECT_NEAR(f_int.y[n], f_expected(3 * i + 1), 1e-12 * f_expected.norm());
+    EXPECT_NEAR(f_int.z[n], f_expected(3 * i + 2), 1e-12 * f_expected.norm());
+  }
+  EXPECT_NEAR(energies.strain, strain, 1e-12 * strain);
+  EXPECT_NEAR(energies.hourglass, hourglass, 1e-12 * (strain + hourglass));
+  // Entries of other blocks' elements are untouched.
+  for (std::uint32_t k = 0; k < 6 * first_element; ++k) EXPECT_EQ(stress[k], sentinel);
+  for (std::size_t k = 6 * (first_element + box.count); k < stress.size(); ++k) EXPECT_EQ(stress[k], sentinel);
+
+  // Adding again, in two ranges, doubles the forces (f_int +=).
+  const ElementEnergies first = add_internal_forces(block, 0, 3, u, f_int, stress.data());
+  const ElementEnergies second = add_internal_forces(block, 3, block.count, u, f_int, stress.data());
+  EXPECT_NEAR(first.strain + second.strain, strain, 1e-12 * strain);
+  for (std::size_t n = 0; n < u.size(); ++n)
+    EXPECT_NEAR(f_int.x[n], 2 * f_expected(3 * static_cast<Eigen::Index>(n)), 1e-12 * f_expected.norm());
+}
+
+TEST(ElementBlock, Hex8InternalForcesEqualHandSummedElementKernels) {
+  check_block_against_hand_summed_elements(input::Formulation::hex8);
+}
+
+TEST(ElementBlock, Hex8rInternalForcesEqualHandSummedElementKernels) {
+  check_block_against_hand_summed_elements(input::Formulation::hex8r);
+}
+
+TEST(ElementBlock, PatchTestInteriorNodeOfDistortedPatchFeelsNoForce) {
+  // A linear field on a patch of distorted elements: the interior node (1,1,1)
+  // is in equilibrium, for both formulations.
+  std::mt19937_64 rng(42);
+  const Box box = distorted_patch(rng);
+  const std::size_t interior = 1 + 3 * (1 + 3 * 1);
+  NodalVectors u(box.x_ref.size());
+  for (std::size_t n = 0; n < u.size(); ++n) {
+    const double x = box.x_ref.x[n], y = box.x_ref.y[n], z = box.x_ref.z[n];
+    u.x[n] = 1e-3 * x + 2e-4 * y - 3e-4 * z;
+    u.y[n] = 5e-4 * x - 7e-4 * y + 1e-4 * z;
+    u.z[n] = -2e-4 * x + 3e-4 * y + 4e-4 * z;
+  }
+  for (input::Formulation formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
+    const ElementBlock block =
+        make_element_block(formulation, steel, 0.05, 0, box.count, box.connectivity.data(), box.x_ref);
+    NodalVectors f_int(box.x_ref.size());
+    std::vector<double> stress(6 * box.count);
+    add_internal_forces(block, u, f_int, stress.data());
+    double largest = 0.0;
+    for (std::size_t n = 0; n < u.size(); ++n) largest = std::max(largest, std::abs(f_int.x[n]));
+    EXPECT_LT(std::abs(f_int.x[interior]), 1e-12 * largest);
+    EXPECT_LT(std::abs(f_int.y[interior]), 1e-12 * largest);
+    EXPECT_LT(std::abs(f_int.z[interior]), 1e-12 * largest);
+    const double sigma_xx = steel.lambda * (1e-3 - 7e-4 + 4e-4) + 2 * steel.mu * 1e-3;
+    for (std::uint32_t e = 0; e < box.count; ++e) EXPECT_NEAR(stress[6 * e], sigma_xx, 1e-12 * sigma_xx);
+  }
+}
+
+TEST(ElementBlock, StructuredBoxUsesTheParallelepipedKernel) {
+  const Box box = make_box(3, 2, 2, 2.5e-5);
+  const ElementBlock block =
+      make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count, box.connectivity.data(), box.x_ref);
+  EXPECT_TRUE(uses_parallelepiped_kernel(block));
+}
+
+TEST(ElementBlock, LumpedMassOfCubeIsRhoHCubedOverEightPerNode) {
+  const double h = 2.5e-5;
+  const Box box = make_box(1, 1, 1, h);
+  const ElementBlock block =
+      make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count, box.connectivity.data(), box.x_ref);
+  std::vector<double> mass(box.x_ref.size(), 0.0);
+  add_lumped_mass(block, box.x_ref, mass);
+  for (double m : mass) EXPECT_NEAR(m, steel.density * h * h * h / 8, 1e-12 * m);
+}
+
+TEST(ElementBlock, LumpedMassOfDistortedPatchSumsToRhoV) {
+  std::mt19937_64 rng(43);
+  const Box box = distorted_patch(rng);
+  const ElementBlock block =
+      make_element_block(input::Formulation::hex8r, steel, 0.05, 0, box.count, box.connectivity.data(), box.x_ref);
+  std::vector<double> mass(box.x_ref.size(), 0.0);
+  add_lumped_mass(block, box.x_ref, mass);
+  double total = 0.0, volume = 0.0;
+  for (double m : mass) {
+    EXPECT_GT(m, 0.0);
+    total += m;
+  }
+  for (std::uint32_t e = 0; e < box.count; ++e)
+    volume += hex8::volume(gather(box.x_ref, box.connectivity.data() + 8 * e));
+  EXPECT_NEAR(total, steel.density * volume, 1e-12 * total);
+}
+
+TEST(ElementBlock, CriticalTimeStepOfCubeIsSideOverDilatationalWaveSpeed) {
+  const double h = 2.5e-5;
+  const Box box = make_box(2, 1, 1, h);
+  const ElementBlock block =
+      make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count, box.connectivity.data(), box.x_ref);
+  const double c1 = std::sqrt((steel.lambda + 2 * steel.mu) / steel.density);
+  EXPECT_NEAR(critical_time_step(block, box.x_ref), h / c1, 1e-12 * h / c1);
+  // The plate-impact step: Courant 0.125 gives 5.1909e-10 s.
+  EXPECT_NEAR(0.125 * critical_time_step(block, box.x_ref), 5.1909e-10, 1e-14);
+}
+
+TEST(ElementBlock, CriticalTimeStepUsesTheSmallestElement) {
+  Box box = make_box(2, 1, 1, 1.0);
+  // Squash the second element to half its length along x.
+  for (std::size_t n = 0; n < box.x_ref.size(); ++n)
+    if (box.x_ref.x[n] > 1.5) box.x_ref.x[n] = 1.5;
+  const ElementBlock block =
+      make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count, box.connectivity.data(), box.x_ref);
+  EXPECT_NEAR(critical_time_step(block, box.x_ref) * steel.dilatational_wave_speed(), 0.5, 1e-14);
+}
+
+TEST(ElementBlock, InvertedElementIsAnErrorNamingTheElement) {
+  Box box = make_box(1, 1, 1, 1.0);
+  std::swap(box.connectivity[0], box.connectivity[4]);  // node order turned upside down at one corner pair
+  std::swap(box.connectivity[1], box.connectivity[5]);
+  std::swap(box.connectivity[2], box.connectivity[6]);
+  std::swap(box.connectivity[3], box.connectivity[7]);
+  try {
+    make_element_block(input::Formulation::hex8, steel, 0.0, 17, box.count, box.connectivity.data(), box.x_ref);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("element 17"), std::string::npos) << error.what();
+  }
+}
+
+// The plate-impact reference calculation along z = 0: a row of hex8 elements
+// whose nodes move only in x, lumped mass, central differences, the contact face
+// held. It must equal the 1D chain (masses rho h, rho h / 2 at the ends; springs
+// M / h) element by element to round-off.
+TEST(ElementBlock, RowOfHex8EqualsTheOneDimensionalChainOfThePlateImpact) {
+  const int n = 100;
+  const double h = 2.5e-5, v0 = 1.0;
+  const Box box = make_box(n, 1, 1, h);
+  const ElementBlock block =
+      make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count, box.connectivity.data(), box.x_ref);
+  std::vector<double> mass(box.x_ref.size(), 0.0);
+  add_lumped_mass(block, box.x_ref, mass);
+  const double dt = 0.125 * critical_time_step(block, box.x_ref);
+  const int steps = 448;
+  const double m_modulus = steel.dilatational_modulus();
+
+  // Finite elements: the plate moves toward the wall x = 0 at v0.
+  NodalVectors u(box.x_ref.size()), v(box.x_ref.size()), f_int(box.x_ref.size());
+  for (std::size_t k = 0; k < u.size(); ++k) v.x[k] = box.x_ref.x[k] > 0.0 ? -v0 : 0.0;
+  std::vector<double> stress(6 * box.count);
+  // Chain, per unit area.
+  std::vector<double> cu(n + 1, 0.0), cv(n + 1, -v0), cf(n + 1), cm(n + 1, steel.density * h), cs(n);
+  cv[0] = 0.0;
+  cm[0] = cm[n] = 0.5 * steel.density * h;
+
+  for (int step = 0; step < steps; ++step) {
+    // u^{n+1} = u^n + dt v^{n+1/2}, then a^{n+1} = -f_int(u^{n+1}) / m, v^{n+3/2} = v^{n+1/2} + dt a^{n+1}.
+    for (std::size_t k = 0; k < u.size(); ++k) u.x[k] += dt * v.x[k];
+    f_int.fill(0.0);
+    add_internal_forces(block, u, f_int, stress.data());
+    for (std::size_t k = 0; k < u.size(); ++k)
+      if (box.x_ref.x[k] > 0.0) v.x[k] -= dt * f_int.x[k] / mass[k];
+
+    for (int i = 0; i <= n; ++i) cu[i] += dt * cv[i];
+    std::fill(cf.begin(), cf.end(), 0.0);
+    for (int e = 0; e < n; ++e) {
+      cs[e] = m_modulus * (cu[e + 1] - cu[e]) / h;
+      cf[e] -= cs[e];
+      cf[e + 1] += cs[e];
+    }
+    for (int i = 1; i <= n; ++i) cv[i] -= dt * cf[i] / cm[i];
+  }
+  const double plateau = steel.density * steel.dilatational_wave_speed() * v0;  // rho c1 v0
+  for (int e = 0; e < n; ++e) EXPECT_NEAR(stress[6 * e], cs[e], 1e-9 * plateau) << "element " << e;
+
+  // Normalised as in the reference: sigma* = sigma c1 / (lambda v0).
+  const double to_normalised = steel.dilatational_wave_speed() / (steel.lambda * v0);
+  double mean = 0.0;
+  for (int e = 5; e <= 44; ++e) mean += stress[6 * e] * to_normalised / 40.0;
+  EXPECT_NEAR(mean, -2.3301, 5e-4);
+  EXPECT_NEAR(stress[0] * to_normalised, -2.3334, 5e-4);
+  // Lateral stress of uniaxial strain: sigma_z* = -1 on the plateau.
+  EXPECT_NEAR(stress[6 * 20 + 2] * to_normalised, -1.0, 0.02);
+}
+
+}  // namespace
+}  // namespace exdyn::element

@@ -1,0 +1,141 @@
+// Malformed decks (tests/input/bad_decks/*.yaml, also the seeds of the input fuzzer):
+// each is rejected with an InputError naming the file, the line and the key path.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <set>
+
+#include "common/errors.hpp"
+#include "deck_files.hpp"
+#include "input/deck_reader.hpp"
+
+namespace exdyn::input {
+namespace {
+
+struct BadDeck {
+  const char* file;          // under tests/input/bad_decks/
+  const char* key_path;      // the key path the error names ("" when there is none)
+  int line;                  // 1-based; 0 when the error has no position (empty file)
+  const char* message_part;  // a piece of what the message must say
+};
+
+void PrintTo(const BadDeck& deck, std::ostream* out) { *out << deck.file; }
+
+// Line numbers count the comment on line 1 of each file.
+const BadDeck bad_decks[] = {
+    {"wrong_type_density.yaml", "materials.steel.density", 4, "expected a number > 0, got heavy"},
+    {"missing_time.yaml", "time", 2, "missing required key 'time'"},
+    {"unknown_key_typo.yaml", "materials.steel.densty", 4, "unknown key 'densty'; did you mean 'density'?"},
+    {"negative_density.yaml", "materials.steel.density", 4, "expected a number > 0, got -7800"},
+    {"poissons_ratio_half.yaml", "materials.steel.poissons_ratio", 4, "expected a number in (-1, 0.5), got 0.5"},
+    {"zero_size_box.yaml", "parts[0].box.max", 7, "y: max 0 <= min 0"},
+    {"unknown_material.yaml", "parts[0].material", 9, "unknown material 'stel'; did you mean 'steel'?"},
+    {"unknown_face.yaml", "boundary_conditions[0].faces[1]", 15, "did you mean 'plate_b.ymin'?"},
+    {"courant_and_dt.yaml", "time.dt", 13, "not both"},
+    {"empty_file.yaml", "", 0, "the deck is empty"},
+    {"yaml_syntax_error.yaml", "", 9, "YAML syntax error"},
+    {"elements_float.yaml", "parts[0].elements[1]", 8, "expected an integer >= 1, got 1.5 (not an integer)"},
+    {"elements_two_entries.yaml", "parts[0].elements", 8, "expected a list of 3 integers >= 1"},
+    {"duplicate_part_names.yaml", "parts[1].name", 10, "part name 'plate_a' is used twice"},
+    {"unknown_formulation.yaml", "parts[0].formulation", 10, "unknown formulation 'hex20'; expected hex8, hex8r"},
+    {"unknown_local_search_method.yaml", "contact[0].local_search.method", 21,
+     "unknown local search method 'bgfs'; did you mean 'bfgs'?"},
+    {"unknown_output_field.yaml", "output.fields[1]", 14, "unknown output field 'strain'"},
+    {"penalty_scale_and_stiffness.yaml", "contact[0].penalty.stiffness", 20, "not both"},
+    {"scalar_instead_of_list.yaml", "boundary_conditions[0].fix", 15, "expected a non-empty list of components"},
+    {"deck_is_a_list.yaml", "", 2, "expected the deck to be a map"},
+    {"duplicate_key.yaml", "parts[0].elements", 9, "key 'elements' is given twice (first at line 8)"},
+    {"unknown_part_in_contact.yaml", "contact[0].master[0]", 19, "unknown part 'plate_c'"},
+    {"unknown_top_level_key.yaml", "solver", 12, "unknown key 'solver'; the keys here are name, materials"},
+    {"max_iterations_zero.yaml", "contact[0].local_search.max_iterations", 21, "expected an integer >= 1, got 0"},
+    {"unknown_initial_guess.yaml", "contact[0].local_search.initial_guess", 21,
+     "unknown initial guess 'corner'; expected lsp, center, previous"},
+    {"run_name_with_space.yaml", "name", 2, "expected a name of letters, digits, _ and -"},
+    {"fix_unknown_component.yaml", "boundary_conditions[0].fix[1]", 15, "unknown component 'w'"},
+    {"missing_part_material.yaml", "parts[0].material", 6, "missing required key 'material' in parts[0]"},
+    {"two_documents.yaml", "", 13, "2 YAML documents"},
+    {"damping_negative.yaml", "contact[0].penalty.damping", 20, "expected a number >= 0, got -0.1"},
+    {"cell_size_word.yaml", "contact[0].search.cell_size", 21, "expected a number > 0 or auto, got automatic"},
+    {"two_pass_word.yaml", "contact[0].two_pass", 20, "expected true or false, got maybe"},
+};
+
+class BadDeckTest : public ::testing::TestWithParam<BadDeck> {};
+
+TEST_P(BadDeckTest, IsRejectedNamingFileLineAndKeyPath) {
+  const BadDeck& bad = GetParam();
+  const std::string path = testing::test_deck_path(std::string("bad_decks/") + bad.file);
+  ASSERT_TRUE(std::filesystem::exists(path)) << path;
+  try {
+    read_deck(path);
+    FAIL() << "no error for " << bad.file;
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_EQ(error.location().file, path) << message;
+    EXPECT_EQ(error.location().line, bad.line) << message;
+    if (bad.line > 0) {
+      EXPECT_GT(error.location().column, 0) << message;
+    }
+    EXPECT_EQ(error.key_path(), bad.key_path) << message;
+    EXPECT_NE(message.find(bad.key_path), std::string::npos) << message;
+    EXPECT_NE(message.find(bad.message_part), std::string::npos) << message;
+    // The message starts with "file:line:column: " so editors can jump to it.
+    const std::string prefix = bad.line > 0 ? path + ":" + std::to_string(bad.line) + ":" : path + ": ";
+    EXPECT_EQ(message.rfind(prefix, 0), 0u) << message;
+  }
+}
+
+// The test is named after the file, without ".yaml".
+std::string file_stem(const ::testing::TestParamInfo<BadDeck>& parameter) {
+  const std::string file = parameter.param.file;
+  return file.substr(0, file.find('.'));
+}
+
+INSTANTIATE_TEST_SUITE_P(BadDecks, BadDeckTest, ::testing::ValuesIn(bad_decks), file_stem);
+
+TEST(BadDecks, EveryFileInTheFolderIsChecked) {
+  std::set<std::string> listed;
+  for (const BadDeck& bad : bad_decks) listed.insert(bad.file);
+  std::size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(testing::test_deck_path("bad_decks"))) {
+    ++files;
+    EXPECT_TRUE(listed.count(entry.path().filename().string()) == 1) << entry.path() << " has no expectation";
+  }
+  EXPECT_EQ(files, listed.size());
+}
+
+TEST(BadDecks, UnknownKeyFarFromEveryKnownOneListsTheAllowedKeys) {
+  const std::string text = testing::read_text(testing::test_deck_path("decks/minimal.yaml")) +
+                           "output: {frequency: 10}\n";
+  try {
+    parse_deck(text, "inline.yaml");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.key_path(), "output.frequency");
+    EXPECT_NE(std::string(error.what()).find("the keys here are directory, every, fields, history_every"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(BadDecks, QuotedNumberIsAStringNotANumber) {
+  std::string text = testing::read_text(testing::test_deck_path("decks/minimal.yaml"));
+  text.replace(text.find("end_time: 1.0e-4"), 16, "end_time: \"1.0e-4\"");
+  try {
+    parse_deck(text, "inline.yaml");
+    FAIL() << "no error";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.key_path(), "time.end_time");
+    EXPECT_NE(std::string(error.what()).find("got the quoted string \"1.0e-4\""), std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(BadDecks, NonFiniteNumbersAreRejected) {
+  std::string text = testing::read_text(testing::test_deck_path("decks/minimal.yaml"));
+  text.replace(text.find("end_time: 1.0e-4"), 16, "end_time: .inf");
+  EXPECT_THROW(parse_deck(text, "inline.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace exdyn::input

@@ -1,0 +1,93 @@
+// to_yaml: the resolved deck with every default; reading it back gives the same Deck.
+#include <gtest/gtest.h>
+
+#include "deck_files.hpp"
+#include "input/deck_reader.hpp"
+
+namespace exdyn::input {
+namespace {
+
+using testing::read_text;
+using testing::test_deck_path;
+
+Deck round_trip(const Deck& deck) { return parse_deck(to_yaml(deck), deck.source_file); }
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST(ToYaml, SpecExampleRoundTrips) {
+  const Deck deck = read_deck(test_deck_path("decks/plate_impact.yaml"));
+  EXPECT_EQ(round_trip(deck), deck) << to_yaml(deck);
+}
+
+TEST(ToYaml, MinimalDeckRoundTripsWithEveryDefaultWritten) {
+  const Deck deck = read_deck(test_deck_path("decks/minimal.yaml"));
+  EXPECT_EQ(round_trip(deck), deck);
+  const std::string text = to_yaml(deck);
+  for (const char* line : {"formulation: hex8\n", "hourglass: {coefficient: 0.05}\n", "initial_velocity: [0, 0, 0]\n",
+                           "boundary_conditions: []\n", "contact: []\n", "courant: 0.9\n", "directory: results\n",
+                           "every: 100\n",
+                           "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap]\n",
+                           "history_every: 1\n"})
+    EXPECT_TRUE(contains(text, line)) << line << " missing from\n" << text;
+}
+
+TEST(ToYaml, ContactPairIsWrittenWithAllItsKeys) {
+  const std::string text = to_yaml(read_deck(test_deck_path("decks/plate_impact.yaml")));
+  for (const char* line :
+       {"slave: [plate_a.xmax]\n", "master: [plate_b.xmin]\n", "two_pass: true\n", "penalty: {scale: 1, damping: 0.2}\n",
+        "search: {cell_size: auto}\n",
+        "local_search: {method: bfgs, tolerance: 1e-10, max_iterations: 100, initial_guess: lsp}\n",
+        "- {faces: [plate_a.ymin, plate_a.ymax, plate_b.ymin, plate_b.ymax], fix: [y]}\n",
+        "end_time: 2.32551069659978e-07\n", "courant: 0.125\n"})
+    EXPECT_TRUE(contains(text, line)) << line << " missing from\n" << text;
+}
+
+TEST(ToYaml, DeckWithEveryOptionChangedRoundTrips) {
+  Deck deck = read_deck(test_deck_path("decks/plate_impact.yaml"));
+  deck.name = "variant-2";
+  deck.materials[0].name = "steel 4340";  // needs quotes
+  deck.materials[0].density = 1.0 / 3.0;  // needs 17 digits
+  for (PartOptions& part : deck.parts) part.material = "steel 4340";
+  deck.parts[1].formulation = Formulation::hex8r;
+  deck.parts[1].hourglass_coefficient = 0.1;
+  deck.parts[0].name = "true";  // would read as a boolean unquoted
+  deck.contact[0].two_pass = false;
+  deck.contact[0].penalty.stiffness = 3.0e12;
+  deck.contact[0].penalty.damping = 0.0;
+  deck.contact[0].search.cell_size = 1.0e-4;
+  deck.contact[0].local_search = {contact::SearchMethod::hybrid, 1e-13, 12, contact::InitialGuess::previous};
+  deck.time.courant = TimeOptions{}.courant;  // a deck read with dt keeps the default courant
+  deck.time.dt = 5.1909e-10;
+  deck.output.directory = "out/run: \"a\"";
+  deck.output.fields = {OutputField::gap};
+  deck.output.every = 7;
+  deck.output.history_every = 3;
+  const std::string text = to_yaml(deck);
+  const Deck read_back = round_trip(deck);
+  EXPECT_EQ(read_back.materials, deck.materials);
+  EXPECT_EQ(read_back.parts, deck.parts);
+  EXPECT_EQ(read_back.boundary_conditions, deck.boundary_conditions);
+  EXPECT_EQ(read_back.contact, deck.contact);
+  EXPECT_EQ(read_back.time, deck.time);
+  EXPECT_EQ(read_back.output, deck.output);
+  EXPECT_EQ(read_back, deck) << text;
+  EXPECT_TRUE(contains(text, "dt: 5.1909e-10\n")) << text;
+  EXPECT_FALSE(contains(text, "courant")) << text;
+  EXPECT_TRUE(contains(text, "penalty: {stiffness: 3e+12, damping: 0}\n")) << text;
+}
+
+TEST(ToYaml, EmptyFieldListRoundTrips) {
+  Deck deck = read_deck(test_deck_path("decks/minimal.yaml"));
+  deck.output.fields.clear();
+  EXPECT_EQ(round_trip(deck), deck) << to_yaml(deck);
+}
+
+TEST(ToYaml, OverriddenDeckEchoesTheOverride) {
+  const Deck deck =
+      read_deck(test_deck_path("decks/minimal.yaml"), {parse_override("parts[0].elements=[20,2,2]")});
+  EXPECT_TRUE(contains(to_yaml(deck), "elements: [20, 2, 2]\n"));
+  EXPECT_EQ(round_trip(deck), deck);
+}
+
+}  // namespace
+}  // namespace exdyn::input

@@ -1,0 +1,171 @@
+// Every deck in input/ runs, and its answer (stated in its opening comment) is checked.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "../support/chain.hpp"
+#include "../support/result_file.hpp"
+#include "../support/temp_dir.hpp"
+#include "input/deck_reader.hpp"
+#include "material/elastic.hpp"
+#include "solver/simulation.hpp"
+
+namespace {
+
+using exdyn::testing::read_dataset;
+using exdyn::testing::step_path;
+
+std::string deck_path(const std::string& name) { return std::string(EXDYN_SOURCE_DIR) + "/input/" + name; }
+
+struct DeckRun {
+  exdyn::testing::TempDir directory{"exdyn_deck"};
+  exdyn::input::Deck deck;
+  exdyn::output::RunSummary summary;
+  exdyn::material::ElasticConstants material;
+
+  explicit DeckRun(const std::string& file, const std::vector<exdyn::input::Override>& overrides = {}) {
+    deck = exdyn::input::read_deck(deck_path(file), overrides);
+    exdyn::solver::RunControls controls;
+    controls.output_directory = directory.path().string();
+    summary = exdyn::solver::run_simulation(deck, controls);
+    const auto& m = deck.materials[0];
+    material = exdyn::material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density);
+  }
+  std::string h5() const { return directory.file(deck.name + ".h5"); }
+  std::vector<double> final(const std::string& field) const {
+    return read_dataset(h5(), step_path(summary.steps, field)).values;
+  }
+};
+
+// The decks this file checks; a new deck in input/ must be added here with a check.
+const std::set<std::string> checked_decks{"plate_impact_reference.yaml", "wave_bar.yaml", "shear_wave.yaml",
+                                          "hourglass_block.yaml"};
+
+TEST(Decks, EveryDeckInInputIsCheckedByATest) {
+  std::set<std::string> found;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(EXDYN_SOURCE_DIR) + "/input"))
+    if (entry.path().extension() == ".yaml") found.insert(entry.path().filename().string());
+  EXPECT_EQ(found, checked_decks) << "plate_impact_reference.yaml is checked in test_plate_reference.cpp";
+}
+
+TEST(Decks, EveryDeckOpensWithACommentStatingTheAnswer) {
+  for (const auto& name : checked_decks) {
+    std::ifstream in(deck_path(name));
+    std::string first;
+    std::getline(in, first);
+    EXPECT_EQ(first.rfind("# ", 0), 0u) << name;
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("right answer"), std::string::npos) << name;
+  }
+}
+
+TEST(WaveBar, UniaxialStrainWaveEqualsTheChainAndTheExactPlateau) {
+  const DeckRun run("wave_bar.yaml");
+  const double v0 = 10.0;
+  const int n = 50;
+  exdyn::testing::ChainOptions chain_options;
+  chain_options.elements = n;
+  chain_options.h = 2.0e-4;
+  chain_options.density = run.material.density;
+  chain_options.modulus = run.material.dilatational_modulus();
+  chain_options.velocity = v0;
+  chain_options.dt = run.summary.dt;
+  chain_options.steps = run.summary.steps;
+  const auto chain = exdyn::testing::chain_stress(chain_options);
+  const auto stress = run.final("stress");
+  const double plateau = run.material.density * run.material.dilatational_wave_speed() * v0;  // 469.57 MPa
+  const double ratio = run.material.lambda / run.material.dilatational_modulus();
+  for (int e = 0; e < n; ++e) {
+    EXPECT_NEAR(stress[6 * e + 0], chain[e], 1e-9 * plateau) << "element " << e;
+    EXPECT_NEAR(stress[6 * e + 1], ratio * chain[e], 1e-9 * plateau) << "element " << e;
+    EXPECT_NEAR(stress[6 * e + 2], ratio * chain[e], 1e-9 * plateau) << "element " << e;
+  }
+  // At the wall the chain holds the exact plateau -rho c1 v0 (-469.57 MPa) to 0.1 %.
+  EXPECT_NEAR(stress[6 * (n - 1)], -plateau, 1e-3 * plateau);
+  // The front (half plateau) is within one element of c1 t from the wall.
+  const double front = run.material.dilatational_wave_speed() * run.summary.steps * run.summary.dt;
+  int crossing = n - 1;
+  while (crossing > 0 && stress[6 * (crossing - 1)] < -0.5 * plateau) --crossing;
+  const double front_fe = (n - crossing) * 2.0e-4;
+  EXPECT_NEAR(front_fe, front, 2.0e-4);
+}
+
+TEST(ShearWave, OnlyTheXyColumnCarriesStressAndItEqualsTheShearChain) {
+  const DeckRun run("shear_wave.yaml");
+  const double v0 = 1.0;
+  const int n = 40;
+  const auto stress = run.final("stress");
+  double largest_xy = 0.0, largest_other = 0.0;
+  for (int e = 0; e < n; ++e) {
+    largest_xy = std::max(largest_xy, std::abs(stress[6 * e + 3]));
+    for (int c : {0, 1, 2, 4, 5}) largest_other = std::max(largest_other, std::abs(stress[6 * e + c]));
+  }
+  const double c2 = std::sqrt(run.material.mu / run.material.density);
+  const double plateau = run.material.density * c2 * v0;  // 25.10 MPa
+  EXPECT_GT(largest_xy, 0.9 * plateau);
+  EXPECT_LE(largest_other, 1e-12 * plateau);
+  // u_y(x) only: the same chain with the shear modulus; the clamped end is at
+  // x = 0 (element 0), the chain's wall is its last node, hence the mirror.
+  exdyn::testing::ChainOptions chain_options;
+  chain_options.elements = n;
+  chain_options.h = 2.0e-4;
+  chain_options.density = run.material.density;
+  chain_options.modulus = run.material.mu;
+  chain_options.velocity = v0;
+  chain_options.dt = run.summary.dt;
+  chain_options.steps = run.summary.steps;
+  const auto chain = exdyn::testing::chain_stress(chain_options);
+  for (int e = 0; e < n; ++e) EXPECT_NEAR(stress[6 * e + 3], -chain[n - 1 - e], 1e-9 * plateau) << "element " << e;
+  // Behind the front sigma_xy = rho c2 v0 = 25.10 MPa (the clamped element holds it to 0.1 %).
+  EXPECT_NEAR(stress[3], plateau, 1e-3 * plateau);
+}
+
+TEST(ShearWave, EachShearPlaneLandsInItsOwnColumn) {
+  // The same wave turned: along x moving in z gives only xz (column 5); along y
+  // moving in z gives only yz (column 4).
+  struct Case {
+    std::vector<exdyn::input::Override> overrides;
+    int column;
+  };
+  const std::vector<Case> cases{
+      {{{"parts[0].initial_velocity", "[0, 0, 1.0]"},
+        {"boundary_conditions[1].fix", "[x, y]"}},
+       5},
+      {{{"parts[0].box", "{min: [0, 0, 0], max: [2.0e-4, 8.0e-3, 2.0e-4]}"},
+        {"parts[0].elements", "[1, 40, 1]"},
+        {"parts[0].initial_velocity", "[0, 0, 1.0]"},
+        {"boundary_conditions[0].faces", "[bar.ymin]"},
+        {"boundary_conditions[1].fix", "[x, y]"}},
+       4},
+  };
+  for (const auto& c : cases) {
+    const DeckRun run("shear_wave.yaml", c.overrides);
+    const auto stress = run.final("stress");
+    double in_column = 0.0, elsewhere = 0.0;
+    for (std::size_t e = 0; e < stress.size() / 6; ++e)
+      for (int k = 0; k < 6; ++k)
+        (k == c.column ? in_column : elsewhere) = std::max(k == c.column ? in_column : elsewhere,
+                                                           std::abs(stress[6 * e + std::size_t(k)]));
+    EXPECT_GT(in_column, 1e6) << "column " << c.column;
+    EXPECT_LE(elsewhere, 1e-12 * in_column) << "column " << c.column;
+  }
+}
+
+TEST(HourglassBlock, OnePointBrickConservesEnergyAndKeepsHourglassEnergySmall) {
+  const DeckRun run("hourglass_block.yaml");
+  // 1/2 m v0^2 of all but the wall layer (rho A h / 2 = 1/20 of the mass), which starts at rest.
+  EXPECT_NEAR(run.summary.energy.initial_total, 0.5 * 7800 * 1e-6 * 25.0 * (1.0 - 1.0 / 20.0), 1e-14);
+  EXPECT_LE(run.summary.energy.max_relative_error, 1e-10);
+  const auto internal = read_dataset(run.h5(), "/history/internal_energy").values;
+  const auto hourglass = read_dataset(run.h5(), "/history/hourglass_energy").values;
+  ASSERT_FALSE(internal.empty());
+  const double ratio = hourglass.back() / internal.back();
+  std::printf("hourglass / internal energy at the end: %.4f\n", ratio);
+  EXPECT_GT(hourglass.back(), 0.0);  // the 3D field excites the hourglass modes
+  EXPECT_LT(ratio, 0.05);
+}
+
+}  // namespace
