@@ -178,15 +178,21 @@ def parse_csv(text, source="CSV"):
         raise StudyError(f"{source}: CSV lacks columns {missing} (header: {header})")
     col = {c: header.index(c) for c in CSV_COLUMNS}
     rows = [r for r in reader if r]
+    bad = [k for k, r in enumerate(rows) if len(r) != len(header)]
+    if bad:
+        raise StudyError(f"{source}: CSV row {bad[0] + 2} has {len(rows[bad[0]])} fields, header {len(header)}")
     data = {}
     for c in CSV_COLUMNS:
         vals = [r[col[c]].strip() for r in rows]
-        if c in ("method", "initial_guess", "stationary"):
-            data[c] = np.array(vals, dtype=object)
-        elif c in ("id", "converged", "iterations", "evaluations", "inside"):
-            data[c] = np.array([int(float(v)) for v in vals], dtype=np.int64)
-        else:
-            data[c] = np.array([float(v) for v in vals])
+        try:
+            if c in ("method", "initial_guess", "stationary"):
+                data[c] = np.array(vals, dtype=object)
+            elif c in ("id", "converged", "iterations", "evaluations", "inside"):
+                data[c] = np.array([int(v) for v in vals], dtype=np.int64)
+            else:
+                data[c] = np.array([float(v) for v in vals])
+        except ValueError as e:
+            raise StudyError(f"{source}: column {c}: {e}")
     return data
 
 

@@ -112,15 +112,13 @@ def stationary_kind(H, tol=1e-12):
 
 def _grid_local_minima(f):
     """Mask of discrete local minima (8-neighbourhood, boundaries included) of f (B, G, G)."""
-    pad = np.pad(f, ((0, 0), (1, 1), (1, 1)), constant_values=np.inf)
-    G = f.shape[1]
-    mask = np.ones_like(f, dtype=bool)
-    for di in (-1, 0, 1):
-        for dj in (-1, 0, 1):
-            if di == 0 and dj == 0:
-                continue
-            mask &= f <= pad[:, 1 + di:1 + di + G, 1 + dj:1 + dj + G]
-    return mask
+    m = f.copy()  # 3x3 minimum filter, separable: along axis 1, then axis 2
+    np.minimum(m[:, 1:], f[:, :-1], out=m[:, 1:])
+    np.minimum(m[:, :-1], f[:, 1:], out=m[:, :-1])
+    m2 = m.copy()
+    np.minimum(m2[:, :, 1:], m[:, :, :-1], out=m2[:, :, 1:])
+    np.minimum(m2[:, :, :-1], m[:, :, 1:], out=m2[:, :, :-1])
+    return f <= m2
 
 
 def refine_constrained(nodes, point, xi, iterations=40):
@@ -191,10 +189,12 @@ def closest_point(nodes, point, grid=201, candidates=4, chunk=64):
     for c0 in range(0, B, chunk):
         sl = slice(c0, min(B, c0 + chunk))
         b = sl.stop - sl.start
-        y = (N @ nodes[sl].transpose(1, 0, 2).reshape(n, b * 3)).reshape(-1, b, 3)  # (G*G, b, 3)
-        f = ((y - point[None, sl, :]) ** 2).sum(-1).T.reshape(b, grid, grid)
-        fm = np.where(_grid_local_minima(f), f, np.inf).reshape(len(f), -1)
-        order = np.argsort(fm, axis=1)[:, :candidates]
+        f = np.zeros((grid * grid, b))
+        for k in range(3):
+            f += (N @ nodes[sl, :, k].T - point[sl, k]) ** 2
+        f = np.ascontiguousarray(f.T).reshape(b, grid, grid)
+        fm = np.where(_grid_local_minima(f), f, np.inf).reshape(b, -1)
+        order = np.argpartition(fm, candidates, axis=1)[:, :candidates]
         # Fewer local minima than candidates: repeat the best one.
         finite = np.isfinite(np.take_along_axis(fm, order, axis=1))
         order = np.where(finite, order, order[:, :1])

@@ -105,21 +105,31 @@ contact::Segment to_segment(const input::ProjectCase& c) {
   return segment;
 }
 
-// Wall time of one projection: repeated until `min_seconds` have passed.
+// Wall time of one projection (nanoseconds): batches of repetitions, each of
+// at least min_seconds / 5, and the least average over 5 batches (the least
+// disturbed by other work on the machine). min_seconds = 0: one run.
 double time_projection(contact::ProjectFn fn, const contact::Segment& segment, const contact::Vec3& point, Xi xi0,
                        const contact::ProjectionSettings& settings, double min_seconds) {
   using Clock = std::chrono::steady_clock;
+  constexpr int batches = 5;
   volatile double sink = 0.0;
-  long repetitions = 1;
-  for (;;) {
+  const auto run_batch = [&](long repetitions) {
     const auto start = Clock::now();
     for (long k = 0; k < repetitions; ++k) sink = sink + fn(segment, point, xi0, settings).xi[0];
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    if (seconds >= min_seconds || repetitions >= (1L << 30)) return 1.0e9 * seconds / static_cast<double>(repetitions);
-    // Aim a little past the target from the rate measured so far.
-    const double factor = seconds > 0.0 ? 1.2 * min_seconds / seconds : 10.0;
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  const double batch_seconds = min_seconds / batches;
+  long repetitions = 1;
+  double seconds = run_batch(repetitions);
+  while (seconds < batch_seconds && repetitions < (1L << 30)) {
+    const double factor = seconds > 0.0 ? 1.2 * batch_seconds / seconds : 10.0;
     repetitions = std::max(repetitions * 2, static_cast<long>(static_cast<double>(repetitions) * std::min(factor, 1000.0)));
+    seconds = run_batch(repetitions);
   }
+  double best = seconds;
+  if (min_seconds > 0.0)
+    for (int b = 1; b < batches; ++b) best = std::min(best, run_batch(repetitions));
+  return 1.0e9 * best / static_cast<double>(repetitions);
 }
 
 }  // namespace

@@ -12,9 +12,9 @@
 //    `initial_guess` key (a semicolon: no comma inside a CSV field);
 //  - xi1, xi2, distance, gap: 17 significant digits (%.17g);
 //  - converged, inside: 0 or 1; stationary: minimum, saddle, maximum or none;
-//  - nanoseconds: the projection repeated until at least `timing_seconds` of
-//    wall time has passed, total time / repetitions (the initial guess's own
-//    LSP step is not included).
+//  - nanoseconds: wall time of one projection: 5 batches of repetitions, each
+//    of at least timing_seconds / 5, and the least batch average (the least
+//    disturbed by other work); the initial guess's own LSP step is not timed.
 #pragma once
 
 #include <ostream>

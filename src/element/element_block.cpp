@@ -16,7 +16,7 @@ namespace {
 
 // block.reference = [layout, 0, element 0 data, element 1 data, ...]; the two
 // header entries keep the element data 16-byte aligned.
-enum class ReferenceLayout { hex8_general = 1, hex8_parallelepiped = 2, hex8r = 3 };
+enum class ReferenceLayout { hex8_general = 1, hex8_parallelepiped = 2, hex8r = 3, hex8r_parallelepiped = 4 };
 constexpr std::size_t header_size = 2;
 
 ReferenceLayout layout_of(const ElementBlock& block) {
@@ -29,6 +29,7 @@ std::size_t stride_of(ReferenceLayout layout) {
     case ReferenceLayout::hex8_general: return hex8::reference_size;
     case ReferenceLayout::hex8_parallelepiped: return hex8::parallelepiped_reference_size;
     case ReferenceLayout::hex8r: return hex8r::reference_size;
+    case ReferenceLayout::hex8r_parallelepiped: return hex8r::parallelepiped_reference_size;
   }
   return 0;
 }
@@ -103,16 +104,16 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
   block.count = count;
   block.connectivity = connectivity;
 
-  ReferenceLayout layout = ReferenceLayout::hex8r;
-  if (formulation == input::Formulation::hex8) {
-    layout = ReferenceLayout::hex8_parallelepiped;
-    for (std::uint32_t e = 0; e < count; ++e) {
-      if (!hex8::is_parallelepiped(gather(x_ref, connectivity + 8 * static_cast<std::size_t>(e)))) {
-        layout = ReferenceLayout::hex8_general;
-        break;
-      }
-    }
-  }
+  // The constant-Jacobian kernels when every element is a parallelepiped (the
+  // structured boxes of this program), the general ones otherwise.
+  bool all_parallelepipeds = true;
+  for (std::uint32_t e = 0; e < count && all_parallelepipeds; ++e)
+    all_parallelepipeds = hex8::is_parallelepiped(gather(x_ref, connectivity + 8 * static_cast<std::size_t>(e)));
+  ReferenceLayout layout = ReferenceLayout::hex8_general;
+  if (formulation == input::Formulation::hex8)
+    layout = all_parallelepipeds ? ReferenceLayout::hex8_parallelepiped : ReferenceLayout::hex8_general;
+  else
+    layout = all_parallelepipeds ? ReferenceLayout::hex8r_parallelepiped : ReferenceLayout::hex8r;
   const std::size_t stride = stride_of(layout);
   block.reference.assign(header_size + stride * count, 0.0);
   block.reference[0] = static_cast<double>(static_cast<int>(layout));
@@ -127,6 +128,9 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
         break;
       case ReferenceLayout::hex8r:
         min_det_jacobian = hex8r::make_reference(x, material.mu, hourglass_coefficient, reference);
+        break;
+      case ReferenceLayout::hex8r_parallelepiped:
+        min_det_jacobian = hex8r::make_parallelepiped_reference(x, material.mu, hourglass_coefficient, reference);
         break;
     }
     if (!(min_det_jacobian > 0.0)) throw_inverted(first_element + e, min_det_jacobian);
@@ -165,6 +169,14 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
                                                                              f_local, s);
                             return ElementEnergies{e.strain, e.hourglass};
                           });
+    case ReferenceLayout::hex8r_parallelepiped:
+      return element_loop(block, element_begin, element_end, stride, u, f_int, stress,
+                          [lambda, mu](const double* reference, const ElementVectors& u_local,
+                                       ElementVectors& f_local, material::SymTensor& s) {
+                            const hex8r::Energies e =
+                                hex8r::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s);
+                            return ElementEnergies{e.strain, e.hourglass};
+                          });
   }
   return {};
 }
@@ -175,7 +187,9 @@ ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVector
 }
 
 bool uses_parallelepiped_kernel(const ElementBlock& block) {
-  return !block.reference.empty() && layout_of(block) == ReferenceLayout::hex8_parallelepiped;
+  if (block.reference.empty()) return false;
+  const ReferenceLayout layout = layout_of(block);
+  return layout == ReferenceLayout::hex8_parallelepiped || layout == ReferenceLayout::hex8r_parallelepiped;
 }
 
 double critical_time_step(const ElementBlock& block, const NodalVectors& x_ref) {

@@ -58,8 +58,9 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
                                     std::uint32_t element_end, const NodalVectors& u, NodalVectors& f_int,
                                     double* stress);
 
-// True when every element of a hex8 block is a parallelepiped, so that the block
-// runs the constant-Jacobian kernel (hex8::parallelepiped_internal_forces).
+// True when every element of the block is a parallelepiped, so that the block
+// runs the constant-Jacobian kernels (hex8::parallelepiped_internal_forces,
+// hex8r::parallelepiped_internal_forces).
 bool uses_parallelepiped_kernel(const ElementBlock& block);
 
 }  // namespace exdyn::element

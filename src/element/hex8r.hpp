@@ -104,7 +104,7 @@ inline Energies internal_forces(const double* reference, double lambda, double m
   }
   stress = hex8::stress_from_gradient(lambda, mu, h);
   Energies energies;
-  energies.strain = 0.5 * volume * material::strain_energy_density(stress, hex8::symmetric_part(h));
+  energies.strain = volume * material::strain_energy_density(stress, hex8::symmetric_part(h));  // W = sigma:eps/2
 
   // q_alpha,i = h_alpha . u_i - g_alpha . H_i  and  Q = k q.
   double q[4][3];
@@ -140,6 +140,66 @@ inline Energies internal_forces(const double* reference, double lambda, double m
                                 s[i][2] * beta[3 * (m - 1) + 2]);
   for (int alpha = 0; alpha < 4; ++alpha)
     for (int i = 0; i < 3; ++i) (*fm[i])[4 + alpha] += k * q[alpha][i];
+  f.x = hex8::nodal_from_modes(fx);
+  f.y = hex8::nodal_from_modes(fy);
+  f.z = hex8::nodal_from_modes(fz);
+  return energies;
+}
+
+// ---------------------------------------------------------------------------
+// Parallelepiped (constant Jacobian): the hourglass base vectors are orthogonal
+// to b (beta_m = 0 for m = 4..7) and to the coordinates (g = 0), so gamma = h and
+// q_alpha = 8 c_(3+alpha); beta_1..3 are the rows of dxi/dx.
+// Reference data per element: beta_1..3 (9, row m-1), V (1), k (1).
+// ---------------------------------------------------------------------------
+inline constexpr int parallelepiped_reference_size = 11;
+
+inline double make_parallelepiped_reference(const ElementVectors& x_ref, double mu, double hourglass_coefficient,
+                                            double* reference) {
+  std::array<double, reference_size> general{};
+  const double min_det_jacobian = make_reference(x_ref, mu, hourglass_coefficient, general.data());
+  for (int k = 0; k < 9; ++k) reference[k] = general[k];
+  reference[9] = general[33];
+  reference[10] = general[35];
+  return min_det_jacobian;
+}
+
+inline Energies parallelepiped_internal_forces(const double* reference, double lambda, double mu,
+                                               const ElementVectors& u, ElementVectors& f,
+                                               material::SymTensor& stress) {
+  const hex8::ElementModes c = hex8::modes_from_nodal(u);
+  const double* beta = reference;
+  const double volume = reference[9], k = reference[10];
+  // H_ij = sum_{m=1..3} c_m,i beta_mj.
+  Matrix3 h;
+  for (int j = 0; j < 3; ++j) {
+    h[j] = c.x[1] * beta[j] + c.x[2] * beta[3 + j] + c.x[3] * beta[6 + j];
+    h[3 + j] = c.y[1] * beta[j] + c.y[2] * beta[3 + j] + c.y[3] * beta[6 + j];
+    h[6 + j] = c.z[1] * beta[j] + c.z[2] * beta[3 + j] + c.z[3] * beta[6 + j];
+  }
+  stress = hex8::stress_from_gradient(lambda, mu, h);
+  Energies energies;
+  energies.strain = volume * material::strain_energy_density(stress, hex8::symmetric_part(h));
+  // F'_m = (V/8) sigma beta_m (m = 1..3), F'_(3+alpha) = k q_alpha = 8 k c_(3+alpha).
+  const double volume_8 = 0.125 * volume, k8 = 8.0 * k;
+  const double sm[3][3] = {{stress[0], stress[3], stress[5]},
+                           {stress[3], stress[1], stress[4]},
+                           {stress[5], stress[4], stress[2]}};
+  std::array<double, 8> fx{}, fy{}, fz{};
+  double hourglass_sum = 0.0;
+  for (int m = 1; m < 4; ++m) {
+    const double* b = beta + 3 * (m - 1);
+    fx[m] = volume_8 * (sm[0][0] * b[0] + sm[0][1] * b[1] + sm[0][2] * b[2]);
+    fy[m] = volume_8 * (sm[1][0] * b[0] + sm[1][1] * b[1] + sm[1][2] * b[2]);
+    fz[m] = volume_8 * (sm[2][0] * b[0] + sm[2][1] * b[1] + sm[2][2] * b[2]);
+  }
+  for (int m = 4; m < 8; ++m) {
+    fx[m] = k8 * c.x[m];
+    fy[m] = k8 * c.y[m];
+    fz[m] = k8 * c.z[m];
+    hourglass_sum += c.x[m] * c.x[m] + c.y[m] * c.y[m] + c.z[m] * c.z[m];
+  }
+  energies.hourglass = 32.0 * k * hourglass_sum;  // k/2 sum (8 c)^2
   f.x = hex8::nodal_from_modes(fx);
   f.y = hex8::nodal_from_modes(fy);
   f.z = hex8::nodal_from_modes(fz);

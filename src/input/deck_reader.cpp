@@ -7,18 +7,22 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
-#include <initializer_list>
 #include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <string_view>
 #include <system_error>
+#include <utility>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "input/text_tools.hpp"
@@ -96,8 +100,7 @@ std::vector<PathSegment> parse_key_path(const std::string& text) {
       while (i < size && text[i] >= '0' && text[i] <= '9') ++i;
       std::size_t index = 0;
       const auto [end, error] = std::from_chars(text.data() + digits_start, text.data() + i, index);
-      if (i == digits_start || i >= size || text[i] != ']' || error != std::errc{} ||
-          end != text.data() + i)
+      if (i == digits_start || i >= size || text[i] != ']' || error != std::errc{} || end != text.data() + i)
         fail_argument(text, "expected a list index like [0] at character " + std::to_string(digits_start) +
                                 " of the key path");
       ++i;
@@ -128,7 +131,7 @@ bool is_quoted(const YAML::Node& node) { return node.Tag() == "!"; }
 std::optional<double> parse_double(std::string_view text) {
   if (!text.empty() && text.front() == '+') text.remove_prefix(1);
   if (text.empty() || text.front() == '+') return std::nullopt;
-  // from_chars also takes "inf" and "nan"; YAML spells those .inf and .nan, both refused below.
+  // A digit or a point must come first: from_chars alone would also take "inf" and "nan".
   const char first = text.front() == '-' && text.size() > 1 ? text[1] : text.front();
   if (!(first >= '0' && first <= '9') && first != '.') return std::nullopt;
   double value = 0.0;
@@ -158,7 +161,8 @@ bool looks_like_yaml_keyword(std::string_view text) {
 std::string describe(const YAML::Node& node) {
   if (!node.IsDefined()) return "nothing";
   switch (node.Type()) {
-    case YAML::NodeType::Null: return "an empty value";
+    case YAML::NodeType::Null:
+      return "an empty value";
     case YAML::NodeType::Scalar: {
       std::string text = node.Scalar();
       if (text.size() > 60) text = text.substr(0, 57) + "...";
@@ -167,8 +171,10 @@ std::string describe(const YAML::Node& node) {
     }
     case YAML::NodeType::Sequence:
       return node.size() == 1 ? "a list of 1 entry" : "a list of " + std::to_string(node.size()) + " entries";
-    case YAML::NodeType::Map: return "a map";
-    case YAML::NodeType::Undefined: return "nothing";
+    case YAML::NodeType::Map:
+      return "a map";
+    case YAML::NodeType::Undefined:
+      return "nothing";
   }
   return "an unknown node";
 }
@@ -189,8 +195,8 @@ void assign_at(YAML::Node node, const std::vector<PathSegment>& segments, std::s
   const std::string shown = node_path.empty() ? std::string("the deck") : node_path;
   if (segment.index) {
     if (!node.IsDefined())
-      fail_override(item, shown + " is not in the deck, so it has no entry [" +
-                              std::to_string(*segment.index) + "]");
+      fail_override(
+          item, shown + " is not in the deck, so it has no entry [" + std::to_string(*segment.index) + "]");
     if (!node.IsSequence())
       fail_override(item, shown + " is " + describe(node) + ", not a list, so it has no entry [" +
                               std::to_string(*segment.index) + "]");
@@ -206,9 +212,9 @@ void assign_at(YAML::Node node, const std::vector<PathSegment>& segments, std::s
     return;
   }
   if (node.IsDefined() && !node.IsMap() && !node.IsNull()) {
-    const std::string what = node.IsSequence() ? describe(node) + " (give an index, e.g. " +
-                                                     child_path(node_path, 0) + ")"
-                                               : "the value " + describe(node);
+    const std::string what = node.IsSequence()
+                                 ? describe(node) + " (give an index, e.g. " + child_path(node_path, 0) + ")"
+                                 : "the value " + describe(node);
     fail_override(item, shown + " is " + what + ", not a map, so it has no key '" + segment.key + "'");
   }
   const std::string path = child_path(node_path, segment.key);
@@ -237,7 +243,8 @@ class DeckValidator {
  public:
   DeckValidator(std::string source_name, const std::vector<Override>& overrides)
       : source_name_(std::move(source_name)), overrides_(overrides) {
-    for (const Override& item : overrides_) override_paths_.push_back(format_key_path(parse_key_path(item.key_path)));
+    for (const Override& item : overrides_)
+      override_paths_.push_back(format_key_path(parse_key_path(item.key_path)));
   }
 
   Deck deck(const YAML::Node& root) const;
@@ -254,7 +261,8 @@ class DeckValidator {
   }
 
   // --- structure
-  void check_map(const YAML::Node& node, const std::string& path, const std::vector<std::string>& allowed) const;
+  void check_map(const YAML::Node& node, const std::string& path,
+                 const std::vector<std::string>& allowed) const;
   YAML::Node required(const YAML::Node& map, const std::string& path, const std::string& key) const;
   static YAML::Node optional(const YAML::Node& map, const std::string& key);
   void check_sequence(const YAML::Node& node, const std::string& path, const std::string& expected) const;
@@ -301,7 +309,8 @@ const Override* DeckValidator::override_covering(const std::string& path) const 
   for (std::size_t k = override_paths_.size(); k-- > 0;) {
     const std::string& set = override_paths_[k];
     if (path.size() < set.size() || path.compare(0, set.size(), set) != 0) continue;
-    if (path.size() == set.size() || path[set.size()] == '.' || path[set.size()] == '[') return &overrides_[k];
+    if (path.size() == set.size() || path[set.size()] == '.' || path[set.size()] == '[')
+      return &overrides_[k];
   }
   return nullptr;
 }
@@ -353,7 +362,8 @@ void DeckValidator::check_map(const YAML::Node& node, const std::string& path,
   }
 }
 
-YAML::Node DeckValidator::required(const YAML::Node& map, const std::string& path, const std::string& key) const {
+YAML::Node DeckValidator::required(const YAML::Node& map, const std::string& path,
+                                   const std::string& key) const {
   const YAML::Node value = optional(map, key);
   if (!value.IsDefined())
     fail_at(map, path, child_path(path, key),
@@ -371,15 +381,16 @@ void DeckValidator::check_sequence(const YAML::Node& node, const std::string& pa
   if (!node.IsSequence()) fail(node, path, "expected " + expected + ", got " + describe(node));
 }
 
-double DeckValidator::number(const YAML::Node& node, const std::string& path, const std::string& expected) const {
+double DeckValidator::number(const YAML::Node& node, const std::string& path,
+                             const std::string& expected) const {
   std::optional<double> value;
   if (node.IsScalar() && !is_quoted(node)) value = parse_double(node.Scalar());
   if (!value || !std::isfinite(*value)) fail(node, path, "expected " + expected + ", got " + describe(node));
   return *value;
 }
 
-double DeckValidator::number_where(const YAML::Node& node, const std::string& path, const std::string& expected,
-                                   bool (*accept)(double)) const {
+double DeckValidator::number_where(const YAML::Node& node, const std::string& path,
+                                   const std::string& expected, bool (*accept)(double)) const {
   const double value = number(node, path, expected);
   if (!accept(value)) fail(node, path, "expected " + expected + ", got " + describe(node));
   return value;
@@ -387,17 +398,20 @@ double DeckValidator::number_where(const YAML::Node& node, const std::string& pa
 
 int DeckValidator::integer_where(const YAML::Node& node, const std::string& path, const std::string& expected,
                                  long long minimum) const {
-  if (!node.IsScalar() || is_quoted(node)) fail(node, path, "expected " + expected + ", got " + describe(node));
+  if (!node.IsScalar() || is_quoted(node))
+    fail(node, path, "expected " + expected + ", got " + describe(node));
   const std::optional<long long> value = parse_integer(node.Scalar());
   if (!value) {
     const std::optional<double> real = parse_double(node.Scalar());
-    const std::string why = real ? " (not an integer)" : "";
+    std::string why;
+    if (real) why = *real == std::trunc(*real) ? " (out of range)" : " (not an integer)";
     fail(node, path, "expected " + expected + ", got " + describe(node) + why);
   }
   if (*value < minimum) fail(node, path, "expected " + expected + ", got " + describe(node));
   if (*value > std::numeric_limits<int>::max())
-    fail(node, path, "expected " + expected + ", got " + describe(node) + " (larger than " +
-                         std::to_string(std::numeric_limits<int>::max()) + ")");
+    fail(node, path,
+         "expected " + expected + ", got " + describe(node) + " (larger than " +
+             std::to_string(std::numeric_limits<int>::max()) + ")");
   return static_cast<int>(*value);
 }
 
@@ -456,8 +470,9 @@ std::string DeckValidator::run_name(const YAML::Node& node, const std::string& p
 
 std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, const std::string& path) const {
   if (!node.IsMap() || node.size() == 0)
-    fail(node, path, "expected a map of materials by name, e.g. {steel: {model: linear_elastic, ...}}; got " +
-                         describe(node));
+    fail(node, path,
+         "expected a map of materials by name, e.g. {steel: {model: linear_elastic, ...}}; got " +
+             describe(node));
   const std::vector<std::string> keys{"model", "density", "youngs_modulus", "poissons_ratio"};
   std::vector<MaterialOptions> result;
   std::map<std::string, YAML::Node> seen;
@@ -469,20 +484,22 @@ std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, co
     const std::string material_path = child_path(path, material.name);
     const auto [first, inserted] = seen.emplace(material.name, key_node);
     if (!inserted)
-      fail(key_node, material_path, "material '" + material.name + "' is defined twice (first " +
-                                        position_text(first->second, material_path) + ")");
+      fail(key_node, material_path,
+           "material '" + material.name + "' is defined twice (first " +
+               position_text(first->second, material_path) + ")");
     const YAML::Node body = entry->second;
     check_map(body, material_path, keys);
-    material.model = all_material_models[choice(required(body, material_path, "model"),
-                                                child_path(material_path, "model"), "material model",
-                                                names_of(all_material_models))];
+    material.model =
+        all_material_models[choice(required(body, material_path, "model"), child_path(material_path, "model"),
+                                   "material model", names_of(all_material_models))];
     material.density = number_where(required(body, material_path, "density"),
                                     child_path(material_path, "density"), "a number > 0", positive);
-    material.youngs_modulus = number_where(required(body, material_path, "youngs_modulus"),
-                                           child_path(material_path, "youngs_modulus"), "a number > 0", positive);
-    material.poissons_ratio =
-        number_where(required(body, material_path, "poissons_ratio"), child_path(material_path, "poissons_ratio"),
-                     "a number in (-1, 0.5)", poissons_ratio_range);
+    material.youngs_modulus =
+        number_where(required(body, material_path, "youngs_modulus"),
+                     child_path(material_path, "youngs_modulus"), "a number > 0", positive);
+    material.poissons_ratio = number_where(required(body, material_path, "poissons_ratio"),
+                                           child_path(material_path, "poissons_ratio"),
+                                           "a number in (-1, 0.5)", poissons_ratio_range);
     result.push_back(std::move(material));
   }
   return result;
@@ -512,7 +529,8 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
   const YAML::Node elements = required(node, path, "elements");
   const std::string expected = "a list of 3 integers >= 1 [nx, ny, nz]";
   check_sequence(elements, elements_path, expected);
-  if (elements.size() != 3) fail(elements, elements_path, "expected " + expected + ", got " + describe(elements));
+  if (elements.size() != 3)
+    fail(elements, elements_path, "expected " + expected + ", got " + describe(elements));
   for (std::size_t i = 0; i < 3; ++i)
     result.elements[i] = integer_where(elements[i], child_path(elements_path, i), "an integer >= 1", 1);
 
@@ -524,8 +542,8 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
   const auto found = std::find(material_names.begin(), material_names.end(), result.material);
   if (found == material_names.end())
     fail(material, material_path,
-         "unknown material '" + result.material + "'" + suggestion(result.material, material_names,
-                                                                    "the materials are"));
+         "unknown material '" + result.material + "'" +
+             suggestion(result.material, material_names, "the materials are"));
   result.material_index = static_cast<int>(found - material_names.begin());
 
   if (const YAML::Node formulation = optional(node, "formulation"); formulation.IsDefined())
@@ -534,7 +552,8 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
 
   // Accepted for hex8 too (and unused there), so that batch runs can switch the
   // formulation with --set without editing the hourglass block.
-  if (const YAML::Node hourglass = optional(node, "hourglass"); hourglass.IsDefined() && !hourglass.IsNull()) {
+  if (const YAML::Node hourglass = optional(node, "hourglass");
+      hourglass.IsDefined() && !hourglass.IsNull()) {
     const std::string hourglass_path = child_path(path, "hourglass");
     check_map(hourglass, hourglass_path, {"coefficient"});
     if (const YAML::Node coefficient = optional(hourglass, "coefficient"); coefficient.IsDefined())
@@ -561,8 +580,9 @@ std::vector<PartOptions> DeckValidator::parts(const YAML::Node& node, const std:
       const std::string name_path = child_path(part_path, "name");
       const std::string first_path = child_path(child_path(path, first->second), "name");
       fail(node[p]["name"], name_path,
-           "part name '" + result.back().name + "' is used twice (first by " + child_path(path, first->second) +
-               ", " + position_text(node[first->second]["name"], first_path) + ")");
+           "part name '" + result.back().name + "' is used twice (first by " +
+               child_path(path, first->second) + ", " +
+               position_text(node[first->second]["name"], first_path) + ")");
     }
   }
   return result;
@@ -583,7 +603,8 @@ FaceRef DeckValidator::face(const YAML::Node& node, const std::string& path,
     hint = "; did you mean '" + *nearest + "'?";
   // The side follows the last point, so part names may contain points.
   const std::size_t point = value.rfind('.');
-  if (point == std::string::npos) fail(node, path, "expected a face name <part>.<side>, got '" + value + "'" + hint);
+  if (point == std::string::npos)
+    fail(node, path, "expected a face name <part>.<side>, got '" + value + "'" + hint);
   const std::string part_name = value.substr(0, point);
   const std::string side_name = value.substr(point + 1);
   const auto part_found = std::find(part_names.begin(), part_names.end(), part_name);
@@ -606,8 +627,7 @@ std::vector<FaceRef> DeckValidator::face_list(const YAML::Node& node, const std:
     const std::string face_path = child_path(path, i);
     const FaceRef reference = face(node[i], face_path, parts);
     const auto repeated = std::find(result.begin(), result.end(), reference);
-    if (repeated != result.end())
-      fail(node[i], face_path, "face '" + node[i].Scalar() + "' is listed twice");
+    if (repeated != result.end()) fail(node[i], face_path, "face '" + node[i].Scalar() + "' is listed twice");
     result.push_back(reference);
   }
   return result;
@@ -633,7 +653,8 @@ std::vector<BoundaryConditionOptions> DeckValidator::boundary_conditions(
     for (std::size_t i = 0; i < fix.size(); ++i) {
       const std::string component_path = child_path(fix_path, i);
       const std::size_t axis = choice(fix[i], component_path, "component", components);
-      if (condition.fix[axis]) fail(fix[i], component_path, "component '" + components[axis] + "' is listed twice");
+      if (condition.fix[axis])
+        fail(fix[i], component_path, "component '" + components[axis] + "' is listed twice");
       condition.fix[axis] = true;
     }
     result.push_back(std::move(condition));
@@ -647,14 +668,16 @@ PenaltyOptions DeckValidator::penalty(const YAML::Node& node, const std::string&
   check_map(node, path, {"scale", "stiffness", "damping"});
   const YAML::Node scale = optional(node, "scale");
   const YAML::Node stiffness = optional(node, "stiffness");
-  if (scale.IsDefined()) result.scale = number_where(scale, child_path(path, "scale"), "a number > 0", positive);
+  if (scale.IsDefined())
+    result.scale = number_where(scale, child_path(path, "scale"), "a number > 0", positive);
   if (stiffness.IsDefined()) {
     const std::string stiffness_path = child_path(path, "stiffness");
     result.stiffness = number_where(stiffness, stiffness_path, "a number > 0 (force per length)", positive);
     if (scale.IsDefined())
       fail(stiffness, stiffness_path,
            "give either scale (times the automatic stiffness) or stiffness (a fixed value), not both; "
-           "scale is given " + position_text(scale, child_path(path, "scale")));
+           "scale is given " +
+               position_text(scale, child_path(path, "scale")));
   }
   if (const YAML::Node damping = optional(node, "damping"); damping.IsDefined())
     result.damping = number_where(damping, child_path(path, "damping"), "a number >= 0", non_negative);
@@ -667,7 +690,8 @@ GlobalSearchOptions DeckValidator::global_search(const YAML::Node& node, const s
   check_map(node, path, {"cell_size"});
   if (const YAML::Node cell_size = optional(node, "cell_size"); cell_size.IsDefined()) {
     if (cell_size.IsScalar() && !is_quoted(cell_size) && cell_size.Scalar() == "auto") return result;
-    result.cell_size = number_where(cell_size, child_path(path, "cell_size"), "a number > 0 or auto", positive);
+    result.cell_size =
+        number_where(cell_size, child_path(path, "cell_size"), "a number > 0 or auto", positive);
   }
   return result;
 }
@@ -677,13 +701,15 @@ LocalSearchOptions DeckValidator::local_search(const YAML::Node& node, const std
   if (node.IsNull()) return result;
   check_map(node, path, {"method", "tolerance", "max_iterations", "initial_guess"});
   if (const YAML::Node method = optional(node, "method"); method.IsDefined())
-    result.method = contact::search_method_names[choice(method, child_path(path, "method"), "local search method",
-                                                        names_of(contact::search_method_names))]
-                        .first;
+    result.method =
+        contact::search_method_names[choice(method, child_path(path, "method"), "local search method",
+                                            names_of(contact::search_method_names))]
+            .first;
   if (const YAML::Node tolerance = optional(node, "tolerance"); tolerance.IsDefined())
     result.tolerance = number_where(tolerance, child_path(path, "tolerance"), "a number > 0", positive);
   if (const YAML::Node iterations = optional(node, "max_iterations"); iterations.IsDefined())
-    result.max_iterations = integer_where(iterations, child_path(path, "max_iterations"), "an integer >= 1", 1);
+    result.max_iterations =
+        integer_where(iterations, child_path(path, "max_iterations"), "an integer >= 1", 1);
   if (const YAML::Node guess = optional(node, "initial_guess"); guess.IsDefined())
     result.initial_guess =
         contact::initial_guess_names[choice(guess, child_path(path, "initial_guess"), "initial guess",
@@ -701,8 +727,7 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
   for (std::size_t c = 0; c < node.size(); ++c) {
     const std::string pair_path = child_path(path, c);
     const YAML::Node entry = node[c];
-    check_map(entry, pair_path,
-              {"name", "slave", "master", "two_pass", "penalty", "search", "local_search"});
+    check_map(entry, pair_path, {"name", "slave", "master", "two_pass", "penalty", "search", "local_search"});
     ContactOptions pair;
     const std::string name_path = child_path(pair_path, "name");
     const YAML::Node name_node = required(entry, pair_path, "name");
@@ -710,8 +735,8 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
     const auto [first, inserted] = index_by_name.emplace(pair.name, c);
     if (!inserted)
       fail(name_node, name_path,
-           "contact pair name '" + pair.name + "' is used twice (first by " + child_path(path, first->second) +
-               ")");
+           "contact pair name '" + pair.name + "' is used twice (first by " +
+               child_path(path, first->second) + ")");
     pair.slave = face_list(required(entry, pair_path, "slave"), child_path(pair_path, "slave"), parts);
     pair.master = face_list(required(entry, pair_path, "master"), child_path(pair_path, "master"), parts);
     if (const YAML::Node two_pass = optional(entry, "two_pass"); two_pass.IsDefined())
@@ -742,7 +767,8 @@ TimeOptions DeckValidator::time(const YAML::Node& node, const std::string& path)
     if (courant.IsDefined())
       fail(dt, dt_path,
            "give either courant (a fraction of the stable step) or dt (a fixed step), not both; courant is "
-           "given " + position_text(courant, child_path(path, "courant")));
+           "given " +
+               position_text(courant, child_path(path, "courant")));
   }
   return result;
 }
@@ -764,7 +790,8 @@ OutputOptions DeckValidator::output(const YAML::Node& node, const std::string& p
       const std::string field_path = child_path(fields_path, i);
       const OutputField field = all_output_fields[choice(fields[i], field_path, "output field", field_names)];
       if (std::find(result.fields.begin(), result.fields.end(), field) != result.fields.end())
-        fail(fields[i], field_path, "field '" + field_names[static_cast<std::size_t>(field)] + "' is listed twice");
+        fail(fields[i], field_path,
+             "field '" + field_names[static_cast<std::size_t>(field)] + "' is listed twice");
       result.fields.push_back(field);
     }
   }
@@ -774,10 +801,11 @@ OutputOptions DeckValidator::output(const YAML::Node& node, const std::string& p
 }
 
 Deck DeckValidator::deck(const YAML::Node& root) const {
-  const std::vector<std::string> top_keys{"name", "materials", "parts", "boundary_conditions",
-                                          "contact", "time", "output"};
+  const std::vector<std::string> top_keys{"name",    "materials", "parts", "boundary_conditions",
+                                          "contact", "time",      "output"};
   if (!root.IsMap())
-    fail(root, "", "expected the deck to be a map with keys " + join(top_keys, ", ") + "; got " + describe(root));
+    fail(root, "",
+         "expected the deck to be a map with keys " + join(top_keys, ", ") + "; got " + describe(root));
   check_map(root, "", top_keys);
   Deck result;
   result.source_file = source_name_;
@@ -789,7 +817,8 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
   if (const YAML::Node node = optional(root, "contact"); node.IsDefined())
     result.contact = contact_pairs(node, "contact", result.parts);
   result.time = time(required(root, "", "time"), "time");
-  if (const YAML::Node node = optional(root, "output"); node.IsDefined()) result.output = output(node, "output");
+  if (const YAML::Node node = optional(root, "output"); node.IsDefined())
+    result.output = output(node, "output");
   return result;
 }
 
@@ -797,21 +826,28 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
 // Writing YAML: numbers in the shortest form that reads back to the same double.
 
 std::string yaml_text(std::string_view value) {
-  const bool plain_characters =
-      !value.empty() && std::all_of(value.begin(), value.end(), [](char c) {
-        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-               c == '-' || c == '.' || c == '/';
-      });
-  const bool plain = plain_characters && value.front() != '-' && !parse_double(value) &&
-                     !looks_like_yaml_keyword(value);
+  const bool plain_characters = !value.empty() && std::all_of(value.begin(), value.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-' || c == '.' || c == '/';
+  });
+  const bool plain =
+      plain_characters && value.front() != '-' && !parse_double(value) && !looks_like_yaml_keyword(value);
   if (plain) return std::string(value);
   std::string quoted = "\"";
   for (const char c : value) {
     switch (c) {
-      case '"': quoted += "\\\""; break;
-      case '\\': quoted += "\\\\"; break;
-      case '\n': quoted += "\\n"; break;
-      case '\t': quoted += "\\t"; break;
+      case '"':
+        quoted += "\\\"";
+        break;
+      case '\\':
+        quoted += "\\\\";
+        break;
+      case '\n':
+        quoted += "\\n";
+        break;
+      case '\t':
+        quoted += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           constexpr char hex[] = "0123456789abcdef";
@@ -849,16 +885,18 @@ std::string yaml_faces(const Deck& deck, const std::vector<FaceRef>& faces) {
 Override parse_override(const std::string& argument) {
   const std::size_t equals = argument.find('=');
   if (equals == std::string::npos)
-    fail_argument(argument, "expected KEY=VALUE, e.g. --set time.courant=0.5 or --set parts[0].elements=[50,1,50]");
-  Override result{trim(std::string_view(argument).substr(0, equals)), trim(std::string_view(argument).substr(equals + 1))};
+    fail_argument(argument,
+                  "expected KEY=VALUE, e.g. --set time.courant=0.5 or --set parts[0].elements=[50,1,50]");
+  Override result{trim(std::string_view(argument).substr(0, equals)),
+                  trim(std::string_view(argument).substr(equals + 1))};
   if (result.key_path.empty()) fail_argument(argument, "expected KEY=VALUE, but the key before '=' is empty");
-  if (result.value.empty())
-    fail_argument(argument, "expected KEY=VALUE, but the value after '=' is empty");
+  if (result.value.empty()) fail_argument(argument, "expected KEY=VALUE, but the value after '=' is empty");
   parse_key_path(result.key_path);  // throws on a malformed path, naming the argument
   return result;
 }
 
-Deck parse_deck(const std::string& text, const std::string& source_name, const std::vector<Override>& overrides) {
+Deck parse_deck(const std::string& text, const std::string& source_name,
+                const std::vector<Override>& overrides) {
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(text);
@@ -873,11 +911,11 @@ Deck parse_deck(const std::string& text, const std::string& source_name, const s
                      "(and optionally boundary_conditions, contact, output)");
   if (documents.size() > 1) {
     const YAML::Mark mark = documents[1].Mark();
-    throw InputError(SourceLocation{source_name, mark.is_null() ? 0 : mark.line + 1,
-                                    mark.is_null() ? 0 : mark.column + 1},
-                     "",
-                     "the file holds " + std::to_string(documents.size()) +
-                         " YAML documents (separated by ---); a deck is one document");
+    throw InputError(
+        SourceLocation{source_name, mark.is_null() ? 0 : mark.line + 1, mark.is_null() ? 0 : mark.column + 1},
+        "",
+        "the file holds " + std::to_string(documents.size()) +
+            " YAML documents (separated by ---); a deck is one document");
   }
   YAML::Node root = documents.front();
   const DeckValidator validator(source_name, overrides);
@@ -891,7 +929,8 @@ Deck read_deck(const std::string& path, const std::vector<Override>& overrides) 
   if (std::filesystem::is_directory(path, error))
     throw InputError(SourceLocation{path, 0, 0}, "", "cannot read the deck: it is a directory");
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw InputError(SourceLocation{path, 0, 0}, "", "cannot read the deck: no such file or no permission");
+  if (!file)
+    throw InputError(SourceLocation{path, 0, 0}, "", "cannot read the deck: no such file or no permission");
   std::ostringstream content;
   content << file.rdbuf();
   if (file.bad()) throw InputError(SourceLocation{path, 0, 0}, "", "cannot read the deck: read error");
@@ -915,7 +954,8 @@ std::string to_yaml(const Deck& deck) {
   for (const PartOptions& part : deck.parts) {
     out << "  - name: " << yaml_text(part.name) << "\n"
         << "    box: {min: " << yaml_vector(part.box_min) << ", max: " << yaml_vector(part.box_max) << "}\n"
-        << "    elements: [" << part.elements[0] << ", " << part.elements[1] << ", " << part.elements[2] << "]\n"
+        << "    elements: [" << part.elements[0] << ", " << part.elements[1] << ", " << part.elements[2]
+        << "]\n"
         << "    material: " << yaml_text(part.material) << "\n"
         << "    formulation: " << name(part.formulation) << "\n"
         << "    hourglass: {coefficient: " << yaml_number(part.hourglass_coefficient) << "}\n"
@@ -927,7 +967,8 @@ std::string to_yaml(const Deck& deck) {
     std::vector<std::string> components;
     for (std::size_t axis = 0; axis < 3; ++axis)
       if (condition.fix[axis]) components.emplace_back(component_names[axis]);
-    out << "  - {faces: " << yaml_faces(deck, condition.faces) << ", fix: [" << join(components, ", ") << "]}\n";
+    out << "  - {faces: " << yaml_faces(deck, condition.faces) << ", fix: [" << join(components, ", ")
+        << "]}\n";
   }
 
   out << "contact:" << (deck.contact.empty() ? " []" : "") << "\n";
@@ -942,8 +983,8 @@ std::string to_yaml(const Deck& deck) {
         << (penalty.stiffness ? "stiffness: " + yaml_number(*penalty.stiffness)
                               : "scale: " + yaml_number(penalty.scale))
         << ", damping: " << yaml_number(penalty.damping) << "}\n"
-        << "    search: {cell_size: " << (pair.search.cell_size ? yaml_number(*pair.search.cell_size) : "auto")
-        << "}\n"
+        << "    search: {cell_size: "
+        << (pair.search.cell_size ? yaml_number(*pair.search.cell_size) : "auto") << "}\n"
         << "    local_search: {method: " << contact::name(local.method)
         << ", tolerance: " << yaml_number(local.tolerance) << ", max_iterations: " << local.max_iterations
         << ", initial_guess: " << contact::name(local.initial_guess) << "}\n";

@@ -6,40 +6,56 @@ namespace exdyn::input {
 
 const char* name(MaterialModel model) {
   switch (model) {
-    case MaterialModel::linear_elastic: return "linear_elastic";
+    case MaterialModel::linear_elastic:
+      return "linear_elastic";
   }
   return "?";
 }
 
 const char* name(Formulation formulation) {
   switch (formulation) {
-    case Formulation::hex8: return "hex8";
-    case Formulation::hex8r: return "hex8r";
+    case Formulation::hex8:
+      return "hex8";
+    case Formulation::hex8r:
+      return "hex8r";
   }
   return "?";
 }
 
 const char* name(BoxSide side) {
   switch (side) {
-    case BoxSide::xmin: return "xmin";
-    case BoxSide::xmax: return "xmax";
-    case BoxSide::ymin: return "ymin";
-    case BoxSide::ymax: return "ymax";
-    case BoxSide::zmin: return "zmin";
-    case BoxSide::zmax: return "zmax";
+    case BoxSide::xmin:
+      return "xmin";
+    case BoxSide::xmax:
+      return "xmax";
+    case BoxSide::ymin:
+      return "ymin";
+    case BoxSide::ymax:
+      return "ymax";
+    case BoxSide::zmin:
+      return "zmin";
+    case BoxSide::zmax:
+      return "zmax";
   }
   return "?";
 }
 
 const char* name(OutputField field) {
   switch (field) {
-    case OutputField::displacement: return "displacement";
-    case OutputField::velocity: return "velocity";
-    case OutputField::acceleration: return "acceleration";
-    case OutputField::stress: return "stress";
-    case OutputField::von_mises: return "von_mises";
-    case OutputField::contact_force: return "contact_force";
-    case OutputField::gap: return "gap";
+    case OutputField::displacement:
+      return "displacement";
+    case OutputField::velocity:
+      return "velocity";
+    case OutputField::acceleration:
+      return "acceleration";
+    case OutputField::stress:
+      return "stress";
+    case OutputField::von_mises:
+      return "von_mises";
+    case OutputField::contact_force:
+      return "contact_force";
+    case OutputField::gap:
+      return "gap";
   }
   return "?";
 }

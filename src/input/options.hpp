@@ -20,9 +20,9 @@ enum class MaterialModel { linear_elastic };
 struct MaterialOptions {
   std::string name;
   MaterialModel model = MaterialModel::linear_elastic;
-  double density = 0.0;          // rho > 0, mass per volume
-  double youngs_modulus = 0.0;   // E > 0, force per area
-  double poissons_ratio = 0.0;   // nu in (-1, 0.5)
+  double density = 0.0;         // rho > 0, mass per volume
+  double youngs_modulus = 0.0;  // E > 0, force per area
+  double poissons_ratio = 0.0;  // nu in (-1, 0.5)
 
   bool operator==(const MaterialOptions&) const = default;
 };
@@ -102,8 +102,8 @@ struct ContactOptions {
 
 struct TimeOptions {
   double end_time = 0.0;
-  double courant = 0.9;       // used when dt is not given
-  std::optional<double> dt;   // fixed step; exclusive with an explicit courant
+  double courant = 0.9;      // used when dt is not given
+  std::optional<double> dt;  // fixed step; exclusive with an explicit courant
 
   bool operator==(const TimeOptions&) const = default;
 };
@@ -111,15 +111,14 @@ struct TimeOptions {
 enum class OutputField { displacement, velocity, acceleration, stress, von_mises, contact_force, gap };
 
 inline constexpr std::array<OutputField, 7> all_output_fields{
-    OutputField::displacement, OutputField::velocity,      OutputField::acceleration,
-    OutputField::stress,       OutputField::von_mises,     OutputField::contact_force,
-    OutputField::gap};
+    OutputField::displacement, OutputField::velocity,      OutputField::acceleration, OutputField::stress,
+    OutputField::von_mises,    OutputField::contact_force, OutputField::gap};
 
 struct OutputOptions {
   std::string directory = "results";
-  int every = 100;          // steps between field outputs (first and last always written)
+  int every = 100;  // steps between field outputs (first and last always written)
   std::vector<OutputField> fields{all_output_fields.begin(), all_output_fields.end()};
-  int history_every = 1;    // steps between energy history rows
+  int history_every = 1;  // steps between energy history rows
 
   bool operator==(const OutputOptions&) const = default;
 };

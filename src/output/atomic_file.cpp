@@ -9,8 +9,7 @@
 
 namespace exdyn::output {
 
-void write_file_atomically(const std::filesystem::path& path,
-                           const std::vector<std::string_view>& parts) {
+void write_file_atomically(const std::filesystem::path& path, const std::vector<std::string_view>& parts) {
   std::filesystem::path temporary = path;
   temporary += ".tmp";
   auto fail = [&](const std::string& what) {

@@ -11,7 +11,6 @@ namespace exdyn::output {
 
 // Writes the concatenation of `parts` to `path`. Throws std::runtime_error
 // naming the path if writing or renaming fails; the temporary is removed then.
-void write_file_atomically(const std::filesystem::path& path,
-                           const std::vector<std::string_view>& parts);
+void write_file_atomically(const std::filesystem::path& path, const std::vector<std::string_view>& parts);
 
 }  // namespace exdyn::output

@@ -38,7 +38,7 @@ enum class Center { node, cell };
 
 struct FieldLayout {
   input::OutputField field;
-  const char* dataset;         // name in /steps/NNNNNN and in ParaView
+  const char* dataset;  // name in /steps/NNNNNN and in ParaView
   Center center;
   int components;              // 1 = stored as (n,), otherwise (n, components)
   const char* attribute_type;  // XDMF AttributeType
@@ -181,15 +181,13 @@ class Hdf5File {
   enum class Mode { create, append };
 
   Hdf5File(const Hdf5Errors& errors, Mode mode) : errors_(errors) {
-    Handle access(errors_.check(H5Pcreate(H5P_FILE_ACCESS), "cannot create file access list for"),
-                  H5Pclose);
-    errors_.check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "cannot set close degree of",
-                  "file");
+    Handle access(errors_.check(H5Pcreate(H5P_FILE_ACCESS), "cannot create file access list for"), H5Pclose);
+    errors_.check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "cannot set close degree of", "file");
     if (mode == Mode::create) {
-      file_ = Handle(errors_.check(H5Fcreate(errors_.file().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT,
-                                             access.get()),
-                                   "cannot create file"),
-                     H5Fclose);
+      file_ =
+          Handle(errors_.check(H5Fcreate(errors_.file().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
+                               "cannot create file"),
+                 H5Fclose);
     } else {
       file_ = Handle(open_for_append(access.get()), H5Fclose);
     }
@@ -233,13 +231,12 @@ Handle create_group(const Hdf5Errors& errors, hid_t parent, const std::string& p
 
 // Creates a fixed-size dataset `path` of shape `dims` and writes it in one call.
 void write_dataset(const Hdf5Errors& errors, hid_t file, const std::string& path,
-                   const std::vector<hsize_t>& dims, hid_t file_type, hid_t memory_type,
-                   const void* data) {
+                   const std::vector<hsize_t>& dims, hid_t file_type, hid_t memory_type, const void* data) {
   Handle space(errors.check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                             "cannot create dataspace for " + path),
                H5Sclose);
-  Handle dataset(errors.check(H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT,
-                                         H5P_DEFAULT, H5P_DEFAULT),
+  Handle dataset(errors.check(H5Dcreate2(file, path.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                                         H5P_DEFAULT),
                               "cannot create dataset " + path),
                  H5Dclose);
   errors.check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
@@ -274,8 +271,8 @@ void append_series(const Hdf5Errors& errors, hid_t file, const std::string& path
   Handle file_space(errors.check(H5Dget_space(dataset.get()), "cannot get dataspace of " + path), H5Sclose);
   errors.check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, offset, nullptr, count, nullptr),
                "cannot select rows of", path);
-  Handle memory_space(errors.check(H5Screate_simple(1, count, nullptr), "cannot create dataspace for " + path),
-                      H5Sclose);
+  Handle memory_space(
+      errors.check(H5Screate_simple(1, count, nullptr), "cannot create dataspace for " + path), H5Sclose);
   errors.check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
                         values.data()),
                "cannot write dataset", path);
@@ -308,12 +305,23 @@ std::string xml_escape(std::string_view text) {
   escaped.reserve(text.size());
   for (char c : text) {
     switch (c) {
-      case '&': escaped += "&amp;"; break;
-      case '<': escaped += "&lt;"; break;
-      case '>': escaped += "&gt;"; break;
-      case '"': escaped += "&quot;"; break;
-      case '\'': escaped += "&apos;"; break;
-      default: escaped += c;
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      case '\'':
+        escaped += "&apos;";
+        break;
+      default:
+        escaped += c;
     }
   }
   return escaped;
@@ -439,13 +447,27 @@ void ResultWriter::Impl::write_field(hid_t file, const std::string& group, const
   const double* values = nullptr;
   const NodalVectors* vectors = nullptr;
   switch (layout.field) {
-    case input::OutputField::displacement: vectors = data.displacement; break;
-    case input::OutputField::velocity: vectors = data.velocity; break;
-    case input::OutputField::acceleration: vectors = data.acceleration; break;
-    case input::OutputField::contact_force: vectors = data.contact_force; break;
-    case input::OutputField::stress: values = data.stress; break;
-    case input::OutputField::von_mises: values = data.von_mises; break;
-    case input::OutputField::gap: values = data.gap; break;
+    case input::OutputField::displacement:
+      vectors = data.displacement;
+      break;
+    case input::OutputField::velocity:
+      vectors = data.velocity;
+      break;
+    case input::OutputField::acceleration:
+      vectors = data.acceleration;
+      break;
+    case input::OutputField::contact_force:
+      vectors = data.contact_force;
+      break;
+    case input::OutputField::stress:
+      values = data.stress;
+      break;
+    case input::OutputField::von_mises:
+      values = data.von_mises;
+      break;
+    case input::OutputField::gap:
+      values = data.gap;
+      break;
   }
   if (layout.components == 3) {
     if (vectors == nullptr) {
@@ -510,7 +532,8 @@ void ResultWriter::Impl::remove_stale_xdmf() const {
   for (fs::path stale : {xmf_file, fs::path(xmf_file.string() + ".tmp")}) {
     std::error_code error;
     fs::remove(stale, error);
-    if (error) throw std::runtime_error("cannot remove " + stale.string() + " of an earlier run: " + error.message());
+    if (error)
+      throw std::runtime_error("cannot remove " + stale.string() + " of an earlier run: " + error.message());
   }
 }
 
@@ -521,7 +544,8 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   // Names end up in "NAME.h5:/path" inside the .xmf, which the XDMF readers
   // split at the colon; a slash would put the files somewhere else.
   if (name.empty() || name.find_first_of(":/\\") != std::string::npos) {
-    throw std::invalid_argument("result name '" + name + "' must be non-empty and contain no ':', '/' or '\\'");
+    throw std::invalid_argument("result name '" + name +
+                                "' must be non-empty and contain no ':', '/' or '\\'");
   }
   if (mesh.x_ref == nullptr || mesh.connectivity == nullptr) {
     throw std::invalid_argument("ResultWriter: mesh coordinates and connectivity are required");
@@ -531,8 +555,8 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
     throw std::invalid_argument("ResultWriter: coordinate components differ in length");
   }
   if (mesh.connectivity->size() % 8 != 0) {
-    throw std::invalid_argument("ResultWriter: connectivity length " + std::to_string(mesh.connectivity->size()) +
-                                " is not a multiple of 8");
+    throw std::invalid_argument("ResultWriter: connectivity length " +
+                                std::to_string(mesh.connectivity->size()) + " is not a multiple of 8");
   }
   const std::size_t element_count = mesh.connectivity->size() / 8;
   if (mesh.element_part != nullptr && mesh.element_part->size() != element_count) {
@@ -543,7 +567,8 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   for (std::size_t i = 0; i < mesh.connectivity->size(); ++i) {
     if ((*mesh.connectivity)[i] >= node_count) {
       throw std::invalid_argument("ResultWriter: element " + std::to_string(i / 8) + " names node " +
-                                  std::to_string((*mesh.connectivity)[i]) + " of " + std::to_string(node_count));
+                                  std::to_string((*mesh.connectivity)[i]) + " of " +
+                                  std::to_string(node_count));
     }
   }
 
@@ -552,7 +577,8 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   impl_->node_count = node_count;
   impl_->element_count = element_count;
   for (const FieldLayout& layout : field_layouts) {
-    if (std::find(fields.begin(), fields.end(), layout.field) != fields.end()) impl_->fields.push_back(&layout);
+    if (std::find(fields.begin(), fields.end(), layout.field) != fields.end())
+      impl_->fields.push_back(&layout);
   }
 
   // The .xmf appears with the first step, not here: a temporal collection
@@ -584,8 +610,9 @@ void ResultWriter::write_step(const StepData& data) {
     throw std::logic_error("ResultWriter: step " + std::to_string(data.step) + " has a non-finite time");
   }
   if (w.last_time && !(data.time > *w.last_time)) {
-    throw std::logic_error("ResultWriter: step " + std::to_string(data.step) + " at time " + format_time(data.time) +
-                           " does not come after the last written time " + format_time(*w.last_time));
+    throw std::logic_error("ResultWriter: step " + std::to_string(data.step) + " at time " +
+                           format_time(data.time) + " does not come after the last written time " +
+                           format_time(*w.last_time));
   }
   if (data.step < 0 || data.step <= w.last_step) {
     throw std::logic_error("ResultWriter: step number " + std::to_string(data.step) +
@@ -598,7 +625,8 @@ void ResultWriter::write_step(const StepData& data) {
     if (vectors->x.size() != w.node_count || vectors->y.size() != w.node_count ||
         vectors->z.size() != w.node_count) {
       throw std::logic_error("ResultWriter: step " + std::to_string(data.step) + ": " + what + " has " +
-                             std::to_string(vectors->size()) + " nodes, the mesh " + std::to_string(w.node_count));
+                             std::to_string(vectors->size()) + " nodes, the mesh " +
+                             std::to_string(w.node_count));
     }
   };
   check_nodes(data.displacement, "displacement");
@@ -616,7 +644,8 @@ void ResultWriter::write_step(const StepData& data) {
       write_scalar_attribute(w.errors, group.get(), group_path, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
                              &data.time);
       const std::int64_t step = data.step;
-      write_scalar_attribute(w.errors, group.get(), group_path, "step", H5T_STD_I64LE, H5T_NATIVE_INT64, &step);
+      write_scalar_attribute(w.errors, group.get(), group_path, "step", H5T_STD_I64LE, H5T_NATIVE_INT64,
+                             &step);
     }
     for (const FieldLayout* layout : w.fields) w.write_field(file.get(), group_path, *layout, data);
     append_series(w.errors, file.get(), "/time", w.steps_on_disk, {data.time});

@@ -15,9 +15,9 @@
 namespace exdyn::output {
 
 struct MeshView {
-  const NodalVectors* x_ref = nullptr;            // N reference node coordinates
+  const NodalVectors* x_ref = nullptr;                       // N reference node coordinates
   const std::vector<std::uint32_t>* connectivity = nullptr;  // 8 E, VTK hexahedron order
-  const std::vector<std::int32_t>* element_part = nullptr;   // E
+  const std::vector<std::int32_t>* element_part = nullptr;   // E; null = one part, index 0
 };
 
 // The fields of one step. A null pointer is written as zeros when the field is
@@ -44,6 +44,11 @@ struct HistoryRow {
   double total_energy = 0.0;
 };
 
+// Call from one thread (the serial HDF5 library is not thread-safe). HDF5 and
+// file-system failures throw std::runtime_error naming the file and dataset;
+// a caller's mistake (time not increasing, a field of the wrong size) throws
+// std::logic_error before the file is touched; a bad mesh or name throws
+// std::invalid_argument from the constructor.
 class ResultWriter {
  public:
   // Creates (or overwrites) DIRECTORY/NAME.h5 with /mesh; creates DIRECTORY if
@@ -58,7 +63,8 @@ class ResultWriter {
   // Buffers a history row; rows are flushed to /history at every write_step and flush().
   void add_history(const HistoryRow& row);
   // Writes /steps/NNNNNN, appends to /time, flushes history, closes the file,
-  // then rewrites the .xmf atomically. Steps must be written in increasing time.
+  // then rewrites the .xmf atomically. Steps must come in strictly increasing
+  // time and step number.
   void write_step(const StepData& data);
   // Flushes buffered history rows (end of run).
   void flush();

@@ -68,7 +68,9 @@ TEST(Cli, CheckOutputIsAValidDeckThatChecksToTheSameText) {
   std::ofstream(directory.file("echo.yaml")) << first.out;
   const auto second = exdyn("check " + directory.file("echo.yaml"));
   ASSERT_EQ(second.status, 0) << second.out;
-  EXPECT_EQ(second.out, first.out);
+  // The first line is a comment naming the source file; the rest must agree.
+  auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
+  EXPECT_EQ(body(second.out), body(first.out));
 }
 
 TEST(Cli, BadDeckExitsTwoNamesTheKeyAndWritesNothing) {

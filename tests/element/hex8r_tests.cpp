@@ -39,6 +39,16 @@ KernelOutput run(const ElementVectors& x, const ElementVectors& u, double hourgl
   return out;
 }
 
+KernelOutput run_parallelepiped(const ElementVectors& x, const ElementVectors& u) {
+  std::array<double, hex8r::parallelepiped_reference_size> reference{};
+  EXPECT_GT(hex8r::make_parallelepiped_reference(x, steel.mu, coefficient, reference.data()), 0.0);
+  KernelOutput out;
+  out.energies =
+      hex8r::parallelepiped_internal_forces(reference.data(), steel.lambda, steel.mu, u, out.force, out.stress);
+  out.k = reference[10];
+  return out;
+}
+
 double max_abs(const Eigen::VectorXd& v) { return v.cwiseAbs().maxCoeff(); }
 
 double force_scale(const ElementVectors& u, double size = 1.0) {
@@ -219,6 +229,41 @@ TEST(Hex8r, FastKernelMatchesReferenceImplementationOnRandomDistortedElements) {
     const double stress_scale = ref.mean_stress.cwiseAbs().maxCoeff();
     for (int k = 0; k < 6; ++k) EXPECT_NEAR(out.stress[k], ref.mean_stress(k), 1e-12 * stress_scale);
   }
+}
+
+TEST(Hex8r, ParallelepipedKernelMatchesReferenceImplementation) {
+  std::mt19937_64 rng(31);
+  for (int trial = 0; trial < 200; ++trial) {
+    const double size = trial % 2 == 0 ? 1.0 : 2.5e-5;
+    const ElementVectors x = random_parallelepiped(rng, size);
+    const ElementVectors u = random_vectors(rng, 1e-3 * size);
+    const KernelOutput out = run_parallelepiped(x, u);
+    const testing::ReferenceResult ref = testing::reference_hex8r(x, steel.lambda, steel.mu, coefficient, u);
+    EXPECT_LT((to_vector(out.force) - ref.force).norm(), 1e-12 * ref.force.norm());
+    EXPECT_NEAR(out.energies.strain, ref.strain_energy, 1e-12 * ref.strain_energy);
+    EXPECT_NEAR(out.energies.hourglass, ref.hourglass_energy, 1e-12 * ref.hourglass_energy);
+    const double stress_scale = ref.mean_stress.cwiseAbs().maxCoeff();
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(out.stress[k], ref.mean_stress(k), 1e-12 * stress_scale);
+    // And the general kernel on the same element.
+    const KernelOutput general = run(x, u);
+    EXPECT_LT((to_vector(general.force) - to_vector(out.force)).norm(), 1e-12 * ref.force.norm());
+  }
+}
+
+TEST(Hex8r, ParallelepipedKernelHasZeroForceForRigidMotionAndExactHourglassForce) {
+  std::mt19937_64 rng(32);
+  const ElementVectors x = random_parallelepiped(rng);
+  const Eigen::Vector3d omega(1e-3, -2e-3, 1.5e-3);
+  Eigen::Matrix3d skew;
+  skew << 0, -omega(2), omega(1), omega(2), 0, -omega(0), -omega(1), omega(0), 0;
+  const ElementVectors u = linear_field(x, skew, Eigen::Vector3d(1e-4, -3e-4, 2e-4));
+  EXPECT_LT(max_abs(to_vector(run_parallelepiped(x, u).force)), 1e-14 * force_scale(u));
+  // For a parallelepiped gamma = h exactly: u_y = a h_alpha gives f_y = 8 k a h_alpha.
+  ElementVectors hourglass;
+  for (int I = 0; I < 8; ++I) hourglass.y[I] = 1e-6 * hex8::mode_value(7, I);
+  const KernelOutput out = run_parallelepiped(x, hourglass);
+  for (int I = 0; I < 8; ++I) EXPECT_NEAR(out.force.y[I], 8 * out.k * 1e-6 * hex8::mode_value(7, I), 1e-12 * out.k * 1e-6);
+  EXPECT_NEAR(out.energies.hourglass, 0.5 * out.k * 64e-12, 1e-12 * out.energies.hourglass);
 }
 
 }  // namespace

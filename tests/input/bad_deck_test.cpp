@@ -28,7 +28,8 @@ const BadDeck bad_decks[] = {
     {"missing_time.yaml", "time", 2, "missing required key 'time'"},
     {"unknown_key_typo.yaml", "materials.steel.densty", 4, "unknown key 'densty'; did you mean 'density'?"},
     {"negative_density.yaml", "materials.steel.density", 4, "expected a number > 0, got -7800"},
-    {"poissons_ratio_half.yaml", "materials.steel.poissons_ratio", 4, "expected a number in (-1, 0.5), got 0.5"},
+    {"poissons_ratio_half.yaml", "materials.steel.poissons_ratio", 4,
+     "expected a number in (-1, 0.5), got 0.5"},
     {"zero_size_box.yaml", "parts[0].box.max", 7, "y: max 0 <= min 0"},
     {"unknown_material.yaml", "parts[0].material", 9, "unknown material 'stel'; did you mean 'steel'?"},
     {"unknown_face.yaml", "boundary_conditions[0].faces[1]", 15, "did you mean 'plate_b.ymin'?"},
@@ -38,17 +39,20 @@ const BadDeck bad_decks[] = {
     {"elements_float.yaml", "parts[0].elements[1]", 8, "expected an integer >= 1, got 1.5 (not an integer)"},
     {"elements_two_entries.yaml", "parts[0].elements", 8, "expected a list of 3 integers >= 1"},
     {"duplicate_part_names.yaml", "parts[1].name", 10, "part name 'plate_a' is used twice"},
-    {"unknown_formulation.yaml", "parts[0].formulation", 10, "unknown formulation 'hex20'; expected hex8, hex8r"},
+    {"unknown_formulation.yaml", "parts[0].formulation", 10,
+     "unknown formulation 'hex20'; expected hex8, hex8r"},
     {"unknown_local_search_method.yaml", "contact[0].local_search.method", 21,
      "unknown local search method 'bgfs'; did you mean 'bfgs'?"},
     {"unknown_output_field.yaml", "output.fields[1]", 14, "unknown output field 'strain'"},
     {"penalty_scale_and_stiffness.yaml", "contact[0].penalty.stiffness", 20, "not both"},
-    {"scalar_instead_of_list.yaml", "boundary_conditions[0].fix", 15, "expected a non-empty list of components"},
+    {"scalar_instead_of_list.yaml", "boundary_conditions[0].fix", 15,
+     "expected a non-empty list of components"},
     {"deck_is_a_list.yaml", "", 2, "expected the deck to be a map"},
     {"duplicate_key.yaml", "parts[0].elements", 9, "key 'elements' is given twice (first at line 8)"},
     {"unknown_part_in_contact.yaml", "contact[0].master[0]", 19, "unknown part 'plate_c'"},
     {"unknown_top_level_key.yaml", "solver", 12, "unknown key 'solver'; the keys here are name, materials"},
-    {"max_iterations_zero.yaml", "contact[0].local_search.max_iterations", 21, "expected an integer >= 1, got 0"},
+    {"max_iterations_zero.yaml", "contact[0].local_search.max_iterations", 21,
+     "expected an integer >= 1, got 0"},
     {"unknown_initial_guess.yaml", "contact[0].local_search.initial_guess", 21,
      "unknown initial guess 'corner'; expected lsp, center, previous"},
     {"run_name_with_space.yaml", "name", 2, "expected a name of letters, digits, _ and -"},
@@ -56,7 +60,8 @@ const BadDeck bad_decks[] = {
     {"missing_part_material.yaml", "parts[0].material", 6, "missing required key 'material' in parts[0]"},
     {"two_documents.yaml", "", 13, "2 YAML documents"},
     {"damping_negative.yaml", "contact[0].penalty.damping", 20, "expected a number >= 0, got -0.1"},
-    {"cell_size_word.yaml", "contact[0].search.cell_size", 21, "expected a number > 0 or auto, got automatic"},
+    {"cell_size_word.yaml", "contact[0].search.cell_size", 21,
+     "expected a number > 0 or auto, got automatic"},
     {"two_pass_word.yaml", "contact[0].two_pass", 20, "expected true or false, got maybe"},
 };
 
@@ -105,8 +110,8 @@ TEST(BadDecks, EveryFileInTheFolderIsChecked) {
 }
 
 TEST(BadDecks, UnknownKeyFarFromEveryKnownOneListsTheAllowedKeys) {
-  const std::string text = testing::read_text(testing::test_deck_path("decks/minimal.yaml")) +
-                           "output: {frequency: 10}\n";
+  const std::string text =
+      testing::read_text(testing::test_deck_path("decks/minimal.yaml")) + "output: {frequency: 10}\n";
   try {
     parse_deck(text, "inline.yaml");
     FAIL() << "no error";

@@ -1,9 +1,10 @@
 // Valid decks read to the values written, with every default filled in.
+#include "input/deck_reader.hpp"
+
 #include <gtest/gtest.h>
 
 #include "common/errors.hpp"
 #include "deck_files.hpp"
-#include "input/deck_reader.hpp"
 
 namespace exdyn::input {
 namespace {
@@ -189,8 +190,8 @@ TEST(DeckReader, HourglassBlockIsAcceptedForFullIntegration) {
 }
 
 TEST(DeckReader, EmptyOptionalSectionsTakeTheirDefaults) {
-  const std::string text = read_text(test_deck_path("decks/minimal.yaml")) +
-                           "boundary_conditions:\ncontact: []\noutput:\n";
+  const std::string text =
+      read_text(test_deck_path("decks/minimal.yaml")) + "boundary_conditions:\ncontact: []\noutput:\n";
   const Deck deck = parse_deck(text, "inline.yaml");
   EXPECT_TRUE(deck.boundary_conditions.empty());
   EXPECT_TRUE(deck.contact.empty());
@@ -198,9 +199,10 @@ TEST(DeckReader, EmptyOptionalSectionsTakeTheirDefaults) {
 }
 
 TEST(DeckReader, SearchCellSizeAutoMeansUnset) {
-  const std::string text = read_text(test_deck_path("decks/minimal.yaml")) +
-                           "contact:\n"
-                           "  - {name: self, slave: [bar.xmin], master: [bar.xmax], search: {cell_size: auto}}\n";
+  const std::string text =
+      read_text(test_deck_path("decks/minimal.yaml")) +
+      "contact:\n"
+      "  - {name: self, slave: [bar.xmin], master: [bar.xmax], search: {cell_size: auto}}\n";
   EXPECT_FALSE(parse_deck(text, "inline.yaml").contact[0].search.cell_size.has_value());
 }
 

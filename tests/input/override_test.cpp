@@ -34,7 +34,9 @@ InputError error_of(Action action) {
   return InputError("no error");
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 TEST(ParseOverride, SplitsAtTheFirstEqualsSign) {
   const Override item = parse_override("parts[0].elements=[50,1,50]");
@@ -155,7 +157,8 @@ TEST(Override, KeyIntoAListIsRejected) {
 
 TEST(Override, IndexIntoAMapOrAMissingListIsRejected) {
   EXPECT_TRUE(contains(error_of([] { plate_with({"time[0]=1"}); }).what(), "not a list"));
-  EXPECT_TRUE(contains(error_of([] { minimal_with({"contact[0].name=x"}); }).what(), "contact is not in the deck"));
+  EXPECT_TRUE(
+      contains(error_of([] { minimal_with({"contact[0].name=x"}); }).what(), "contact is not in the deck"));
 }
 
 TEST(Override, ValueThatIsNotYamlIsRejected) {

@@ -26,8 +26,8 @@ TEST(NearestName, SuggestsOnlyCloseNames) {
 }
 
 TEST(FormatNumber, ReadsBackToTheSameDouble) {
-  for (const double value : {0.3, 2.1e11, 1.0 / 3.0, 2.32551069659978e-7, -0.0025, 1e-300,
-                             std::numeric_limits<double>::max()}) {
+  for (const double value :
+       {0.3, 2.1e11, 1.0 / 3.0, 2.32551069659978e-7, -0.0025, 1e-300, std::numeric_limits<double>::max()}) {
     const std::string text = format_number(value);
     EXPECT_EQ(std::stod(text), value) << text;
   }

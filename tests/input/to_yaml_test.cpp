@@ -12,7 +12,9 @@ using testing::test_deck_path;
 
 Deck round_trip(const Deck& deck) { return parse_deck(to_yaml(deck), deck.source_file); }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 TEST(ToYaml, SpecExampleRoundTrips) {
   const Deck deck = read_deck(test_deck_path("decks/plate_impact.yaml"));
@@ -23,19 +25,20 @@ TEST(ToYaml, MinimalDeckRoundTripsWithEveryDefaultWritten) {
   const Deck deck = read_deck(test_deck_path("decks/minimal.yaml"));
   EXPECT_EQ(round_trip(deck), deck);
   const std::string text = to_yaml(deck);
-  for (const char* line : {"formulation: hex8\n", "hourglass: {coefficient: 0.05}\n", "initial_velocity: [0, 0, 0]\n",
-                           "boundary_conditions: []\n", "contact: []\n", "courant: 0.9\n", "directory: results\n",
-                           "every: 100\n",
-                           "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap]\n",
-                           "history_every: 1\n"})
+  for (const char* line :
+       {"formulation: hex8\n", "hourglass: {coefficient: 0.05}\n", "initial_velocity: [0, 0, 0]\n",
+        "boundary_conditions: []\n", "contact: []\n", "courant: 0.9\n", "directory: results\n",
+        "every: 100\n",
+        "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap]\n",
+        "history_every: 1\n"})
     EXPECT_TRUE(contains(text, line)) << line << " missing from\n" << text;
 }
 
 TEST(ToYaml, ContactPairIsWrittenWithAllItsKeys) {
   const std::string text = to_yaml(read_deck(test_deck_path("decks/plate_impact.yaml")));
   for (const char* line :
-       {"slave: [plate_a.xmax]\n", "master: [plate_b.xmin]\n", "two_pass: true\n", "penalty: {scale: 1, damping: 0.2}\n",
-        "search: {cell_size: auto}\n",
+       {"slave: [plate_a.xmax]\n", "master: [plate_b.xmin]\n", "two_pass: true\n",
+        "penalty: {scale: 1, damping: 0.2}\n", "search: {cell_size: auto}\n",
         "local_search: {method: bfgs, tolerance: 1e-10, max_iterations: 100, initial_guess: lsp}\n",
         "- {faces: [plate_a.ymin, plate_a.ymax, plate_b.ymin, plate_b.ymax], fix: [y]}\n",
         "end_time: 2.32551069659978e-07\n", "courant: 0.125\n"})

@@ -43,9 +43,7 @@ class H5Reader {
   H5Reader(const H5Reader&) = delete;
   H5Reader& operator=(const H5Reader&) = delete;
 
-  bool exists(const std::string& path) const {
-    return H5Lexists(file_, path.c_str(), H5P_DEFAULT) > 0;
-  }
+  bool exists(const std::string& path) const { return H5Lexists(file_, path.c_str(), H5P_DEFAULT) > 0; }
 
   DatasetInfo info(const std::string& path) const {
     const hid_t dataset = open(path);
@@ -78,8 +76,8 @@ class H5Reader {
   std::vector<double> doubles(const std::string& path) const { return read<double>(path, H5T_NATIVE_DOUBLE); }
 
   template <typename T>
-  T attribute(const std::string& object, const char* name, hid_t memory_type, H5T_class_t* type_class = nullptr,
-              std::size_t* type_size = nullptr) const {
+  T attribute(const std::string& object, const char* name, hid_t memory_type,
+              H5T_class_t* type_class = nullptr, std::size_t* type_size = nullptr) const {
     const hid_t attribute = H5Aopen_by_name(file_, object.c_str(), name, H5P_DEFAULT, H5P_DEFAULT);
     if (attribute < 0) throw std::runtime_error("no attribute " + object + "@" + name);
     const hid_t type = H5Aget_type(attribute);
@@ -98,7 +96,8 @@ class H5Reader {
       static_cast<std::vector<std::string>*>(data)->emplace_back(name);
       return 0;
     };
-    H5Literate_by_name(file_, group.c_str(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names, H5P_DEFAULT);
+    H5Literate_by_name(file_, group.c_str(), H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names,
+                       H5P_DEFAULT);
     return names;
   }
 
@@ -170,8 +169,12 @@ struct StepFields {
   std::vector<double> stress, von_mises, gap;
 
   StepFields(const TinyMesh& mesh, long step)
-      : displacement(mesh.nodes()), velocity(mesh.nodes()), acceleration(mesh.nodes()),
-        contact_force(mesh.nodes()), stress(6 * mesh.elements()), von_mises(mesh.elements()),
+      : displacement(mesh.nodes()),
+        velocity(mesh.nodes()),
+        acceleration(mesh.nodes()),
+        contact_force(mesh.nodes()),
+        stress(6 * mesh.elements()),
+        von_mises(mesh.elements()),
         gap(mesh.nodes()) {
     for (std::size_t n = 0; n < mesh.nodes(); ++n) {
       for (int c = 0; c < 3; ++c) {
@@ -210,9 +213,9 @@ const std::array<double, 3> step_times{0.0, 1.0e-7 / 3.0, 2.0e-7 / 3.0};  // nee
 class ResultWriterTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = fs::temp_directory_path() /
-                 ("exdyn_output_" + std::to_string(::getpid()) + "_" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    directory_ =
+        fs::temp_directory_path() / ("exdyn_output_" + std::to_string(::getpid()) + "_" +
+                                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(directory_);
   }
   void TearDown() override {
@@ -240,7 +243,8 @@ TEST_F(ResultWriterTest, MeshIsWrittenOnceWithContractShapesAndTypes) {
   EXPECT_EQ(coordinates.type_size, 8u);
   const std::vector<double> xyz = file.doubles("/mesh/coordinates");
   for (std::size_t n = 0; n < 12; ++n) {
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(xyz[3 * n + static_cast<std::size_t>(c)], mesh_.x_ref.component(c)[n]);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(xyz[3 * n + static_cast<std::size_t>(c)], mesh_.x_ref.component(c)[n]);
   }
 
   const DatasetInfo connectivity = file.info("/mesh/connectivity");
@@ -295,7 +299,8 @@ TEST_F(ResultWriterTest, StepsHoldEveryRequestedFieldInContractLayout) {
     const std::string group = group_name;
     H5T_class_t type_class{};
     std::size_t type_size = 0;
-    EXPECT_EQ(file.attribute<double>(group, "time", H5T_NATIVE_DOUBLE, &type_class, &type_size), step_times[s]);
+    EXPECT_EQ(file.attribute<double>(group, "time", H5T_NATIVE_DOUBLE, &type_class, &type_size),
+              step_times[s]);
     EXPECT_EQ(type_class, H5T_FLOAT);
     EXPECT_EQ(type_size, 8u);
     EXPECT_EQ(file.attribute<std::int64_t>(group, "step", H5T_NATIVE_INT64, &type_class, &type_size), step);
@@ -314,7 +319,8 @@ TEST_F(ResultWriterTest, StepsHoldEveryRequestedFieldInContractLayout) {
       const std::vector<double> v = file.doubles(group + "/" + name);
       for (std::size_t n = 0; n < 12; ++n) {
         for (int c = 0; c < 3; ++c) {
-          EXPECT_EQ(v[3 * n + static_cast<std::size_t>(c)], value(step, n, c, offset)) << name << " node " << n;
+          EXPECT_EQ(v[3 * n + static_cast<std::size_t>(c)], value(step, n, c, offset))
+              << name << " node " << n;
         }
       }
     }
@@ -322,10 +328,12 @@ TEST_F(ResultWriterTest, StepsHoldEveryRequestedFieldInContractLayout) {
     EXPECT_EQ(file.info(group + "/stress").shape, (std::vector<hsize_t>{2, 6}));
     const std::vector<double> stress = file.doubles(group + "/stress");
     for (std::size_t e = 0; e < 2; ++e) {
-      for (int c = 0; c < 6; ++c) EXPECT_EQ(stress[6 * e + static_cast<std::size_t>(c)], value(step, e, c, 0.6));
+      for (int c = 0; c < 6; ++c)
+        EXPECT_EQ(stress[6 * e + static_cast<std::size_t>(c)], value(step, e, c, 0.6));
     }
     EXPECT_EQ(file.info(group + "/von_mises").shape, (std::vector<hsize_t>{2}));
-    EXPECT_EQ(file.doubles(group + "/von_mises"), (std::vector<double>{value(step, 0, 0, 0.7), value(step, 1, 0, 0.7)}));
+    EXPECT_EQ(file.doubles(group + "/von_mises"),
+              (std::vector<double>{value(step, 0, 0, 0.7), value(step, 1, 0, 0.7)}));
     EXPECT_EQ(file.info(group + "/gap").shape, (std::vector<hsize_t>{12}));
     const std::vector<double> gap = file.doubles(group + "/gap");
     for (std::size_t n = 0; n < 12; ++n) EXPECT_EQ(gap[n], -value(step, n, 0, 0.5));
@@ -381,15 +389,15 @@ TEST_F(ResultWriterTest, FieldLeftOutOfTheDeckIsAbsentFromStepsAndXdmf) {
 TEST_F(ResultWriterTest, HistoryRowsAreAppendedAtEveryStepAndFlush) {
   ResultWriter writer(directory_.string(), "run", mesh_.view(), {OutputField::velocity});
   const StepFields fields(mesh_, 0);
-  auto row = [](int i) {
-    return HistoryRow{0.1 * i, 1.0 + i, 2.0 + i, 3.0 + i, 4.0 + i, 5.0 + i, 6.0 + i};
-  };
-  const std::array<const char*, 7> columns{"time", "kinetic_energy", "internal_energy", "contact_energy",
-                                           "hourglass_energy", "external_work", "total_energy"};
+  auto row = [](int i) { return HistoryRow{0.1 * i, 1.0 + i, 2.0 + i, 3.0 + i, 4.0 + i, 5.0 + i, 6.0 + i}; };
+  const std::array<const char*, 7> columns{"time",           "kinetic_energy",   "internal_energy",
+                                           "contact_energy", "hourglass_energy", "external_work",
+                                           "total_energy"};
   auto history_length = [&]() {
     H5Reader file(h5());
     const hsize_t length = file.info("/history/time").shape.at(0);
-    for (const char* column : columns) EXPECT_EQ(file.info(std::string("/history/") + column).shape.at(0), length);
+    for (const char* column : columns)
+      EXPECT_EQ(file.info(std::string("/history/") + column).shape.at(0), length);
     return length;
   };
 
@@ -416,10 +424,10 @@ TEST_F(ResultWriterTest, HistoryRowsAreAppendedAtEveryStepAndFlush) {
     ASSERT_EQ(values.size(), 6u);
     for (int i = 0; i < 6; ++i) {
       const HistoryRow expected = row(i);
-      const std::array<double, 7> fields_of_row{expected.time,           expected.kinetic_energy,
-                                                expected.internal_energy, expected.contact_energy,
-                                                expected.hourglass_energy, expected.external_work,
-                                                expected.total_energy};
+      const std::array<double, 7> fields_of_row{
+          expected.time,           expected.kinetic_energy,   expected.internal_energy,
+          expected.contact_energy, expected.hourglass_energy, expected.external_work,
+          expected.total_energy};
       EXPECT_EQ(values[static_cast<std::size_t>(i)], fields_of_row[c]) << columns[c] << " row " << i;
     }
   }
@@ -440,7 +448,8 @@ TEST_F(ResultWriterTest, XdmfDescribesEveryStepWithTheDatasetsShapesAndTypes) {
     const StepFields fields(mesh_, step_numbers[s]);
     writer.write_step(fields.data(step_numbers[s], step_times[s]));
     const std::string xml = read_text(xmf());
-    EXPECT_EQ(count(xml, "<Grid Name=\"step_"), static_cast<int>(s + 1)) << "the .xmf is rewritten at each step";
+    EXPECT_EQ(count(xml, "<Grid Name=\"step_"), static_cast<int>(s + 1))
+        << "the .xmf is rewritten at each step";
     EXPECT_FALSE(fs::exists(directory_ / "run.xmf.tmp"));
   }
   const std::string xml = read_text(xmf());
@@ -449,7 +458,8 @@ TEST_F(ResultWriterTest, XdmfDescribesEveryStepWithTheDatasetsShapesAndTypes) {
   EXPECT_NE(xml.find("<Grid Name=\"TimeSeries\" GridType=\"Collection\" CollectionType=\"Temporal\">"),
             std::string::npos);
   EXPECT_EQ(count(xml, "<Grid Name=\"step_"), 3);
-  EXPECT_EQ(count(xml, "<Topology TopologyType=\"Hexahedron\" NumberOfElements=\"2\" NodesPerElement=\"8\">"), 3);
+  EXPECT_EQ(count(xml, "<Topology TopologyType=\"Hexahedron\" NumberOfElements=\"2\" NodesPerElement=\"8\">"),
+            3);
   EXPECT_EQ(count(xml, "<Geometry GeometryType=\"XYZ\">"), 3);
   for (std::size_t s = 0; s < 3; ++s) {
     char grid[40];
@@ -461,7 +471,9 @@ TEST_F(ResultWriterTest, XdmfDescribesEveryStepWithTheDatasetsShapesAndTypes) {
 
   // Attribute kinds and centres.
   for (const char* vector : {"displacement", "velocity", "acceleration", "contact_force"}) {
-    EXPECT_EQ(count(xml, "<Attribute Name=\"" + std::string(vector) + "\" AttributeType=\"Vector\" Center=\"Node\">"), 3);
+    EXPECT_EQ(count(xml, "<Attribute Name=\"" + std::string(vector) +
+                             "\" AttributeType=\"Vector\" Center=\"Node\">"),
+              3);
   }
   EXPECT_EQ(count(xml, "<Attribute Name=\"stress\" AttributeType=\"Matrix\" Center=\"Cell\">"), 3);
   EXPECT_EQ(count(xml, "<Attribute Name=\"von_mises\" AttributeType=\"Scalar\" Center=\"Cell\">"), 3);
@@ -470,10 +482,12 @@ TEST_F(ResultWriterTest, XdmfDescribesEveryStepWithTheDatasetsShapesAndTypes) {
   // Every DataItem names a dataset by a path relative to the .xmf, and its
   // Dimensions, NumberType and Precision are those of that dataset.
   const std::regex data_item(
-      "<DataItem Dimensions=\"([0-9 ]+)\" NumberType=\"(\\w+)\" Precision=\"(\\d)\" Format=\"HDF\">([^<:]+):([^<]+)</DataItem>");
+      "<DataItem Dimensions=\"([0-9 ]+)\" NumberType=\"(\\w+)\" Precision=\"(\\d)\" "
+      "Format=\"HDF\">([^<:]+):([^<]+)</DataItem>");
   H5Reader file(h5());
   int items = 0;
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), data_item); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), data_item); it != std::sregex_iterator();
+       ++it) {
     const std::smatch& m = *it;
     ++items;
     EXPECT_EQ(m[4].str(), "run.h5");

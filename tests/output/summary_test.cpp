@@ -20,9 +20,9 @@ using Json = nlohmann::ordered_json;
 class SummaryTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    directory_ = fs::temp_directory_path() /
-                 ("exdyn_summary_" + std::to_string(::getpid()) + "_" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    directory_ =
+        fs::temp_directory_path() / ("exdyn_summary_" + std::to_string(::getpid()) + "_" +
+                                     ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(directory_);
   }
   void TearDown() override {
@@ -62,9 +62,10 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
 
   std::vector<std::string> keys;
   for (const auto& item : j.items()) keys.push_back(item.key());
-  EXPECT_EQ(keys, (std::vector<std::string>{"name", "status", "message", "exdyn_version", "threads", "mesh", "steps",
-                                            "dt", "end_time", "wall_seconds", "element_cycles_per_second",
-                                            "phase_seconds", "energy", "contact"}));
+  EXPECT_EQ(keys,
+            (std::vector<std::string>{"name", "status", "message", "exdyn_version", "threads", "mesh",
+                                      "steps", "dt", "end_time", "wall_seconds", "element_cycles_per_second",
+                                      "phase_seconds", "energy", "contact"}));
   EXPECT_EQ(j["name"], "plate_impact");
   EXPECT_EQ(j["status"], "completed");
   EXPECT_EQ(j["message"], "");
@@ -108,7 +109,9 @@ TEST_F(SummaryTest, FailedRunKeepsItsMessageAndNonFiniteNumbersBecomeNull) {
   write_summary(path.string(), s);
   const Json j = read(path);
   EXPECT_EQ(j["status"], "failed");
-  EXPECT_EQ(j["message"].get<std::string>().rfind("element 17 inverted at step 212 (t = 1.1e-7)\n\"quoted\" ", 0), 0u);
+  EXPECT_EQ(
+      j["message"].get<std::string>().rfind("element 17 inverted at step 212 (t = 1.1e-7)\n\"quoted\" ", 0),
+      0u);
   EXPECT_TRUE(j["energy"]["final_total"].is_null());
   EXPECT_TRUE(j["energy"]["max_relative_error"].is_null());
   EXPECT_TRUE(j["element_cycles_per_second"].is_null());

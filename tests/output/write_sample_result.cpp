@@ -94,9 +94,9 @@ int main(int argc, char** argv) {
         const double sxy = 20 * a * xc * yc, syz = 3 * a * yc, sxz = 2 * a * xc;
         double* s6 = &stress[6 * e];  // ParaView's order: xx yy zz xy yz xz
         s6[0] = sxx, s6[1] = syy, s6[2] = szz, s6[3] = sxy, s6[4] = syz, s6[5] = sxz;
-        von_mises[e] = std::sqrt(0.5 * ((sxx - syy) * (sxx - syy) + (syy - szz) * (syy - szz) +
-                                        (szz - sxx) * (szz - sxx)) +
-                                 3 * (sxy * sxy + syz * syz + sxz * sxz));
+        von_mises[e] = std::sqrt(
+            0.5 * ((sxx - syy) * (sxx - syy) + (syy - szz) * (syy - szz) + (szz - sxx) * (szz - sxx)) +
+            3 * (sxy * sxy + syz * syz + sxz * sxz));
       }
       writer.add_history({t, a, 2 * a, 0.0, 0.0, 0.0, 3 * a});
       output::StepData data;
@@ -112,7 +112,8 @@ int main(int argc, char** argv) {
       writer.write_step(data);
     }
     writer.flush();
-    std::cout << writer.xmf_path() << "\n";
+    // With no step there is no .xmf (ParaView's Xdmf2 reader crashes on an empty collection).
+    std::cout << (steps > 0 ? writer.xmf_path() : writer.h5_path() + " (no step, no .xmf)") << "\n";
   } catch (const std::exception& error) {
     std::cerr << "output_sample_result: " << error.what() << "\n";
     return 1;

@@ -22,9 +22,10 @@ namespace {
 
 using namespace detail;
 
-constexpr int grid_points = 5;       // per direction, including the edges
-constexpr int max_seeds = 4;         // Newton runs, at most
+constexpr int grid_points = 17;       // per direction, including the edges
+constexpr int max_seeds = 8;         // Newton runs, at most
 constexpr int max_restarts = 3;      // Hessian-check restarts per seed
+constexpr double max_step = 2.0 / (grid_points - 1);  // parametric
 constexpr double armijo = 1.0e-4;    // sufficient decrease
 constexpr double escape_step = 0.25; // parametric move off a saddle or maximum
 
@@ -89,8 +90,11 @@ class RobustSearch {
   bool newton(Xi& xi, Local& l) {
     for (int k = 0; k < settings_.max_iterations; ++k) {
       ++counts_.iterations;
-      const Xi p = direction(xi, l);
+      Xi p = direction(xi, l);
       if (p[0] == 0.0 && p[1] == 0.0) return true;  // a corner held by both bounds, or g = 0
+      // At most one grid spacing per step: stay in the seed's basin.
+      const double length = norm2(p);
+      if (length > max_step) p = scaled(max_step / length, p);
       LineSearch outcome = line_search(xi, l, p);
       if (outcome == LineSearch::full_step_within_tolerance) return true;
       if (outcome == LineSearch::no_decrease) {
@@ -235,40 +239,70 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
   grid_values(s, ys, f);
   result.evaluations = grid_points * grid_points;
 
-  // Seeds: the grid's discrete local minima (ties broken by index), best first.
+  // Seeds, (a): the grid's discrete local minima (ties broken by index).
+  constexpr int n = grid_points;
+  const auto coordinate = [](int i) { return -1.0 + 2.0 * i / (n - 1); };
+  const auto less = [&f](int a, int b) { return f[a] < f[b] || (f[a] == f[b] && a < b); };
+  std::array<bool, n * n> seed_at{};
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const int index = j * n + i;
+      bool minimum = true;
+      for (int dj = -1; dj <= 1 && minimum; ++dj) {
+        for (int di = -1; di <= 1; ++di) {
+          const int jj = j + dj, ii = i + di;
+          if ((di == 0 && dj == 0) || jj < 0 || ii < 0 || jj >= n || ii >= n) continue;
+          if (less(jj * n + ii, index)) {
+            minimum = false;
+            break;
+          }
+        }
+      }
+      seed_at[index] = minimum;
+    }
+  }
+  // (b): on each edge, the discrete local minima along the edge where f
+  // decreases out of the square (a constrained minimum on that edge may lie
+  // in a sliver narrower than the grid, missed by (a)).
+  for (int edge = 0; edge < 4; ++edge) {
+    // edge 0: xi2 = -1, 1: xi1 = +1, 2: xi2 = +1, 3: xi1 = -1
+    const auto index_of = [edge](int k) {
+      switch (edge) {
+        case 0: return k;
+        case 1: return k * n + (n - 1);
+        case 2: return (n - 1) * n + k;
+        default: return k * n;
+      }
+    };
+    for (int k = 0; k < n; ++k) {
+      const int index = index_of(k);
+      if (seed_at[index]) continue;
+      if ((k > 0 && less(index_of(k - 1), index)) || (k < n - 1 && less(index_of(k + 1), index))) continue;
+      const Xi xi{coordinate(index % n), coordinate(index / n)};
+      const LocalGradient lg = evaluate_gradient(s, ys, xi);
+      ++result.evaluations;
+      const bool outward = edge == 0 ? lg.g[1] > 0.0 : edge == 1 ? lg.g[0] < 0.0 : edge == 2 ? lg.g[1] < 0.0 : lg.g[0] > 0.0;
+      seed_at[index] = outward;
+    }
+  }
+  // Best first; at most max_seeds.
   struct Seed {
     double f;
     Xi xi;
   };
   std::array<Seed, max_seeds> seeds{};
   int seed_count = 0;
-  for (int j = 0; j < grid_points; ++j) {
-    for (int i = 0; i < grid_points; ++i) {
-      const int index = j * grid_points + i;
-      bool minimum = true;
-      for (int dj = -1; dj <= 1 && minimum; ++dj) {
-        for (int di = -1; di <= 1; ++di) {
-          const int jj = j + dj, ii = i + di;
-          if ((di == 0 && dj == 0) || jj < 0 || ii < 0 || jj >= grid_points || ii >= grid_points) continue;
-          const int other = jj * grid_points + ii;
-          if (f[other] < f[index] || (f[other] == f[index] && other < index)) {
-            minimum = false;
-            break;
-          }
-        }
-      }
-      if (!minimum) continue;
-      const Seed seed{f[index], {-1.0 + 2.0 * i / (grid_points - 1), -1.0 + 2.0 * j / (grid_points - 1)}};
-      // Insert sorted; drop the worst beyond max_seeds.
-      int at = std::min(seed_count, max_seeds - 1);
-      if (seed_count == max_seeds && !(seed.f < seeds[at].f)) continue;
-      while (at > 0 && seed.f < seeds[at - 1].f) {
-        seeds[at] = seeds[at - 1];
-        --at;
-      }
-      seeds[at] = seed;
-      seed_count = std::min(seed_count + 1, max_seeds);
+  for (int index = 0; index < n * n; ++index) {
+    if (!seed_at[index]) continue;
+    const Seed seed{f[index], {coordinate(index % n), coordinate(index / n)}};
+    int at = std::min(seed_count, max_seeds - 1);
+    if (seed_count == max_seeds && !(seed.f < seeds[at].f)) continue;
+    while (at > 0 && seed.f < seeds[at - 1].f) {
+      seeds[at] = seeds[at - 1];
+      --at;
     }
+    seeds[at] = seed;
+    seed_count = std::min(seed_count + 1, max_seeds);
   }
   // The caller's guess replaces the best seed when it is better.
   if (finite(xi0)) {
