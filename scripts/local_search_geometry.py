@@ -220,10 +220,15 @@ def closest_point(nodes, point, grid=201, candidates=4, chunk=64):
 def newton_unconstrained(nodes, point, xi, iterations=100):
     """Plain Newton on grad f = 0 (finds any stationary point), batched; for checks."""
     xi = np.array(xi, dtype=float)
+    with np.errstate(all="ignore"):  # runs from far away may diverge; they are dropped
+        return _newton_unconstrained(nodes, point, xi, iterations)
+
+
+def _newton_unconstrained(nodes, point, xi, iterations):
     for _ in range(iterations):
         _, g, H, _ = evaluate(nodes, point, xi)
         det = H[:, 0, 0] * H[:, 1, 1] - H[:, 0, 1] ** 2
-        ok = np.abs(det) > 1e-300
+        ok = (np.abs(det) > 1e-300) & np.isfinite(det)
         step = np.zeros_like(xi)
         step[ok] = -np.linalg.solve(H[ok], g[ok][..., None])[..., 0]
         xi = xi + step

@@ -64,9 +64,10 @@ def basins(b, methods, path, case_name):
     for ax in axes[:, 0]:
         ax.set_ylabel("start xi2", fontsize=8)
     handles = [Patch(color=c, label=n) for c, n in zip(colours, names)]
-    fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=8, frameon=False)
+    fig.legend(handles=handles, loc="lower center", ncol=2, fontsize=8, frameon=False, bbox_to_anchor=(0.5, 0.0))
     fig.suptitle(f"{case_name}: where each starting point ends (stars: the closest points)", fontsize=11)
-    fig.tight_layout(rect=(0, 0.04 + 0.022 * ((len(names) + 1) // 2), 1, 0.97))
+    legend_rows = (len(names) + 1) // 2
+    fig.subplots_adjust(left=0.07, right=0.98, top=0.93, bottom=0.06 + 0.022 * legend_rows, hspace=0.32, wspace=0.22)
     fig.savefig(path, dpi=100)
     plt.close(fig)
 

@@ -58,6 +58,7 @@ PAPER_TABLE1 = {
     "simplex": ("184-210", "0 (never)"),
 }
 
+ROBUSTNESS_MAX_ITERATIONS = "1000"  # so that "not converged" means stuck, not only slow
 SEGMENT_TYPES = (4, 8)
 LEVELS = (0.1, 0.25, 0.4)
 POSITIONS = ("above", "below", "beside")
@@ -267,7 +268,9 @@ def table1_markdown(t1, methods):
                f"({ref_ns:.0f} ns, median of {t1['repeats']} runs). Marks: **sp** converged on a saddle, "
                f"wm converged elsewhere than the closest point, nc not converged. "
                f"`--tolerance {TABLE1_TOLERANCE} --max-iterations {TABLE1_MAX_ITERATIONS}`.\n")
-    out.append("| method | " + " | ".join(f"`{g}`" for g in guesses) + " | iterations (ours) | paper |")
+    corner_xi = {f"corner{i + 1}": f" ({x:+.0f},{y:+.0f})" for i, (x, y) in enumerate(geo.NODE_XI[:4])}
+    out.append("| method | " + " | ".join(f"`{g}`{corner_xi.get(g, '')}" for g in guesses)
+               + " | iterations (ours) | paper |")
     out.append("|---|" + "---|" * (len(guesses) + 2))
     for m in methods:
         cells = []
@@ -311,7 +314,7 @@ def study_robustness(runner, rng, per_cell):
             if truth["gradnorm"].max() > 1e-8:
                 raise lc.StudyError(f"truth not converged: projected gradient {truth['gradnorm'].max():.2e}")
             for guess in GUESSES:
-                rows = runner.run(nodes, points, guess)
+                rows = runner.run(nodes, points, guess, extra=["--max-iterations", ROBUSTNESS_MAX_ITERATIONS])
                 outcome, _ = lc.classify(rows, truth, nodes, points)
                 batches.append(dict(n_nodes=n_nodes, level=level, guess=guess, rows=rows, outcome=outcome,
                                     where=np.array(where, dtype=object)[rows["id"]],
@@ -339,7 +342,9 @@ def robustness_markdown(rb, methods):
                f"slave points {', '.join(POSITIONS)}, {rb['per_cell']} of each "
                f"({rb['redraws']} segments redrawn because their in-plane Jacobian was not positive). "
                f"The closest point of the segment lies on its boundary in {pct(1 - r['interior'].mean())} % of the "
-               f"cases (in {pct(1 - r['interior'][r['where'] == 'beside'].mean())} % of the `beside` cases).\n")
+               f"cases (in {pct(1 - r['interior'][r['where'] == 'beside'].mean())} % of the `beside` cases). "
+               f"Runs: `--method all --initial-guess lsp` and `center`, `--max-iterations {ROBUSTNESS_MAX_ITERATIONS}`, "
+               "the default tolerance.\n")
     for guess in GUESSES:
         sel_g = r["guess"] == guess
         out.append(f"**Outcomes, all cases, initial guess `{guess}`** (% of {rb['cases']} runs per method):\n")

@@ -61,24 +61,6 @@ Grid make_grid(const NodalVectors& points, const std::vector<Box>& boxes, double
 
 }  // namespace
 
-void segment_boxes(const NodalVectors& x, const std::vector<std::array<std::uint32_t, 4>>& segments, double capture,
-                   std::vector<Box>& boxes) {
-  boxes.resize(segments.size());
-  for (std::size_t s = 0; s < segments.size(); ++s) {
-    Box& box = boxes[s];
-    for (int c = 0; c < 3; ++c) {
-      const auto& coordinate = x.component(c);
-      double lo = coordinate[segments[s][0]], hi = lo;
-      for (int i = 1; i < 4; ++i) {
-        lo = std::min(lo, coordinate[segments[s][i]]);
-        hi = std::max(hi, coordinate[segments[s][i]]);
-      }
-      box.lo[c] = lo - capture;
-      box.hi[c] = hi + capture;
-    }
-  }
-}
-
 void bucket_search(const NodalVectors& points, const std::vector<Box>& boxes, double cell_size,
                    BucketWorkspace& w, std::vector<CandidatePair>& pairs) {
   pairs.clear();

@@ -38,10 +38,29 @@ struct BucketWorkspace {
   std::vector<CandidatePair> unsorted;
 };
 
-// Bounding box of each quadrilateral segment (node ids into `x`), inflated by
-// `capture` in every direction.
-void segment_boxes(const NodalVectors& x, const std::vector<std::array<std::uint32_t, 4>>& segments, double capture,
-                   std::vector<Box>& boxes);
+// Bounding box of each quadrilateral segment, inflated by `capture` (m) in every
+// direction. position(node) gives a node's current coordinates as {x, y, z}.
+template <class PositionFn>
+void segment_boxes(PositionFn position, const std::vector<std::array<std::uint32_t, 4>>& segments, double capture,
+                   std::vector<Box>& boxes) {
+  boxes.resize(segments.size());
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const std::array<double, 3> first = position(segments[s][0]);
+    Box box{first, first};
+    for (int i = 1; i < 4; ++i) {
+      const std::array<double, 3> x = position(segments[s][i]);
+      for (int c = 0; c < 3; ++c) {
+        box.lo[c] = x[c] < box.lo[c] ? x[c] : box.lo[c];
+        box.hi[c] = x[c] > box.hi[c] ? x[c] : box.hi[c];
+      }
+    }
+    for (int c = 0; c < 3; ++c) {
+      box.lo[c] -= capture;
+      box.hi[c] += capture;
+    }
+    boxes[s] = box;
+  }
+}
 
 // Every (point, segment) pair with the point inside the segment's box, sorted by
 // point then segment. `points` holds the slave points' coordinates.

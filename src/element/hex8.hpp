@@ -267,9 +267,11 @@ inline std::array<material::SymTensor, 8> gauss_point_stresses(const ElementVect
 
 // ---------------------------------------------------------------------------
 // Full integration, general hexahedron.
-// Reference data per element (reference_size doubles): for each Gauss point g,
-// the inverse Jacobian dxi_a/dx_j (9, row a) and w det J / 8 (1); then 8 / V.
-// (The 1/8 of the mode transform is folded into the stored weight.)
+// Reference data per element (reference_size doubles), Gauss-point-major so that
+// the kernel's loops over the 8 points vectorise: entry [8 k + g] is component k
+// (row-major a, j) of the inverse Jacobian dxi_a/dx_j at point g (k < 9), then
+// w det J_g / 8 at [72 + g], then 8 / V at [80]. (The 1/8 of the inverse mode
+// transform is folded into the stored weight.)
 // ---------------------------------------------------------------------------
 inline constexpr int reference_size = 81;
 
@@ -277,84 +279,98 @@ inline constexpr int reference_size = 81;
 inline double make_reference(const ElementVectors& x_ref, double* reference) {
   const GaussGeometry geometry = gauss_geometry(x_ref);
   for (int g = 0; g < 8; ++g) {
-    for (int k = 0; k < 9; ++k) reference[10 * g + k] = geometry.inverse_jacobian[g][k];
-    reference[10 * g + 9] = 0.125 * geometry.det_jacobian[g];
+    for (int k = 0; k < 9; ++k) reference[8 * k + g] = geometry.inverse_jacobian[g][k];
+    reference[72 + g] = 0.125 * geometry.det_jacobian[g];
   }
   reference[80] = 8.0 / geometry.volume;
   return geometry.min_det_jacobian;
 }
+
+namespace detail {
+// Signs of the Gauss points' natural coordinates, and their products.
+inline constexpr double gauss_sign_xi[8] = {-1, 1, 1, -1, -1, 1, 1, -1};
+inline constexpr double gauss_sign_eta[8] = {-1, -1, 1, 1, -1, -1, 1, 1};
+inline constexpr double gauss_sign_zeta[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
+inline constexpr double gauss_sign_eta_zeta[8] = {1, 1, -1, -1, -1, -1, 1, 1};
+inline constexpr double gauss_sign_zeta_xi[8] = {1, -1, -1, 1, -1, 1, 1, -1};
+inline constexpr double gauss_sign_xi_eta[8] = {1, -1, 1, -1, 1, -1, 1, -1};
+}  // namespace detail
 
 // f = K u for one element (f in N, u in m), the volume-averaged stress (Pa) and
 // the strain energy sum_g w det J sigma:eps / 2 = u.f / 2 (J).
 //   D_g = du/dxi at g (from the modes of u), H_g = D_g dxi/dx, sigma_g = C : sym(H_g),
 //   P_g = w det J sigma_g (dxi/dx)^T, and f = sum_g B_g^T sigma_g w det J assembled
 //   in mode space: F_m = sum_g sum_a P_g[:, a] d phi_m/dxi_a (g), f_I = sum_m phi_m(I) F_m / 8.
+// Every array below is indexed [..][g]: the loops over g are the vector loops.
 inline double internal_forces(const double* reference, double lambda, double mu, const ElementVectors& u,
                               ElementVectors& f, material::SymTensor& mean_stress) {
+  using namespace detail;
   const ElementModes c = modes_from_nodal(u);
   constexpr double a = gauss_abscissa, a2 = gauss_abscissa * gauss_abscissa;
-  // Mode coefficients scaled by the Gauss abscissa: the natural gradient at a
-  // Gauss point is then a sum with signs only.
-  std::array<Vector3, 8> m{};
-  for (int k = 1; k < 4; ++k) m[k] = c[k];
-  for (int k = 4; k < 7; ++k) m[k] = {a * c.x[k], a * c.y[k], a * c.z[k]};
-  m[7] = {a2 * c.x[7], a2 * c.y[7], a2 * c.z[7]};
+  const double* r = reference;  // r[8 k + g]
+  const double* weight = reference + 72;
+  const std::array<const std::array<double, 8>*, 3> modes{&c.x, &c.y, &c.z};
 
-  std::array<Vector3, 8> force_modes{};  // F_m for m = 1..7, before the abscissa scaling
-  material::SymTensor stress_sum{};
-#pragma GCC unroll 8
-  for (int g = 0; g < 8; ++g) {
-    const double sx = node_natural_coordinates[g][0], sy = node_natural_coordinates[g][1],
-                 sz = node_natural_coordinates[g][2];
-    const double* inverse_jacobian = reference + 10 * g;
-    const double weight = reference[10 * g + 9];
-    // D[i][a] = du_i/dxi_a at the Gauss point.
-    double d[3][3];
-    for (int i = 0; i < 3; ++i) {
-      d[i][0] = m[1][i] + sz * m[5][i] + sy * m[6][i] + sy * sz * m[7][i];
-      d[i][1] = m[2][i] + sz * m[4][i] + sx * m[6][i] + sx * sz * m[7][i];
-      d[i][2] = m[3][i] + sy * m[4][i] + sx * m[5][i] + sx * sy * m[7][i];
-    }
-    // H_ij = sum_a D_ia dxi_a/dx_j.
-    Matrix3 h;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        h[3 * i + j] = d[i][0] * inverse_jacobian[j] + d[i][1] * inverse_jacobian[3 + j] +
-                       d[i][2] * inverse_jacobian[6 + j];
-    material::SymTensor s = stress_from_gradient(lambda, mu, h);
-    for (int k = 0; k < 6; ++k) {
-      s[k] *= weight;
-      stress_sum[k] += s[k];
-    }
-    // P_ia = sum_j s_ij dxi_a/dx_j.
-    const double sm[3][3] = {{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}};
-    double p[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int k = 0; k < 3; ++k)
-        p[i][k] = sm[i][0] * inverse_jacobian[3 * k] + sm[i][1] * inverse_jacobian[3 * k + 1] +
-                  sm[i][2] * inverse_jacobian[3 * k + 2];
-    for (int i = 0; i < 3; ++i) {
-      force_modes[1][i] += p[i][0];
-      force_modes[2][i] += p[i][1];
-      force_modes[3][i] += p[i][2];
-      force_modes[4][i] += sz * p[i][1] + sy * p[i][2];
-      force_modes[5][i] += sz * p[i][0] + sx * p[i][2];
-      force_modes[6][i] += sy * p[i][0] + sx * p[i][1];
-      force_modes[7][i] += sy * sz * p[i][0] + sx * sz * p[i][1] + sx * sy * p[i][2];
+  // D[3 i + a][g] = du_i/dxi_a at g; the abscissa scales the mode coefficients.
+  alignas(16) double d[9][8];
+  for (int i = 0; i < 3; ++i) {
+    const std::array<double, 8>& m = *modes[i];
+    const double m1 = m[1], m2 = m[2], m3 = m[3], m4 = a * m[4], m5 = a * m[5], m6 = a * m[6], m7 = a2 * m[7];
+    for (int g = 0; g < 8; ++g) {
+      d[3 * i + 0][g] = m1 + gauss_sign_zeta[g] * m5 + gauss_sign_eta[g] * m6 + gauss_sign_eta_zeta[g] * m7;
+      d[3 * i + 1][g] = m2 + gauss_sign_zeta[g] * m4 + gauss_sign_xi[g] * m6 + gauss_sign_zeta_xi[g] * m7;
+      d[3 * i + 2][g] = m3 + gauss_sign_eta[g] * m4 + gauss_sign_xi[g] * m5 + gauss_sign_xi_eta[g] * m7;
     }
   }
+  // H_ij = sum_a D_ia dxi_a/dx_j, then the weighted stress s = (w det J / 8) sigma.
+  alignas(16) double s[6][8];
+  for (int g = 0; g < 8; ++g) {
+    double h[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        h[3 * i + j] = d[3 * i][g] * r[8 * j + g] + d[3 * i + 1][g] * r[8 * (3 + j) + g] +
+                       d[3 * i + 2][g] * r[8 * (6 + j) + g];
+    const double w = weight[g];
+    const double lambda_trace = lambda * (h[0] + h[4] + h[8]);
+    s[0][g] = w * (lambda_trace + 2.0 * mu * h[0]);
+    s[1][g] = w * (lambda_trace + 2.0 * mu * h[4]);
+    s[2][g] = w * (lambda_trace + 2.0 * mu * h[8]);
+    s[3][g] = w * mu * (h[1] + h[3]);
+    s[4][g] = w * mu * (h[5] + h[7]);
+    s[5][g] = w * mu * (h[2] + h[6]);
+  }
+  const double inverse_volume_8 = reference[80];
+  for (int k = 0; k < 6; ++k) {
+    double sum = 0.0;
+    for (int g = 0; g < 8; ++g) sum += s[k][g];
+    mean_stress[k] = sum * inverse_volume_8;
+  }
+  // P_ia = sum_j s_ij dxi_a/dx_j; the mode forces are sums over g of P with signs.
   std::array<double, 8> fx{}, fy{}, fz{};
-  for (int k = 1; k < 8; ++k) {
-    const double scale = k < 4 ? 1.0 : (k < 7 ? a : a2);
-    fx[k] = scale * force_modes[k][0];
-    fy[k] = scale * force_modes[k][1];
-    fz[k] = scale * force_modes[k][2];
+  const std::array<std::array<double, 8>*, 3> force_modes{&fx, &fy, &fz};
+  constexpr int row[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};  // s_ij in SymTensor order
+  for (int i = 0; i < 3; ++i) {
+    alignas(16) double p[3][8];
+    for (int k = 0; k < 3; ++k)
+      for (int g = 0; g < 8; ++g)
+        p[k][g] = s[row[i][0]][g] * r[8 * (3 * k) + g] + s[row[i][1]][g] * r[8 * (3 * k + 1) + g] +
+                  s[row[i][2]][g] * r[8 * (3 * k + 2) + g];
+    double f1 = 0, f2 = 0, f3 = 0, f4 = 0, f5 = 0, f6 = 0, f7 = 0;
+    for (int g = 0; g < 8; ++g) {
+      f1 += p[0][g];
+      f2 += p[1][g];
+      f3 += p[2][g];
+      f4 += gauss_sign_zeta[g] * p[1][g] + gauss_sign_eta[g] * p[2][g];
+      f5 += gauss_sign_zeta[g] * p[0][g] + gauss_sign_xi[g] * p[2][g];
+      f6 += gauss_sign_eta[g] * p[0][g] + gauss_sign_xi[g] * p[1][g];
+      f7 += gauss_sign_eta_zeta[g] * p[0][g] + gauss_sign_zeta_xi[g] * p[1][g] + gauss_sign_xi_eta[g] * p[2][g];
+    }
+    std::array<double, 8>& fm = *force_modes[i];
+    fm = {0.0, f1, f2, f3, a * f4, a * f5, a * f6, a2 * f7};
   }
   f.x = nodal_from_modes(fx);
   f.y = nodal_from_modes(fy);
   f.z = nodal_from_modes(fz);
-  const double inverse_volume_8 = reference[80];
-  for (int k = 0; k < 6; ++k) mean_stress[k] = stress_sum[k] * inverse_volume_8;
   // Strain energy = u.f / 2 = (8/2) sum_m c_m . F_m / 8 (orthogonality of the modes).
   double energy = 0.0;
   for (int k = 1; k < 8; ++k) energy += c.x[k] * fx[k] + c.y[k] * fy[k] + c.z[k] * fz[k];

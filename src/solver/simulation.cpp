@@ -1,6 +1,6 @@
 // The time loop: central differences with a lumped mass matrix.
 //
-//   a^n       = M^-1 (f_ext^n - f_int(u^n))            (fixed components: a = 0)
+//   a^n       = M^-1 (f_contact(x^n, v^{n-1/2}) - f_int(u^n))   (fixed components: a = 0)
 //   v^{n+1/2} = v^{n-1/2} + dt a^n                      (v^{-1/2} = v^0 - dt/2 a^0)
 //   u^{n+1}   = u^n + dt v^{n+1/2}
 //
@@ -13,12 +13,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 
 #include "common/errors.hpp"
 #include "common/timer.hpp"
 #include "common/version.hpp"
 #include "output/result_writer.hpp"
+#include "solver/contact_setup.hpp"
 #include "solver/model.hpp"
 
 namespace exdyn::solver {
@@ -32,7 +34,11 @@ struct State {
   NodalVectors velocity;        // v^{n-1/2}, then v^{n+1/2} after update_velocities, m/s
   NodalVectors acceleration;    // a^n, m/s^2
   NodalVectors internal_force;  // f_int(u^n), N
+  NodalVectors contact_force;   // f_contact(x^n), N
+  NodalVectors previous_contact_force;  // f_contact(x^{n-1}), N (for the contact work)
+  std::vector<double> gap;      // signed normal gap of each slave node, m (0: no candidate)
   std::vector<double> stress;   // 6 per element: xx yy zz xy yz xz, Pa
+  double contact_energy = 0.0;  // work done against the contact forces, J
 };
 
 struct Energies {
@@ -57,14 +63,39 @@ element::ElementEnergies compute_internal_forces(const Model& model, State& stat
   return total;
 }
 
-// a = M^-1 (-f_int); the fixed components get a = 0 so that they keep v = 0.
+// The contact pass of every pair at x^n = x_ref + u^n with v^{n-1/2}; then the
+// work done against the contact forces (trapezoidal rule):
+//   E_c^n = E_c^{n-1} - 1/2 (f_c^{n-1} + f_c^n).(u^n - u^{n-1}),  u^n - u^{n-1} = dt v^{n-1/2}.
+void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt,
+                            contact::ContactStatistics& statistics, contact::ContactPhaseSeconds& seconds) {
+  std::swap(state.contact_force, state.previous_contact_force);
+  for (std::uint32_t node : contact.nodes) {
+    state.contact_force.x[node] = state.contact_force.y[node] = state.contact_force.z[node] = 0.0;
+    state.gap[node] = std::numeric_limits<double>::infinity();
+  }
+  for (auto& pair : contact.pairs)
+    for (std::size_t p = 0; p < pair.passes.size(); ++p)
+      contact::run_contact_pass(pair.passes[p], pair.settings, pair.states[p], model.mesh.x_ref, state.displacement,
+                                state.velocity, model.mass, state.contact_force, state.gap, statistics, seconds);
+  double power = 0.0;  // (f_c^{n-1} + f_c^n).v^{n-1/2}, W x 2
+  for (std::uint32_t node : contact.nodes) {
+    if (state.gap[node] == std::numeric_limits<double>::infinity()) state.gap[node] = 0.0;  // no candidate
+    power += (state.previous_contact_force.x[node] + state.contact_force.x[node]) * state.velocity.x[node] +
+             (state.previous_contact_force.y[node] + state.contact_force.y[node]) * state.velocity.y[node] +
+             (state.previous_contact_force.z[node] + state.contact_force.z[node]) * state.velocity.z[node];
+  }
+  state.contact_energy -= 0.5 * dt * power;
+}
+
+// a = M^-1 (f_contact - f_int); the fixed components get a = 0 so that they keep v = 0.
 void compute_accelerations(const Model& model, State& state) {
   const std::size_t n = model.mesh.node_count();
   for (int c = 0; c < 3; ++c) {
     const double* f = state.internal_force.component(c).data();
+    const double* f_contact = state.contact_force.component(c).data();
     double* a = state.acceleration.component(c).data();
     const double* inverse_mass = model.inverse_mass.data();
-    for (std::size_t i = 0; i < n; ++i) a[i] = -f[i] * inverse_mass[i];
+    for (std::size_t i = 0; i < n; ++i) a[i] = (f_contact[i] - f[i]) * inverse_mass[i];
   }
   apply_fixed_components(model, state.acceleration);
 }
@@ -136,6 +167,8 @@ class StepWriter {
     data.displacement = &state.displacement;
     data.velocity = &velocity_;
     data.acceleration = &state.acceleration;
+    data.contact_force = &state.contact_force;
+    data.gap = state.gap.data();
     data.stress = state.stress.data();
     data.von_mises = von_mises_.data();
     writer_.write_step(data);
@@ -148,13 +181,25 @@ class StepWriter {
   std::vector<double> von_mises_;
 };
 
+void summarise_contact(const contact::ContactStatistics& statistics, const contact::ContactPhaseSeconds& seconds,
+                       output::RunSummary& summary) {
+  auto& c = summary.contact;
+  c.projections = statistics.projections;
+  c.mean_iterations = statistics.projections > 0
+                          ? static_cast<double>(statistics.iterations) / static_cast<double>(statistics.projections)
+                          : 0.0;
+  c.max_iterations = statistics.max_iterations;
+  c.not_converged = statistics.not_converged;
+  c.saddle_points = statistics.saddle_points;
+  c.max_penetration_over_h = statistics.max_penetration_over_h;
+  summary.phase_seconds.contact_global_search = seconds.global_search;
+  summary.phase_seconds.contact_local_search = seconds.local_search;
+  summary.phase_seconds.contact_forces = seconds.forces;
+}
+
 }  // namespace
 
 output::RunSummary run_simulation(const input::Deck& deck, const RunControls& controls) {
-  if (!deck.contact.empty())
-    throw InputError(SourceLocation{deck.source_file, 0, 0}, "contact",
-                     "contact pairs are read but the contact pass is not in this version of exdyn; "
-                     "remove the contact section");
   Stopwatch total_watch;
   output::RunSummary summary;
   summary.name = deck.name;
@@ -163,8 +208,12 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   summary.end_time = deck.time.end_time;
 
   const Model model = build_model(deck);
-  const TimeStepping stepping = time_stepping(deck.time, critical_time_step(model));
+  const double critical_dt = critical_time_step(model);
+  const TimeStepping stepping = time_stepping(deck.time, critical_dt);
   const double dt = stepping.dt;
+  ContactModel contact = build_contact(deck, model, dt, critical_dt);
+  for (const auto& pair : contact.pairs)
+    summary.contact.penalty_stiffness = std::max(summary.contact.penalty_stiffness, pair.pair_stiffness);
   summary.nodes = static_cast<long>(model.mesh.node_count());
   summary.elements = static_cast<long>(model.mesh.element_count());
   summary.dt = dt;
@@ -180,11 +229,16 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   state.displacement.resize(node_count);
   state.acceleration.resize(node_count);
   state.internal_force.resize(node_count);
+  state.contact_force.resize(node_count);
+  state.previous_contact_force.resize(node_count);
+  state.gap.assign(node_count, 0.0);
   state.stress.assign(6 * model.mesh.element_count(), 0.0);
   state.velocity = initial_velocity(deck, model);
   StepWriter step_writer(writer, model);
 
   output::PhaseSeconds& phase = summary.phase_seconds;
+  contact::ContactStatistics contact_statistics;
+  contact::ContactPhaseSeconds contact_seconds;
   Stopwatch loop_watch;
   double last_progress = -1.0;
   double initial_total = 0.0, largest_energy = 0.0, max_energy_error = 0.0;
@@ -197,6 +251,10 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
         const element::ElementEnergies element_energy = compute_internal_forces(model, state);
         energy.internal = element_energy.strain;
         energy.hourglass = element_energy.hourglass;
+      }
+      if (!contact.pairs.empty()) {
+        compute_contact_forces(model, contact, state, dt, contact_statistics, contact_seconds);
+        energy.contact = state.contact_energy;
       }
       {
         ScopedTimer timer(phase.time_integration);
@@ -229,6 +287,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
         if (state.step % deck.output.every == 0 || last) step_writer.write(state, dt);
       }
       summary.energy = {initial_total, total, max_energy_error};
+      summarise_contact(contact_statistics, contact_seconds, summary);
       if (controls.on_progress && (last || loop_watch.seconds() - last_progress >= 0.25)) {
         last_progress = loop_watch.seconds();
         controls.on_progress({state.step, stepping.steps, state.time, dt, last_progress});

@@ -78,11 +78,11 @@ TEST(RandomCases, RobustFindsTheClosestPointOfTheSegmentInEveryCase) {
         const ProjectionResult r = project(s, point, initial_guess_lsp(s, point), st);
         ++cases;
         on_boundary += r.on_boundary ? 1 : 0;
+        // A point of the segment at most as far as the truth's is a closest point.
         const bool found = r.converged && std::fabs(r.xi[0]) <= 1.0 && std::fabs(r.xi[1]) <= 1.0 &&
-                           std::fabs(r.distance - truth.distance) <= 1e-10;
+                           r.distance <= truth.distance + 1e-10;
         if (!found) {
           ++failures;
-          if (r.distance < truth.distance) std::printf("TRUTH WORSE\n");
           ADD_FAILURE() << name(type) << " " << testing::distortion_name(d) << " " << case_text(s, point)
                         << "\n robust xi (" << r.xi[0] << ", " << r.xi[1] << ") d " << r.distance
                         << " converged " << r.converged << "\n truth  xi (" << truth.xi[0] << ", " << truth.xi[1]

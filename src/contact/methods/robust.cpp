@@ -22,8 +22,9 @@ namespace {
 
 using namespace detail;
 
-constexpr int grid_points = 17;       // per direction, including the edges
+constexpr int grid_points = 9;       // per direction, including the edges
 constexpr int max_seeds = 8;         // Newton runs, at most
+constexpr int max_second_chances = 8;  // further Newton runs, at most
 constexpr int max_restarts = 3;      // Hessian-check restarts per seed
 constexpr double max_step = 2.0 / (grid_points - 1);  // parametric
 constexpr double armijo = 1.0e-4;    // sufficient decrease
@@ -314,9 +315,56 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
 
   RobustSearch<Terms> search(s, ys, settings, result);
   Run best{seeds[0].xi, std::numeric_limits<double>::infinity(), false};
+  std::array<Xi, max_seeds + 2 * max_second_chances> found{};
+  int found_count = 0;
   for (int k = 0; k < seed_count; ++k) {
     const Run run = search.descend(seeds[k].xi);
+    found[found_count++] = run.xi;
     if (run.f < best.f) best = run;
+  }
+  // (c) second chance: a better minimum m missed by the seeds has a grid point
+  // q within h / sqrt(2) (h the spacing) with f(q) <= f(m) + lambda h^2 / 4.
+  // So descend also from every grid point with f < f_best + margin that is not
+  // within 1.5 h of a point already found (lambda: twice the largest
+  // eigenvalue of H at the best point, floored).
+  {
+    constexpr double h = 2.0 / (n - 1);
+    const Local lb = evaluate_local(s, ys, best.xi);
+    ++result.evaluations;
+    const double lambda = 2.0 * std::max(eigenvalues(lb.H)[1], lb.A.xx + lb.A.yy);
+    const double margin = 0.25 * lambda * h * h;
+    int extra = 0;
+    // (d) an interior point found near an edge may hide a constrained minimum
+    // on that edge, beyond a ridge thinner than the grid: descend from the
+    // point's projection on each edge within 1.5 h when f decreases out there.
+    const int descents = found_count;
+    for (int k = 0; k < descents && extra < max_second_chances; ++k) {
+      for (int a = 0; a < 2; ++a) {
+        const double x = found[k][a];
+        if (std::fabs(x) >= 1.0 || std::fabs(x) < 1.0 - 1.5 * h) continue;
+        Xi q = found[k];
+        q[a] = x > 0.0 ? 1.0 : -1.0;
+        const LocalGradient lg = evaluate_gradient(s, ys, q);
+        ++result.evaluations;
+        if (!held(q[a], lg.g[a]) || extra >= max_second_chances) continue;
+        const Run run = search.descend(q);
+        found[found_count++] = run.xi;
+        ++extra;
+        if (run.f < best.f) best = run;
+      }
+    }
+    for (int index = 0; index < n * n && extra < max_second_chances; ++index) {
+      if (!(f[index] < best.f + margin)) continue;
+      const Xi q{coordinate(index % n), coordinate(index / n)};
+      bool known = false;
+      for (int k = 0; k < found_count && !known; ++k)
+        known = std::fabs(found[k][0] - q[0]) <= 1.5 * h && std::fabs(found[k][1] - q[1]) <= 1.5 * h;
+      if (known) continue;
+      const Run run = search.descend(q);
+      found[found_count++] = run.xi;
+      ++extra;
+      if (run.f < best.f) best = run;
+    }
   }
   result.xi = best.xi;
   result.converged = best.converged;

@@ -1,0 +1,87 @@
+// One direction of a contact pair: every slave node against the master
+// segments. A pass runs the contact pipeline of one step:
+//   global search (bucket grid, only when nodes have moved enough)
+//   -> local search (the deck's method) for every candidate pair
+//   -> the closest inside projection of each slave node (the node's one contact)
+//   -> penalty forces on the slave node and the segment's nodes.
+// A pair with `two_pass: true` runs two passes, the second with the roles swapped.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "common/nodal_vectors.hpp"
+#include "contact/bucket_search.hpp"
+#include "contact/local_search.hpp"
+
+namespace exdyn::contact {
+
+using Quad = std::array<std::uint32_t, 4>;
+
+// The geometry of a pass, fixed for the run (global node ids).
+struct ContactSurfaces {
+  std::vector<std::uint32_t> slave_nodes;  // unique, sorted
+  std::vector<double> stiffness;           // penalty k of each slave node, N/m
+  std::vector<double> normal_length;       // element length normal to the slave face (penetration / h), m
+  std::vector<Quad> segments;              // master quadrilaterals, outward oriented
+  std::vector<std::uint32_t> moving_nodes; // slave and master nodes (for the rebuild test), unique
+};
+
+struct ContactPassSettings {
+  ProjectFn project = nullptr;          // chosen once from the deck's method
+  ProjectionSettings projection;
+  InitialGuess initial_guess = InitialGuess::lsp;
+  double damping_ratio = 0.0;           // zeta, fraction of critical
+  double search_distance = 0.0;         // largest gap that is searched for, m
+  double margin = 0.0;                  // extra capture: rebuild once a node has moved margin / 2, m
+  double cell_size = 0.0;               // bucket cell edge, m (<= 0: automatic)
+};
+
+// What the pass keeps from step to step.
+struct ContactPassState {
+  bool built = false;
+  long rebuilds = 0;
+  std::vector<CandidatePair> candidates;  // sorted by slave point, then segment
+  std::vector<Xi> previous_xi;            // last step's point of each candidate pair
+  NodalVectors moving_at_build;           // positions of moving_nodes at the last build
+  // scratch, kept to avoid allocation
+  NodalVectors slave_points;
+  std::vector<Box> boxes;
+  BucketWorkspace workspace;
+  std::vector<CandidatePair> new_candidates;
+  std::vector<Xi> new_previous_xi;
+  struct Contact {                        // the chosen projection of each slave node
+    std::int64_t segment = -1;            // -1: none
+    Xi xi{};
+    double gap = 0.0;
+    Vec3 normal{};
+  };
+  std::vector<Contact> contacts;
+};
+
+struct ContactStatistics {
+  long projections = 0;
+  long iterations = 0;       // sum over projections
+  long max_iterations = 0;
+  long not_converged = 0;    // stopping test not met (no force from them)
+  long saddle_points = 0;    // converged to a saddle or a maximum (no force from them)
+  double max_penetration_over_h = 0.0;
+};
+
+struct ContactPhaseSeconds {
+  double global_search = 0.0;
+  double local_search = 0.0;
+  double forces = 0.0;
+};
+
+// Runs one pass at the current configuration x = x_ref + u with the velocities v
+// (m/s, the latest half-step velocities). Adds the contact forces to `force` (N),
+// writes the gap of each slave node to gap[node] where it is smaller than what is
+// there (callers start from +infinity and zero what stays so).
+void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings, ContactPassState& state,
+                      const NodalVectors& x_ref, const NodalVectors& u, const NodalVectors& v,
+                      const std::vector<double>& mass, NodalVectors& force, std::vector<double>& gap,
+                      ContactStatistics& statistics, ContactPhaseSeconds& seconds);
+
+}  // namespace exdyn::contact

@@ -1,0 +1,31 @@
+// The contact pairs of a deck as passes of the contact library: surfaces from
+// the named faces, the penalty stiffness of every slave node, the search settings.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "contact/contact_pass.hpp"
+#include "input/options.hpp"
+#include "solver/model.hpp"
+
+namespace exdyn::solver {
+
+struct ContactPair {
+  std::string name;
+  contact::ContactPassSettings settings;
+  std::vector<contact::ContactSurfaces> passes;  // slave -> master, and master -> slave if two_pass
+  std::vector<contact::ContactPassState> states;
+  double pair_stiffness = 0.0;  // largest stiffness of a node pair (both passes added), N/m
+};
+
+struct ContactModel {
+  std::vector<ContactPair> pairs;
+  std::vector<std::uint32_t> nodes;  // every node of every contact surface, unique
+};
+
+// dt: the step in force (s); critical_dt: the mesh's stable step without the
+// Courant factor (s), whose ratio is the Courant number the stiffness bound needs.
+ContactModel build_contact(const input::Deck& deck, const Model& model, double dt, double critical_dt);
+
+}  // namespace exdyn::solver
