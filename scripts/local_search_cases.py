@@ -154,16 +154,28 @@ class StudyError(RuntimeError):
     pass
 
 
-def run_project(exdyn, cases_path, methods="all", initial_guess=None, extra=()):
-    """Runs `exdyn project` and returns its rows as a dict of numpy arrays."""
+def project_command(exdyn, cases_path, methods="all", initial_guess=None, extra=()):
     cmd = [exdyn, "project", cases_path, "--method", methods]
     if initial_guess is not None:
         cmd += ["--initial-guess", initial_guess]
-    cmd += list(extra)
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    if proc.returncode != 0:
-        raise StudyError(f"{' '.join(cmd)} exited {proc.returncode}: {proc.stderr.strip()[:2000]}")
-    return parse_csv(proc.stdout, " ".join(cmd))
+    return cmd + list(extra)
+
+
+def run_project(exdyn, cases_path, methods="all", initial_guess=None, extra=()):
+    """Runs `exdyn project` and returns its rows as a dict of numpy arrays."""
+    return run_project_parallel([project_command(exdyn, cases_path, methods, initial_guess, extra)])[0]
+
+
+def run_project_parallel(commands):
+    """Runs several `exdyn project` commands at once; returns their parsed rows in order."""
+    procs = [subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for cmd in commands]
+    outs = [p.communicate() for p in procs]
+    results = []
+    for cmd, p, (out, err) in zip(commands, procs, outs):
+        if p.returncode != 0:
+            raise StudyError(f"{' '.join(cmd)} exited {p.returncode}: {err.strip()[:2000]}")
+        results.append(parse_csv(out, " ".join(cmd)))
+    return results
 
 
 def parse_csv(text, source="CSV"):
@@ -222,7 +234,8 @@ def classify(rows, truth, nodes, points, xi_tol=1e-6, dist_rtol=1e-9):
     """
     ids = rows["id"]
     xi = np.stack([rows["xi1"], rows["xi2"]], axis=-1)
-    f, _, _, _ = geo.evaluate(nodes[ids], points[ids], xi)
+    with np.errstate(all="ignore"):  # a diverged method may return a huge or non-finite xi
+        f, _, _, _ = geo.evaluate(nodes[ids], points[ids], xi)
     dist_np = np.sqrt(f)
     t_xi = truth["xi"][ids]
     t_d = truth["distance"][ids]

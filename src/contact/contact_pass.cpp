@@ -161,7 +161,16 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       }
       const Vec3 n = contact.normal;
       const double normal_velocity = dot(Vec3{v.x[slave], v.y[slave], v.z[slave]} - master_velocity, n);
-      const double k = surfaces.stiffness[p];
+      const double slave_inverse_mass = 1.0 / mass[slave];
+      double k = surfaces.stiffness[p];  // the node pair's stiffness
+      if (settings.automatic_stiffness) {
+        const double inverse_mass = slave_inverse_mass + master_inverse_mass;
+        k = std::min({k, settings.stiffness_scale * accurate_stiffness_bound(settings.dt, inverse_mass),
+                      settings.stiffness_scale * stable_stiffness_bound(settings.dt, settings.courant,
+                                                                        settings.damping_ratio, inverse_mass)});
+      }
+      statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, k);
+      k /= settings.pass_count;
       const double c = damping_coefficient(settings.damping_ratio, k, mass[slave], 1.0 / master_inverse_mass);
       const double F = normal_force(k, c, contact.gap, normal_velocity);
       force.x[slave] += F * n.x;

@@ -22,7 +22,9 @@ using Quad = std::array<std::uint32_t, 4>;
 // The geometry of a pass, fixed for the run (global node ids).
 struct ContactSurfaces {
   std::vector<std::uint32_t> slave_nodes;  // unique, sorted
-  std::vector<double> stiffness;           // penalty k of each slave node, N/m
+  // Penalty stiffness of each slave node before the frequency caps, N/m:
+  // scale kappa M A / L (automatic rule) or the deck's fixed stiffness.
+  std::vector<double> stiffness;
   std::vector<double> normal_length;       // element length normal to the slave face (penetration / h), m
   std::vector<Quad> segments;              // master quadrilaterals, outward oriented
   std::vector<std::uint32_t> moving_nodes; // slave and master nodes (for the rebuild test), unique
@@ -33,6 +35,13 @@ struct ContactPassSettings {
   ProjectionSettings projection;
   InitialGuess initial_guess = InitialGuess::lsp;
   double damping_ratio = 0.0;           // zeta, fraction of critical
+  // Automatic stiffness: at each contact k = scale min(kappa M A / L, the
+  // frequency caps of penalty.hpp for the actual 1/m_s + sum N_i^2 / m_i).
+  bool automatic_stiffness = true;
+  double stiffness_scale = 1.0;
+  double dt = 0.0;                      // the step in force, s
+  double courant = 0.0;                 // dt / the mesh's critical step
+  int pass_count = 1;                   // two passes put two springs on a node pair: each carries 1 / pass_count
   double search_distance = 0.0;         // largest gap that is searched for, m
   double margin = 0.0;                  // extra capture: rebuild once a node has moved margin / 2, m
   double cell_size = 0.0;               // bucket cell edge, m (<= 0: automatic)
@@ -67,6 +76,7 @@ struct ContactStatistics {
   long not_converged = 0;    // stopping test not met (no force from them)
   long saddle_points = 0;    // converged to a saddle or a maximum (no force from them)
   double max_penetration_over_h = 0.0;
+  double max_pair_stiffness = 0.0;  // largest k of a node pair used (all passes), N/m
 };
 
 struct ContactPhaseSeconds {

@@ -14,8 +14,11 @@
 namespace exdyn::element {
 namespace {
 
-// block.reference = [layout, 0, element 0 data, element 1 data, ...]; the two
-// header entries keep the element data 16-byte aligned.
+// block.reference = [layout, 0, element data...]; the two header entries keep
+// the element data 16-byte aligned. The constant-Jacobian layouts store element
+// pairs (2p, 2p+1) interleaved value by value, [.., value k of 2p, value k of 2p+1, ..],
+// for the kernels that run on two elements at once (Pack2); an odd last
+// element is paired with zeros.
 enum class ReferenceLayout { hex8_general = 1, hex8_parallelepiped = 2, hex8r = 3, hex8r_parallelepiped = 4 };
 constexpr std::size_t header_size = 2;
 
@@ -24,6 +27,11 @@ ReferenceLayout layout_of(const ElementBlock& block) {
   return static_cast<ReferenceLayout>(static_cast<int>(block.reference[0]));
 }
 
+bool is_paired(ReferenceLayout layout) {
+  return layout == ReferenceLayout::hex8_parallelepiped || layout == ReferenceLayout::hex8r_parallelepiped;
+}
+
+// Doubles of reference data per element.
 std::size_t stride_of(ReferenceLayout layout) {
   switch (layout) {
     case ReferenceLayout::hex8_general: return hex8::reference_size;
@@ -85,6 +93,69 @@ ElementEnergies element_loop(const ElementBlock& block, std::uint32_t begin, std
   return total;
 }
 
+
+
+BasicElementVectors<Pack2> gather_pair(const NodalVectors& v, const std::uint32_t* nodes0,
+                                       const std::uint32_t* nodes1) {
+  BasicElementVectors<Pack2> local;
+  const double* x = v.x.data();
+  const double* y = v.y.data();
+  const double* z = v.z.data();
+  for (int k = 0; k < 8; ++k) {
+    const std::uint32_t n0 = nodes0[k], n1 = nodes1[k];
+    local.x[k] = Pack2{x[n0], x[n1]};
+    local.y[k] = Pack2{y[n0], y[n1]};
+    local.z[k] = Pack2{z[n0], z[n1]};
+  }
+  return local;
+}
+
+void scatter_add_lane(const BasicElementVectors<Pack2>& local, int lane, const std::uint32_t* nodes, NodalVectors& v) {
+  double* x = v.x.data();
+  double* y = v.y.data();
+  double* z = v.z.data();
+  for (int k = 0; k < 8; ++k) {
+    const std::uint32_t n = nodes[k];
+    x[n] += local.x[k][lane];
+    y[n] += local.y[k][lane];
+    z[n] += local.z[k][lane];
+  }
+}
+
+// The element loop over pairs: kernel(reference, u, f, stress) on two elements
+// at once returns their energies (strain, hourglass) as Pack2. Lanes outside
+// [begin, end) are computed but neither scattered nor counted.
+template <class Kernel>
+ElementEnergies element_pair_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
+                                  std::size_t stride, const NodalVectors& u, NodalVectors& f_int, double* stress,
+                                  Kernel kernel) {
+  ElementEnergies total;
+  if (begin >= end) return total;
+  const double* reference = block.reference.data() + header_size;
+  for (std::uint32_t pair = begin / 2; pair <= (end - 1) / 2; ++pair) {
+    const std::uint32_t element[2] = {2 * pair, 2 * pair + 1};
+    const std::uint32_t* nodes[2] = {block.connectivity + 8 * static_cast<std::size_t>(element[0]),
+                                     block.connectivity + 8 * static_cast<std::size_t>(element[1])};
+    if (element[1] >= block.count) nodes[1] = nodes[0];  // the zero-padded partner of an odd last element
+    const BasicElementVectors<Pack2> u_local = gather_pair(u, nodes[0], nodes[1]);
+    BasicElementVectors<Pack2> f_local;
+    std::array<Pack2, 6> element_stress;
+    const std::array<Pack2, 2> energies =
+        kernel(reference + 2 * stride * pair, u_local, f_local, element_stress);
+    for (int lane = 0; lane < 2; ++lane) {
+      if (element[lane] < begin || element[lane] >= end) continue;
+      scatter_add_lane(f_local, lane, nodes[lane], f_int);
+      total.strain += energies[0][lane];
+      total.hourglass += energies[1][lane];
+      if (stress != nullptr) {
+        double* out = stress + 6 * (static_cast<std::size_t>(block.first_element) + element[lane]);
+        for (int k = 0; k < 6; ++k) out[k] = element_stress[k][lane];
+      }
+    }
+  }
+  return total;
+}
+
 [[noreturn]] void throw_inverted(std::uint32_t global_element, double det_jacobian) {
   throw InputError("element " + std::to_string(global_element) +
                    ": the reference hexahedron is inverted or degenerate (smallest det J = " +
@@ -115,11 +186,14 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
   else
     layout = all_parallelepipeds ? ReferenceLayout::hex8r_parallelepiped : ReferenceLayout::hex8r;
   const std::size_t stride = stride_of(layout);
-  block.reference.assign(header_size + stride * count, 0.0);
+  const bool paired = is_paired(layout);
+  const std::size_t stored = paired ? 2 * ((static_cast<std::size_t>(count) + 1) / 2) : count;
+  block.reference.assign(header_size + stride * stored, 0.0);
   block.reference[0] = static_cast<double>(static_cast<int>(layout));
+  std::array<double, hex8::reference_size> scratch{};  // the largest layout
   for (std::uint32_t e = 0; e < count; ++e) {
     const ElementVectors x = gather(x_ref, connectivity + 8 * static_cast<std::size_t>(e));
-    double* reference = block.reference.data() + header_size + stride * e;
+    double* reference = paired ? scratch.data() : block.reference.data() + header_size + stride * e;
     double min_det_jacobian = 0.0;
     switch (layout) {
       case ReferenceLayout::hex8_general: min_det_jacobian = hex8::make_reference(x, reference); break;
@@ -134,6 +208,10 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
         break;
     }
     if (!(min_det_jacobian > 0.0)) throw_inverted(first_element + e, min_det_jacobian);
+    if (paired) {
+      double* pair_data = block.reference.data() + header_size + 2 * stride * (e / 2);
+      for (std::size_t k = 0; k < stride; ++k) pair_data[2 * k + e % 2] = scratch[k];
+    }
   }
   return block;
 }
@@ -154,13 +232,13 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
                                                    0.0};
                           });
     case ReferenceLayout::hex8_parallelepiped:
-      return element_loop(block, element_begin, element_end, stride, u, f_int, stress,
-                          [lambda, mu](const double* reference, const ElementVectors& u_local,
-                                       ElementVectors& f_local, material::SymTensor& s) {
-                            return ElementEnergies{
-                                hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s),
-                                0.0};
-                          });
+      return element_pair_loop(block, element_begin, element_end, stride, u, f_int, stress,
+                               [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
+                                            BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
+                                 return std::array<Pack2, 2>{
+                                     hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s),
+                                     Pack2{0.0, 0.0}};
+                               });
     case ReferenceLayout::hex8r:
       return element_loop(block, element_begin, element_end, stride, u, f_int, stress,
                           [lambda, mu](const double* reference, const ElementVectors& u_local,
@@ -170,13 +248,13 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
                             return ElementEnergies{e.strain, e.hourglass};
                           });
     case ReferenceLayout::hex8r_parallelepiped:
-      return element_loop(block, element_begin, element_end, stride, u, f_int, stress,
-                          [lambda, mu](const double* reference, const ElementVectors& u_local,
-                                       ElementVectors& f_local, material::SymTensor& s) {
-                            const hex8r::Energies e =
-                                hex8r::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s);
-                            return ElementEnergies{e.strain, e.hourglass};
-                          });
+      return element_pair_loop(block, element_begin, element_end, stride, u, f_int, stress,
+                               [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
+                                            BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
+                                 const hex8r::BasicEnergies<Pack2> e =
+                                     hex8r::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s);
+                                 return std::array<Pack2, 2>{e.strain, e.hourglass};
+                               });
   }
   return {};
 }

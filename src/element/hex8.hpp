@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 
 #include "material/elastic.hpp"
 
@@ -17,11 +18,32 @@ namespace exdyn::element {
 using Vector3 = std::array<double, 3>;
 using Matrix3 = std::array<double, 9>;  // row-major
 
-// One vector per node of one element, the components apart (x[I], y[I], z[I]
-// for node I in VTK order): gathered from and scattered to NodalVectors.
-struct ElementVectors {
-  std::array<double, 8> x{}, y{}, z{};
+// Two elements' values side by side, one per SSE lane: the constant-Jacobian
+// kernels below are templates on the value type and run on element pairs.
+using Pack2 = double __attribute__((vector_size(16)));
+
+// Value k of an element's reference data: data[k] for one element; for an
+// element pair, whose data are interleaved, the two values at data[2k].
+template <class Real>
+inline Real load(const double* data, int k);
+template <>
+inline double load<double>(const double* data, int k) {
+  return data[k];
+}
+template <>
+inline Pack2 load<Pack2>(const double* data, int k) {
+  Pack2 value;
+  std::memcpy(&value, data + 2 * k, sizeof value);
+  return value;
+}
+
+// One vector per node of one element (or element pair), the components apart
+// (x[I], y[I], z[I] for node I in VTK order): gathered from and scattered to NodalVectors.
+template <class Real>
+struct BasicElementVectors {
+  std::array<Real, 8> x{}, y{}, z{};
 };
+using ElementVectors = BasicElementVectors<double>;
 
 namespace hex8 {
 
@@ -85,38 +107,43 @@ inline constexpr double mode_value(int mode, int node) {
 }
 
 // c_m = (1/8) sum_I phi_m(I) u_I, by a fast Walsh-Hadamard butterfly (24 additions).
-inline std::array<double, 8> modes_from_nodal(const std::array<double, 8>& u) {
+template <class Real>
+inline std::array<Real, 8> modes_from_nodal(const std::array<Real, 8>& u) {
   // Along xi: pairs (0,1), (3,2), (4,5), (7,6).
-  const double s01 = u[0] + u[1], d01 = u[1] - u[0];
-  const double s32 = u[3] + u[2], d32 = u[2] - u[3];
-  const double s45 = u[4] + u[5], d45 = u[5] - u[4];
-  const double s76 = u[7] + u[6], d76 = u[6] - u[7];
+  const Real s01 = u[0] + u[1], d01 = u[1] - u[0];
+  const Real s32 = u[3] + u[2], d32 = u[2] - u[3];
+  const Real s45 = u[4] + u[5], d45 = u[5] - u[4];
+  const Real s76 = u[7] + u[6], d76 = u[6] - u[7];
   // Along eta.
-  const double ss0 = s01 + s32, ds0 = s32 - s01, sd0 = d01 + d32, dd0 = d32 - d01;
-  const double ss1 = s45 + s76, ds1 = s76 - s45, sd1 = d45 + d76, dd1 = d76 - d45;
+  const Real ss0 = s01 + s32, ds0 = s32 - s01, sd0 = d01 + d32, dd0 = d32 - d01;
+  const Real ss1 = s45 + s76, ds1 = s76 - s45, sd1 = d45 + d76, dd1 = d76 - d45;
   // Along zeta.
   return {0.125 * (ss0 + ss1), 0.125 * (sd0 + sd1), 0.125 * (ds0 + ds1), 0.125 * (ss1 - ss0),
           0.125 * (ds1 - ds0), 0.125 * (sd1 - sd0), 0.125 * (dd0 + dd1), 0.125 * (dd1 - dd0)};
 }
 
 // f_I = sum_m phi_m(I) F_m: the transpose of modes_from_nodal without the 1/8.
-inline std::array<double, 8> nodal_from_modes(const std::array<double, 8>& c) {
-  const double ss0 = c[0] - c[3], ss1 = c[0] + c[3];
-  const double ds0 = c[2] - c[4], ds1 = c[2] + c[4];
-  const double sd0 = c[1] - c[5], sd1 = c[1] + c[5];
-  const double dd0 = c[6] - c[7], dd1 = c[6] + c[7];
-  const double s01 = ss0 - ds0, s32 = ss0 + ds0, d01 = sd0 - dd0, d32 = sd0 + dd0;
-  const double s45 = ss1 - ds1, s76 = ss1 + ds1, d45 = sd1 - dd1, d76 = sd1 + dd1;
+template <class Real>
+inline std::array<Real, 8> nodal_from_modes(const std::array<Real, 8>& c) {
+  const Real ss0 = c[0] - c[3], ss1 = c[0] + c[3];
+  const Real ds0 = c[2] - c[4], ds1 = c[2] + c[4];
+  const Real sd0 = c[1] - c[5], sd1 = c[1] + c[5];
+  const Real dd0 = c[6] - c[7], dd1 = c[6] + c[7];
+  const Real s01 = ss0 - ds0, s32 = ss0 + ds0, d01 = sd0 - dd0, d32 = sd0 + dd0;
+  const Real s45 = ss1 - ds1, s76 = ss1 + ds1, d45 = sd1 - dd1, d76 = sd1 + dd1;
   return {s01 - d01, s01 + d01, s32 + d32, s32 - d32, s45 - d45, s45 + d45, s76 + d76, s76 - d76};
 }
 
 // The modes of the three components of an element vector field.
-struct ElementModes {
-  std::array<double, 8> x, y, z;
-  Vector3 operator[](int mode) const { return {x[mode], y[mode], z[mode]}; }
+template <class Real>
+struct BasicElementModes {
+  std::array<Real, 8> x, y, z;
+  std::array<Real, 3> operator[](int mode) const { return {x[mode], y[mode], z[mode]}; }
 };
+using ElementModes = BasicElementModes<double>;
 
-inline ElementModes modes_from_nodal(const ElementVectors& v) {
+template <class Real>
+inline BasicElementModes<Real> modes_from_nodal(const BasicElementVectors<Real>& v) {
   return {modes_from_nodal(v.x), modes_from_nodal(v.y), modes_from_nodal(v.z)};
 }
 
@@ -237,8 +264,9 @@ inline material::SymTensor symmetric_part(const Matrix3& h) {
 }
 
 // sigma = lambda tr(eps) I + 2 mu eps from H directly.
-inline material::SymTensor stress_from_gradient(double lambda, double mu, const Matrix3& h) {
-  const double lambda_trace = lambda * (h[0] + h[4] + h[8]);
+template <class Real>
+inline std::array<Real, 6> stress_from_gradient(double lambda, double mu, const std::array<Real, 9>& h) {
+  const Real lambda_trace = lambda * (h[0] + h[4] + h[8]);
   const double two_mu = 2.0 * mu;
   return {lambda_trace + two_mu * h[0], lambda_trace + two_mu * h[4], lambda_trace + two_mu * h[8],
           mu * (h[1] + h[3]),           mu * (h[5] + h[7]),           mu * (h[2] + h[6])};
@@ -403,62 +431,76 @@ inline double make_parallelepiped_reference(const ElementVectors& x_ref, double*
 }
 
 namespace detail {
-// One term t: its natural gradient has the given columns (nullptr = zero column);
-// returns sigma_t and adds the column a of P_t = w sigma_t (dxi/dx)^T to out[a].
-inline material::SymTensor parallelepiped_term(double lambda, double mu, const double* inverse_jacobian,
-                                               const Vector3* column0, const Vector3* column1,
-                                               const Vector3* column2, double weight, Vector3* out0,
-                                               Vector3* out1, Vector3* out2) {
-  Matrix3 h{};
-  const std::array<const Vector3*, 3> columns{column0, column1, column2};
-  for (int col = 0; col < 3; ++col) {
-    if (columns[col] == nullptr) continue;
-    const Vector3& d = *columns[col];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) h[3 * i + j] += d[i] * inverse_jacobian[3 * col + j];
-  }
-  const material::SymTensor s = stress_from_gradient(lambda, mu, h);
-  const double sm[3][3] = {{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}};
-  const std::array<Vector3*, 3> outs{out0, out1, out2};
-  for (int col = 0; col < 3; ++col) {
-    if (outs[col] == nullptr) continue;
-    for (int i = 0; i < 3; ++i)
-      (*outs[col])[i] += weight * (sm[i][0] * inverse_jacobian[3 * col] + sm[i][1] * inverse_jacobian[3 * col + 1] +
-                                   sm[i][2] * inverse_jacobian[3 * col + 2]);
-  }
+// One term t whose natural gradient M_t has the columns flagged (the others are
+// zero): sigma_t = C : sym(M_t dxi/dx), and out_a += weight (sigma_t (dxi/dx)^T)[:, a]
+// for the same columns. Returns sigma_t.
+template <bool column0, bool column1, bool column2, class Real>
+inline std::array<Real, 6> parallelepiped_term(double lambda, double mu, const std::array<Real, 9>& inverse_jacobian,
+                                               const std::array<Real, 3>& d0, const std::array<Real, 3>& d1,
+                                               const std::array<Real, 3>& d2, Real weight, std::array<Real, 3>& out0,
+                                               std::array<Real, 3>& out1, std::array<Real, 3>& out2) {
+  const std::array<Real, 9>& r = inverse_jacobian;
+  std::array<Real, 9> h{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Real sum{};
+      if constexpr (column0) sum += d0[i] * r[j];
+      if constexpr (column1) sum += d1[i] * r[3 + j];
+      if constexpr (column2) sum += d2[i] * r[6 + j];
+      h[3 * i + j] = sum;
+    }
+  const std::array<Real, 6> s = stress_from_gradient(lambda, mu, h);
+  const std::array<Real, 6> ws{weight * s[0], weight * s[1], weight * s[2],
+                               weight * s[3], weight * s[4], weight * s[5]};
+  // (sigma (dxi/dx)^T)_ia = sum_j sigma_ij dxi_a/dx_j, sigma rows (xx xy xz), (xy yy yz), (xz yz zz).
+  const auto column = [&](int a, std::array<Real, 3>& out) {
+    out[0] += ws[0] * r[3 * a] + ws[3] * r[3 * a + 1] + ws[5] * r[3 * a + 2];
+    out[1] += ws[3] * r[3 * a] + ws[1] * r[3 * a + 1] + ws[4] * r[3 * a + 2];
+    out[2] += ws[5] * r[3 * a] + ws[4] * r[3 * a + 1] + ws[2] * r[3 * a + 2];
+  };
+  if constexpr (column0) column(0, out0);
+  if constexpr (column1) column(1, out1);
+  if constexpr (column2) column(2, out2);
   return s;
 }
 }  // namespace detail
 
-inline double parallelepiped_internal_forces(const double* reference, double lambda, double mu,
-                                             const ElementVectors& u, ElementVectors& f,
-                                             material::SymTensor& mean_stress) {
-  const ElementModes c = modes_from_nodal(u);
-  const double* inverse_jacobian = reference;
-  const double w = 0.125 * reference[9];  // V/8: the 1/8 of the inverse mode transform folded in
-  const double w_linear = w / 3.0, w_bilinear = w / 9.0;
-  std::array<Vector3, 8> cm{};
+// For one element (Real = double, reference data as written by
+// make_parallelepiped_reference) or an element pair (Real = Pack2, the two
+// elements' data interleaved value by value).
+template <class Real>
+inline Real parallelepiped_internal_forces(const double* reference, double lambda, double mu,
+                                           const BasicElementVectors<Real>& u, BasicElementVectors<Real>& f,
+                                           std::array<Real, 6>& mean_stress) {
+  const BasicElementModes<Real> c = modes_from_nodal(u);
+  std::array<Real, 9> inverse_jacobian;
+  for (int k = 0; k < 9; ++k) inverse_jacobian[k] = load<Real>(reference, k);
+  const Real w = 0.125 * load<Real>(reference, 9);  // V/8: the 1/8 of the inverse mode transform folded in
+  const Real w_linear = w * (1.0 / 3.0), w_bilinear = w * (1.0 / 9.0);
+  std::array<std::array<Real, 3>, 8> cm{};
   for (int k = 1; k < 8; ++k) cm[k] = c[k];
-  std::array<Vector3, 8> force{};
+  std::array<std::array<Real, 3>, 8> force{};
+  std::array<Real, 3> unused{};
+  const std::array<Real, 3>& none = unused;
   // M_1 = [c1 | c2 | c3]
-  mean_stress = detail::parallelepiped_term(lambda, mu, inverse_jacobian, &cm[1], &cm[2], &cm[3], w, &force[1],
-                                            &force[2], &force[3]);
+  mean_stress = detail::parallelepiped_term<true, true, true>(lambda, mu, inverse_jacobian, cm[1], cm[2], cm[3], w,
+                                                              force[1], force[2], force[3]);
   // M_xi = [0 | c6 | c5], M_eta = [c6 | 0 | c4], M_zeta = [c5 | c4 | 0]
-  detail::parallelepiped_term(lambda, mu, inverse_jacobian, nullptr, &cm[6], &cm[5], w_linear, nullptr,
-                              &force[6], &force[5]);
-  detail::parallelepiped_term(lambda, mu, inverse_jacobian, &cm[6], nullptr, &cm[4], w_linear, &force[6],
-                              nullptr, &force[4]);
-  detail::parallelepiped_term(lambda, mu, inverse_jacobian, &cm[5], &cm[4], nullptr, w_linear, &force[5],
-                              &force[4], nullptr);
+  detail::parallelepiped_term<false, true, true>(lambda, mu, inverse_jacobian, none, cm[6], cm[5], w_linear, unused,
+                                                 force[6], force[5]);
+  detail::parallelepiped_term<true, false, true>(lambda, mu, inverse_jacobian, cm[6], none, cm[4], w_linear,
+                                                 force[6], unused, force[4]);
+  detail::parallelepiped_term<true, true, false>(lambda, mu, inverse_jacobian, cm[5], cm[4], none, w_linear,
+                                                 force[5], force[4], unused);
   // M_etazeta = [c7 | 0 | 0], M_zetaxi = [0 | c7 | 0], M_xieta = [0 | 0 | c7]
-  detail::parallelepiped_term(lambda, mu, inverse_jacobian, &cm[7], nullptr, nullptr, w_bilinear, &force[7],
-                              nullptr, nullptr);
-  detail::parallelepiped_term(lambda, mu, inverse_jacobian, nullptr, &cm[7], nullptr, w_bilinear, nullptr,
-                              &force[7], nullptr);
-  detail::parallelepiped_term(lambda, mu, inverse_jacobian, nullptr, nullptr, &cm[7], w_bilinear, nullptr,
-                              nullptr, &force[7]);
-  std::array<double, 8> fx{}, fy{}, fz{};
-  double energy = 0.0;
+  detail::parallelepiped_term<true, false, false>(lambda, mu, inverse_jacobian, cm[7], none, none, w_bilinear,
+                                                  force[7], unused, unused);
+  detail::parallelepiped_term<false, true, false>(lambda, mu, inverse_jacobian, none, cm[7], none, w_bilinear,
+                                                  unused, force[7], unused);
+  detail::parallelepiped_term<false, false, true>(lambda, mu, inverse_jacobian, none, none, cm[7], w_bilinear,
+                                                  unused, unused, force[7]);
+  std::array<Real, 8> fx{}, fy{}, fz{};
+  Real energy{};
   for (int k = 1; k < 8; ++k) {
     fx[k] = force[k][0];
     fy[k] = force[k][1];

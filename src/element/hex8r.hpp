@@ -82,10 +82,13 @@ inline double make_reference(const ElementVectors& x_ref, double mu, double hour
   return geometry.min_det_jacobian;
 }
 
-struct Energies {
-  double strain = 0.0;     // V sigma : eps / 2, J
-  double hourglass = 0.0;  // k/2 sum q^2, J
+template <class Real>
+struct BasicEnergies {
+  Real strain{};     // V sigma : eps / 2, J
+  Real hourglass{};  // k/2 sum q^2, J
 };
+
+using Energies = BasicEnergies<double>;
 
 // f = (K_mean + K_hourglass) u for one element (N), its stress (Pa) and energies (J).
 inline Energies internal_forces(const double* reference, double lambda, double mu, const ElementVectors& u,
@@ -164,35 +167,40 @@ inline double make_parallelepiped_reference(const ElementVectors& x_ref, double 
   return min_det_jacobian;
 }
 
-inline Energies parallelepiped_internal_forces(const double* reference, double lambda, double mu,
-                                               const ElementVectors& u, ElementVectors& f,
-                                               material::SymTensor& stress) {
-  const hex8::ElementModes c = hex8::modes_from_nodal(u);
-  const double* beta = reference;
-  const double volume = reference[9], k = reference[10];
+// For one element (Real = double, reference data as written by
+// make_parallelepiped_reference) or an element pair (Real = Pack2, the two
+// elements' data interleaved value by value).
+template <class Real>
+inline BasicEnergies<Real> parallelepiped_internal_forces(const double* reference, double lambda, double mu,
+                                                          const BasicElementVectors<Real>& u,
+                                                          BasicElementVectors<Real>& f, std::array<Real, 6>& stress) {
+  const hex8::BasicElementModes<Real> c = hex8::modes_from_nodal(u);
+  std::array<Real, 9> beta;
+  for (int k = 0; k < 9; ++k) beta[k] = load<Real>(reference, k);
+  const Real volume = load<Real>(reference, 9), k = load<Real>(reference, 10);
   // H_ij = sum_{m=1..3} c_m,i beta_mj.
-  Matrix3 h;
+  std::array<Real, 9> h;
   for (int j = 0; j < 3; ++j) {
     h[j] = c.x[1] * beta[j] + c.x[2] * beta[3 + j] + c.x[3] * beta[6 + j];
     h[3 + j] = c.y[1] * beta[j] + c.y[2] * beta[3 + j] + c.y[3] * beta[6 + j];
     h[6 + j] = c.z[1] * beta[j] + c.z[2] * beta[3 + j] + c.z[3] * beta[6 + j];
   }
   stress = hex8::stress_from_gradient(lambda, mu, h);
-  Energies energies;
-  energies.strain = volume * material::strain_energy_density(stress, hex8::symmetric_part(h));
+  BasicEnergies<Real> energies;
+  // V sigma : eps / 2 with eps = sym(H).
+  energies.strain = 0.5 * volume *
+                    (stress[0] * h[0] + stress[1] * h[4] + stress[2] * h[8] + stress[3] * (h[1] + h[3]) +
+                     stress[4] * (h[5] + h[7]) + stress[5] * (h[2] + h[6]));
   // F'_m = (V/8) sigma beta_m (m = 1..3), F'_(3+alpha) = k q_alpha = 8 k c_(3+alpha).
-  const double volume_8 = 0.125 * volume, k8 = 8.0 * k;
-  const double sm[3][3] = {{stress[0], stress[3], stress[5]},
-                           {stress[3], stress[1], stress[4]},
-                           {stress[5], stress[4], stress[2]}};
-  std::array<double, 8> fx{}, fy{}, fz{};
-  double hourglass_sum = 0.0;
+  const Real volume_8 = 0.125 * volume, k8 = 8.0 * k;
+  std::array<Real, 8> fx{}, fy{}, fz{};
   for (int m = 1; m < 4; ++m) {
-    const double* b = beta + 3 * (m - 1);
-    fx[m] = volume_8 * (sm[0][0] * b[0] + sm[0][1] * b[1] + sm[0][2] * b[2]);
-    fy[m] = volume_8 * (sm[1][0] * b[0] + sm[1][1] * b[1] + sm[1][2] * b[2]);
-    fz[m] = volume_8 * (sm[2][0] * b[0] + sm[2][1] * b[1] + sm[2][2] * b[2]);
+    const Real b0 = beta[3 * (m - 1)], b1 = beta[3 * (m - 1) + 1], b2 = beta[3 * (m - 1) + 2];
+    fx[m] = volume_8 * (stress[0] * b0 + stress[3] * b1 + stress[5] * b2);
+    fy[m] = volume_8 * (stress[3] * b0 + stress[1] * b1 + stress[4] * b2);
+    fz[m] = volume_8 * (stress[5] * b0 + stress[4] * b1 + stress[2] * b2);
   }
+  Real hourglass_sum{};
   for (int m = 4; m < 8; ++m) {
     fx[m] = k8 * c.x[m];
     fy[m] = k8 * c.y[m];

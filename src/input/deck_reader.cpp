@@ -4,6 +4,7 @@
 // include yaml-cpp.
 #include "input/deck_reader.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -40,6 +41,10 @@ constexpr std::array<Formulation, 2> all_formulations{Formulation::hex8, Formula
 constexpr std::array<BoxSide, 6> all_box_sides{BoxSide::xmin, BoxSide::xmax, BoxSide::ymin,
                                                BoxSide::ymax, BoxSide::zmin, BoxSide::zmax};
 constexpr std::array<std::string_view, 3> component_names{"x", "y", "z"};
+
+std::vector<std::string> top_level_keys() {
+  return {"name", "materials", "parts", "boundary_conditions", "contact", "time", "output"};
+}
 
 template <class Enum, std::size_t N>
 std::vector<std::string> names_of(const std::array<Enum, N>& values) {
@@ -801,12 +806,11 @@ OutputOptions DeckValidator::output(const YAML::Node& node, const std::string& p
 }
 
 Deck DeckValidator::deck(const YAML::Node& root) const {
-  const std::vector<std::string> top_keys{"name",    "materials", "parts", "boundary_conditions",
-                                          "contact", "time",      "output"};
   if (!root.IsMap())
     fail(root, "",
-         "expected the deck to be a map with keys " + join(top_keys, ", ") + "; got " + describe(root));
-  check_map(root, "", top_keys);
+         "expected the deck to be a map with keys " + join(top_level_keys(), ", ") + "; got " +
+             describe(root));
+  check_map(root, "", top_level_keys());
   Deck result;
   result.source_file = source_name_;
   result.name = run_name(required(root, "", "name"), "name");
@@ -820,6 +824,78 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
   if (const YAML::Node node = optional(root, "output"); node.IsDefined())
     result.output = output(node, "output");
   return result;
+}
+
+// ---------------------------------------------------------------------------
+// Documents. yaml-cpp 0.7's LoadAll loops forever on a document that starts with
+// ',' (jbeder/yaml-cpp#1040, fixed upstream by #1319), so the deck is read with
+// Load (one document) and the documents are counted by a parser that stops at the
+// first empty one, as that fix does.
+
+class DocumentCounter final : public YAML::EventHandler {
+ public:
+  void OnDocumentStart(const YAML::Mark& mark) override {
+    start = mark;
+    events = 0;
+    root_is_null = false;
+  }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {
+    if (events == 0) root_is_null = true;
+    ++events;
+  }
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override { ++events; }
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {
+    ++events;
+  }
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    ++events;
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    ++events;
+  }
+  void OnMapEnd() override {}
+
+  YAML::Mark start;
+  int events = 0;
+  bool root_is_null = false;
+};
+
+// Where the second non-empty document starts, if there is one.
+std::optional<YAML::Mark> second_document(const std::string& text) {
+  std::istringstream stream(text);
+  YAML::Parser parser(stream);
+  DocumentCounter counter;
+  int documents = 0;
+  while (parser.HandleNextDocument(counter)) {
+    if (counter.events == 1 && counter.root_is_null) break;  // no progress is possible past this
+    if (++documents == 2) return counter.start;
+  }
+  return std::nullopt;
+}
+
+// The first line that is not blank, a comment or a document marker.
+struct FirstContent {
+  int line = 0;  // 1-based
+  int column = 0;
+  std::string text;
+};
+
+std::optional<FirstContent> first_content(const std::string& text) {
+  std::istringstream stream(text);
+  std::string line;
+  for (int number = 1; std::getline(stream, line); ++number) {
+    const std::string content = trim(line);
+    if (content.empty() || content.front() == '#' || content.front() == '%' || content == "---" ||
+        content == "...")
+      continue;
+    const std::size_t column = line.find_first_not_of(" \t");
+    return FirstContent{number, static_cast<int>(column) + 1,
+                        content.size() > 40 ? content.substr(0, 37) + "..." : content};
+  }
+  return std::nullopt;
 }
 
 // ---------------------------------------------------------------------------
@@ -897,27 +973,29 @@ Override parse_override(const std::string& argument) {
 
 Deck parse_deck(const std::string& text, const std::string& source_name,
                 const std::vector<Override>& overrides) {
-  std::vector<YAML::Node> documents;
+  YAML::Node root;
+  std::optional<YAML::Mark> second;
   try {
-    documents = YAML::LoadAll(text);
+    root = YAML::Load(text);
+    second = second_document(text);
   } catch (const YAML::Exception& error) {
     const SourceLocation where{source_name, error.mark.is_null() ? 0 : error.mark.line + 1,
                                error.mark.is_null() ? 0 : error.mark.column + 1};
     throw InputError(where, "", "YAML syntax error: " + error.msg);
   }
-  if (documents.empty() || (documents.size() == 1 && documents.front().IsNull()))
-    throw InputError(SourceLocation{source_name, 0, 0}, "",
-                     "the deck is empty; expected a map with keys name, materials, parts, time "
-                     "(and optionally boundary_conditions, contact, output)");
-  if (documents.size() > 1) {
-    const YAML::Mark mark = documents[1].Mark();
-    throw InputError(
-        SourceLocation{source_name, mark.is_null() ? 0 : mark.line + 1, mark.is_null() ? 0 : mark.column + 1},
-        "",
-        "the file holds " + std::to_string(documents.size()) +
-            " YAML documents (separated by ---); a deck is one document");
+  if (root.IsNull()) {
+    // Empty, or a document yaml-cpp could not start (it reads ", x" as null).
+    const std::optional<FirstContent> content = first_content(text);
+    if (!content)
+      throw InputError(SourceLocation{source_name, 0, 0}, "",
+                       "the deck is empty; expected a map with keys " + join(top_level_keys(), ", "));
+    throw InputError(SourceLocation{source_name, content->line, content->column}, "",
+                     "expected the deck to be a map with keys " + join(top_level_keys(), ", ") + "; got '" +
+                         content->text + "'");
   }
-  YAML::Node root = documents.front();
+  if (second)
+    throw InputError(SourceLocation{source_name, second->line + 1, second->column + 1}, "",
+                     "the file holds more than one YAML document (separated by ---); a deck is one document");
   const DeckValidator validator(source_name, overrides);
   if (root.IsMap())
     for (const Override& item : overrides) apply_override(root, item);

@@ -84,7 +84,6 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const st
 
 ContactModel build_contact(const input::Deck& deck, const Model& model, double dt, double critical_dt) {
   ContactModel contact;
-  const double courant = dt / critical_dt;
   for (const auto& options : deck.contact) {
     ContactPair pair;
     pair.name = options.name;
@@ -94,28 +93,13 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
       PassGeometry g = p == 0 ? pass_geometry(deck, model, options.slave, options.master)
                               : pass_geometry(deck, model, options.master, options.slave);
       smallest_length = std::min(smallest_length, g.smallest_length);
-      // The heaviest 1 / m of a master node bounds sum N_i^2 / m_i from above.
-      double master_inverse_mass = 0.0;
-      for (const auto& quad : g.surfaces.segments)
-        for (std::uint32_t node : quad) master_inverse_mass = std::max(master_inverse_mass, model.inverse_mass[node]);
       auto& s = g.surfaces;
       s.stiffness.resize(s.slave_nodes.size());
-      for (std::size_t i = 0; i < s.slave_nodes.size(); ++i) {
-        // The stiffness of the node pair: the automatic rule capped by the
-        // stability bound, times scale; or the deck's fixed stiffness.
-        double k = 0.0;
-        if (options.penalty.stiffness) {
-          k = *options.penalty.stiffness;
-        } else {
-          const double bound = contact::stable_stiffness_bound(
-              dt, courant, options.penalty.damping, model.inverse_mass[s.slave_nodes[i]] + master_inverse_mass);
-          k = options.penalty.scale *
-              std::min(contact::automatic_stiffness(g.modulus, g.area[i], s.normal_length[i]), bound);
-        }
-        pair.pair_stiffness = std::max(pair.pair_stiffness, k);
-        // Two passes put two springs on the same node pair: each carries half.
-        s.stiffness[i] = k / pass_count;
-      }
+      for (std::size_t i = 0; i < s.slave_nodes.size(); ++i)
+        s.stiffness[i] = options.penalty.stiffness
+                             ? *options.penalty.stiffness
+                             : options.penalty.scale *
+                                   contact::automatic_stiffness(g.modulus, g.area[i], s.normal_length[i]);
       pair.passes.push_back(std::move(s));
     }
     auto& settings = pair.settings;
@@ -125,6 +109,11 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
     settings.projection.max_iterations = options.local_search.max_iterations;
     settings.initial_guess = options.local_search.initial_guess;
     settings.damping_ratio = options.penalty.damping;
+    settings.automatic_stiffness = !options.penalty.stiffness.has_value();
+    settings.stiffness_scale = options.penalty.scale;
+    settings.dt = dt;
+    settings.courant = dt / critical_dt;
+    settings.pass_count = pass_count;
     // Penetrations deeper than half an element are not searched for; a node that
     // moves half the margin triggers a new global search.
     settings.search_distance = 0.5 * smallest_length;

@@ -16,7 +16,6 @@ struct ContactPair {
   contact::ContactPassSettings settings;
   std::vector<contact::ContactSurfaces> passes;  // slave -> master, and master -> slave if two_pass
   std::vector<contact::ContactPassState> states;
-  double pair_stiffness = 0.0;  // largest stiffness of a node pair (both passes added), N/m
 };
 
 struct ContactModel {

@@ -192,6 +192,7 @@ void summarise_contact(const contact::ContactStatistics& statistics, const conta
   c.not_converged = statistics.not_converged;
   c.saddle_points = statistics.saddle_points;
   c.max_penetration_over_h = statistics.max_penetration_over_h;
+  c.penalty_stiffness = statistics.max_pair_stiffness;
   summary.phase_seconds.contact_global_search = seconds.global_search;
   summary.phase_seconds.contact_local_search = seconds.local_search;
   summary.phase_seconds.contact_forces = seconds.forces;
@@ -212,8 +213,6 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   const TimeStepping stepping = time_stepping(deck.time, critical_dt);
   const double dt = stepping.dt;
   ContactModel contact = build_contact(deck, model, dt, critical_dt);
-  for (const auto& pair : contact.pairs)
-    summary.contact.penalty_stiffness = std::max(summary.contact.penalty_stiffness, pair.pair_stiffness);
   summary.nodes = static_cast<long>(model.mesh.node_count());
   summary.elements = static_cast<long>(model.mesh.element_count());
   summary.dt = dt;
