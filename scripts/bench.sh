@@ -17,7 +17,8 @@ quick=0; [ "${1:-}" = "--quick" ] && quick=1
 
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores; $(date -u +%Y-%m-%dT%H:%MZ)"
 echo "exdyn $($exdyn --version | cut -d' ' -f2), threads: 1"
-printf '%-34s %-6s %10s %7s %12s  %s\n' case form elements steps "Mcycles/s" "phase shares (element forces / integration / output)"
+printf '%-34s %-6s %10s %7s %12s  %s\n' case form elements steps "Mcycles/s" \
+  "phase shares (element forces / integration / output / contact: global + local + forces)"
 
 run_case() {  # label formulation deck overrides...
   local label=$1 form=$2 deck=$3; shift 3
@@ -30,12 +31,14 @@ p = s["phase_seconds"]; total = sum(p.values()) or 1.0
 share = lambda k: 100.0 * p[k] / total
 print(f"{sys.argv[2]:<34} {sys.argv[3]:<6} {s['mesh']['elements']:>10} {s['steps']:>7} "
       f"{s['element_cycles_per_second'] / 1e6:>12.2f}  "
-      f"{share('element_forces'):.0f} % / {share('time_integration'):.0f} % / {share('output'):.0f} %")
+      f"{share('element_forces'):.0f} % / {share('time_integration'):.0f} % / {share('output'):.0f} % / "
+      f"{share('contact_global_search'):.1f} + {share('contact_local_search'):.1f} + {share('contact_forces'):.1f} %")
 PY
 }
 
 for form in hex8 hex8r; do
   run_case "plate reference 100x100x1" $form input/plate_impact_reference.yaml
+  run_case "plate impact (contact, bfgs)" $form input/plate_impact.yaml --set "parts[1].formulation=$form"
   if [ $quick = 0 ]; then
     run_case "plate 400x400x1, 400 steps" $form input/plate_impact_reference.yaml \
       --set "parts[0].elements=[400,1,400]" --set "parts[0].box={min: [-2.5e-3, 0, 0], max: [0, 6.25e-6, 2.5e-3]}" \
@@ -46,7 +49,8 @@ for form in hex8 hex8r; do
   fi
 done
 
-for b in build/release/bench/element/bench_element build/release/bench/contact/bench_local_search; do
+for b in build/release/bench/element/element_bench build/release/bench/contact/contact_local_search_bench \
+         build/release/bench/global_search/bench_global_search; do
   if [ -x "$b" ]; then
     echo; echo "== $(basename "$b")"
     "$b" --benchmark_min_time=$([ $quick = 1 ] && echo 0.05 || echo 0.5)

@@ -69,53 +69,50 @@ void bucket_search(const NodalVectors& points, const std::vector<Box>& boxes, do
   const Grid grid = make_grid(points, boxes, cell_size);
   const std::size_t n_cells = static_cast<std::size_t>(grid.cells[0] * grid.cells[1] * grid.cells[2]);
 
-  // Counting sort of the points by cell: cell_points[cell_start[c] ... cell_start[c+1]).
-  w.point_cell.resize(n_points);
-  w.cell_start.assign(n_cells + 1, 0);
-  for (std::size_t p = 0; p < n_points; ++p) {
-    w.point_cell[p] = grid.cell_of(points.x[p], points.y[p], points.z[p]);
-    ++w.cell_start[w.point_cell[p] + 1];
-  }
-  for (std::size_t c = 0; c < n_cells; ++c) w.cell_start[c + 1] += w.cell_start[c];
-  w.cell_points.resize(n_points);
-  {
-    std::vector<std::uint32_t>& next = w.pair_count;  // reused as the fill cursor
-    next.assign(w.cell_start.begin(), w.cell_start.end() - 1);
-    for (std::size_t p = 0; p < n_points; ++p) w.cell_points[next[w.point_cell[p]]++] = static_cast<std::uint32_t>(p);
-  }
-
-  // Each box visits the cells it overlaps and tests their points.
-  w.unsorted.clear();
-  for (std::size_t s = 0; s < boxes.size(); ++s) {
-    const Box& box = boxes[s];
-    std::array<std::int64_t, 3> first{}, last{};
-    bool outside = false;
+  // The cells a box overlaps (clamped to the grid; none if the box misses it).
+  auto cell_range = [&](const Box& box, std::array<std::int64_t, 3>& first, std::array<std::int64_t, 3>& last) {
     for (int c = 0; c < 3; ++c) {
-      const double grid_lo = grid.origin[c], grid_hi = grid_lo + static_cast<double>(grid.cells[c]) / grid.inverse_cell;
-      if (box.hi[c] < grid_lo || box.lo[c] > grid_hi) outside = true;
+      const double grid_lo = grid.origin[c];
+      const double grid_hi = grid_lo + static_cast<double>(grid.cells[c]) / grid.inverse_cell;
+      if (box.hi[c] < grid_lo || box.lo[c] > grid_hi) return false;
       first[c] = grid.clamp_index(box.lo[c], c);
       last[c] = grid.clamp_index(box.hi[c], c);
     }
-    if (outside) continue;
+    return true;
+  };
+  auto for_each_cell = [&](const Box& box, auto&& visit) {
+    std::array<std::int64_t, 3> first{}, last{};
+    if (!cell_range(box, first, last)) return;
     for (std::int64_t k = first[2]; k <= last[2]; ++k)
       for (std::int64_t j = first[1]; j <= last[1]; ++j)
-        for (std::int64_t i = first[0]; i <= last[0]; ++i) {
-          const std::size_t cell = static_cast<std::size_t>(i + grid.cells[0] * (j + grid.cells[1] * k));
-          for (std::uint32_t at = w.cell_start[cell]; at < w.cell_start[cell + 1]; ++at) {
-            const std::uint32_t p = w.cell_points[at];
-            if (inside(box, points.x[p], points.y[p], points.z[p]))
-              w.unsorted.push_back({p, static_cast<std::uint32_t>(s)});
-          }
-        }
-  }
+        for (std::int64_t i = first[0]; i <= last[0]; ++i)
+          visit(static_cast<std::size_t>(i + grid.cells[0] * (j + grid.cells[1] * k)));
+  };
 
-  // Counting sort by point; the segments of a point come out in increasing order
-  // because the boxes were visited in increasing order.
-  w.pair_count.assign(n_points + 1, 0);
-  for (const CandidatePair& pair : w.unsorted) ++w.pair_count[pair.point + 1];
-  for (std::size_t p = 0; p < n_points; ++p) w.pair_count[p + 1] += w.pair_count[p];
-  pairs.resize(w.unsorted.size());
-  for (const CandidatePair& pair : w.unsorted) pairs[w.pair_count[pair.point]++] = pair;
+  // Counting sort of the boxes by cell: cell_boxes[cell_start[c] ... cell_start[c+1]),
+  // in increasing box order within a cell because the boxes are visited in order.
+  w.cell_start.assign(n_cells + 1, 0);
+  for (const Box& box : boxes) for_each_cell(box, [&](std::size_t cell) { ++w.cell_start[cell + 1]; });
+  for (std::size_t c = 0; c < n_cells; ++c) w.cell_start[c + 1] += w.cell_start[c];
+  w.cell_boxes.resize(w.cell_start[n_cells]);
+  for (std::size_t b = 0; b < boxes.size(); ++b)
+    for_each_cell(boxes[b], [&](std::size_t cell) {
+      // cell_start[cell] serves as the fill cursor and ends at the next cell's start.
+      w.cell_boxes[w.cell_start[cell]++] = static_cast<std::uint32_t>(b);
+    });
+  for (std::size_t c = n_cells; c > 0; --c) w.cell_start[c] = w.cell_start[c - 1];
+  w.cell_start[0] = 0;
+
+  // Each point tests the boxes of its own cell: the pairs come out sorted by
+  // point, then by segment, with no further sort.
+  for (std::size_t p = 0; p < n_points; ++p) {
+    const double x = points.x[p], y = points.y[p], z = points.z[p];
+    const std::uint32_t cell = grid.cell_of(x, y, z);
+    for (std::uint32_t at = w.cell_start[cell]; at < w.cell_start[cell + 1]; ++at) {
+      const std::uint32_t b = w.cell_boxes[at];
+      if (inside(boxes[b], x, y, z)) pairs.push_back({static_cast<std::uint32_t>(p), b});
+    }
+  }
 }
 
 void brute_force_search(const NodalVectors& points, const std::vector<Box>& boxes, std::vector<CandidatePair>& pairs) {

@@ -31,11 +31,8 @@ struct CandidatePair {
 // Working arrays of the bucket grid, kept between searches so that a search
 // allocates nothing once they have grown to size.
 struct BucketWorkspace {
-  std::vector<std::uint32_t> point_cell;    // cell of each point
-  std::vector<std::uint32_t> cell_start;    // CSR offsets of the points of each cell
-  std::vector<std::uint32_t> cell_points;   // point ids, grouped by cell
-  std::vector<std::uint32_t> pair_count;    // candidates per point (for the output sort)
-  std::vector<CandidatePair> unsorted;
+  std::vector<std::uint32_t> cell_start;  // CSR offsets of the boxes overlapping each cell
+  std::vector<std::uint32_t> cell_boxes;  // box ids, grouped by cell, increasing within a cell
 };
 
 // Bounding box of each quadrilateral segment, inflated by `capture` (m) in every

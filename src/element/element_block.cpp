@@ -15,10 +15,11 @@ namespace exdyn::element {
 namespace {
 
 // block.reference = [layout, 0, element data...]; the two header entries keep
-// the element data 16-byte aligned. The constant-Jacobian layouts store element
-// pairs (2p, 2p+1) interleaved value by value, [.., value k of 2p, value k of 2p+1, ..],
-// for the kernels that run on two elements at once (Pack2); an odd last
-// element is paired with zeros.
+// the element data 16-byte aligned. All layouts but the general hex8 one store
+// element pairs (2p, 2p+1) interleaved value by value,
+// [.., value k of 2p, value k of 2p+1, ..], for the kernels that run on two
+// elements at once (Pack2); an odd last element is paired with zeros. (The
+// general hex8 kernel vectorises over its 8 Gauss points instead.)
 enum class ReferenceLayout { hex8_general = 1, hex8_parallelepiped = 2, hex8r = 3, hex8r_parallelepiped = 4 };
 constexpr std::size_t header_size = 2;
 
@@ -28,7 +29,7 @@ ReferenceLayout layout_of(const ElementBlock& block) {
 }
 
 bool is_paired(ReferenceLayout layout) {
-  return layout == ReferenceLayout::hex8_parallelepiped || layout == ReferenceLayout::hex8r_parallelepiped;
+  return layout != ReferenceLayout::hex8_general;
 }
 
 // Doubles of reference data per element.
@@ -240,13 +241,13 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
                                      Pack2{0.0, 0.0}};
                                });
     case ReferenceLayout::hex8r:
-      return element_loop(block, element_begin, element_end, stride, u, f_int, stress,
-                          [lambda, mu](const double* reference, const ElementVectors& u_local,
-                                       ElementVectors& f_local, material::SymTensor& s) {
-                            const hex8r::Energies e = hex8r::internal_forces(reference, lambda, mu, u_local,
-                                                                             f_local, s);
-                            return ElementEnergies{e.strain, e.hourglass};
-                          });
+      return element_pair_loop(block, element_begin, element_end, stride, u, f_int, stress,
+                               [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
+                                            BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
+                                 const hex8r::BasicEnergies<Pack2> e =
+                                     hex8r::internal_forces(reference, lambda, mu, u_local, f_local, s);
+                                 return std::array<Pack2, 2>{e.strain, e.hourglass};
+                               });
     case ReferenceLayout::hex8r_parallelepiped:
       return element_pair_loop(block, element_begin, element_end, stride, u, f_int, stress,
                                [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,

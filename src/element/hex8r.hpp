@@ -90,62 +90,68 @@ struct BasicEnergies {
 
 using Energies = BasicEnergies<double>;
 
-// f = (K_mean + K_hourglass) u for one element (N), its stress (Pa) and energies (J).
-inline Energies internal_forces(const double* reference, double lambda, double mu, const ElementVectors& u,
-                                ElementVectors& f, material::SymTensor& stress) {
-  const hex8::ElementModes c = hex8::modes_from_nodal(u);
-  const double* beta = reference;
-  const double* g = reference + 21;
-  const double volume = reference[33], inverse_volume = reference[34], k = reference[35];
+// f = (K_mean + K_hourglass) u (N), the stress (Pa) and the energies (J) of one
+// element (Real = double, reference data as written by make_reference) or an
+// element pair (Real = Pack2, the two elements' data interleaved value by value).
+template <class Real>
+inline BasicEnergies<Real> internal_forces(const double* reference, double lambda, double mu,
+                                           const BasicElementVectors<Real>& u, BasicElementVectors<Real>& f,
+                                           std::array<Real, 6>& stress) {
+  const hex8::BasicElementModes<Real> c = hex8::modes_from_nodal(u);
+  std::array<Real, 21> beta;
+  for (int k = 0; k < 21; ++k) beta[k] = load<Real>(reference, k);
+  std::array<Real, 12> g;
+  for (int k = 0; k < 12; ++k) g[k] = load<Real>(reference, 21 + k);
+  const Real volume = load<Real>(reference, 33), inverse_volume = load<Real>(reference, 34),
+             k = load<Real>(reference, 35);
 
   // H_ij = sum_m c_m,i beta_mj.
-  Matrix3 h{};
+  std::array<Real, 9> h{};
   for (int m = 1; m < 8; ++m) {
-    const Vector3 cm = c[m];
+    const std::array<Real, 3> cm = c[m];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) h[3 * i + j] += cm[i] * beta[3 * (m - 1) + j];
   }
   stress = hex8::stress_from_gradient(lambda, mu, h);
-  Energies energies;
-  energies.strain = volume * material::strain_energy_density(stress, hex8::symmetric_part(h));  // W = sigma:eps/2
+  BasicEnergies<Real> energies;
+  // V sigma : eps / 2 with eps = sym(H).
+  energies.strain = 0.5 * volume *
+                    (stress[0] * h[0] + stress[1] * h[4] + stress[2] * h[8] + stress[3] * (h[1] + h[3]) +
+                     stress[4] * (h[5] + h[7]) + stress[5] * (h[2] + h[6]));
 
   // q_alpha,i = h_alpha . u_i - g_alpha . H_i  and  Q = k q.
-  double q[4][3];
+  Real q[4][3];
+  Real q_squared{};
   for (int alpha = 0; alpha < 4; ++alpha) {
-    const Vector3 ch = c[4 + alpha];
-    for (int i = 0; i < 3; ++i)
+    const std::array<Real, 3> ch = c[4 + alpha];
+    for (int i = 0; i < 3; ++i) {
       q[alpha][i] = 8.0 * ch[i] - (g[3 * alpha] * h[3 * i] + g[3 * alpha + 1] * h[3 * i + 1] +
                                    g[3 * alpha + 2] * h[3 * i + 2]);
+      q_squared += q[alpha][i] * q[alpha][i];
+    }
   }
-  double q_squared = 0.0;
-  for (int alpha = 0; alpha < 4; ++alpha)
-    for (int i = 0; i < 3; ++i) q_squared += q[alpha][i] * q[alpha][i];
   energies.hourglass = 0.5 * k * q_squared;
 
   // f_iI = S_ij b_jI + sum_alpha Q_i,alpha h_alpha,I with S = sigma - (1/V) sum_alpha Q_alpha (x) g_alpha.
-  const double sm[3][3] = {{stress[0], stress[3], stress[5]},
-                           {stress[3], stress[1], stress[4]},
-                           {stress[5], stress[4], stress[2]}};
-  double s[3][3];
-  const double k_over_volume = k * inverse_volume;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      s[i][j] = sm[i][j] - k_over_volume * (q[0][i] * g[j] + q[1][i] * g[3 + j] + q[2][i] * g[6 + j] +
-                                            q[3][i] * g[9 + j]);
+  const Real sm[3][3] = {{stress[0], stress[3], stress[5]},
+                         {stress[3], stress[1], stress[4]},
+                         {stress[5], stress[4], stress[2]}};
   // Mode forces F'_m = (V/8) sum_j S_ij beta_mj (+ Q for the hourglass modes);
   // b_jI = (V/8) sum_m phi_m(I) beta_mj, so f_I = sum_m phi_m(I) F'_m.
-  const double volume_8 = 0.125 * volume;
-  std::array<double, 8> fx{}, fy{}, fz{};
-  std::array<std::array<double, 8>*, 3> fm{&fx, &fy, &fz};
-  for (int m = 1; m < 8; ++m)
-    for (int i = 0; i < 3; ++i)
-      (*fm[i])[m] = volume_8 * (s[i][0] * beta[3 * (m - 1)] + s[i][1] * beta[3 * (m - 1) + 1] +
-                                s[i][2] * beta[3 * (m - 1) + 2]);
-  for (int alpha = 0; alpha < 4; ++alpha)
-    for (int i = 0; i < 3; ++i) (*fm[i])[4 + alpha] += k * q[alpha][i];
-  f.x = hex8::nodal_from_modes(fx);
-  f.y = hex8::nodal_from_modes(fy);
-  f.z = hex8::nodal_from_modes(fz);
+  const Real k_over_volume = k * inverse_volume, volume_8 = 0.125 * volume;
+  std::array<Real, 8> fm[3] = {};
+  for (int i = 0; i < 3; ++i) {
+    Real s[3];
+    for (int j = 0; j < 3; ++j)
+      s[j] = volume_8 * (sm[i][j] - k_over_volume * (q[0][i] * g[j] + q[1][i] * g[3 + j] + q[2][i] * g[6 + j] +
+                                                     q[3][i] * g[9 + j]));
+    for (int m = 1; m < 8; ++m)
+      fm[i][m] = s[0] * beta[3 * (m - 1)] + s[1] * beta[3 * (m - 1) + 1] + s[2] * beta[3 * (m - 1) + 2];
+    for (int alpha = 0; alpha < 4; ++alpha) fm[i][4 + alpha] += k * q[alpha][i];
+  }
+  f.x = hex8::nodal_from_modes(fm[0]);
+  f.y = hex8::nodal_from_modes(fm[1]);
+  f.z = hex8::nodal_from_modes(fm[2]);
   return energies;
 }
 

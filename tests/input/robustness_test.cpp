@@ -18,7 +18,7 @@ TEST(DeckReaderRobustness, EditedDecksAreReadOrRejectedWithAPosition) {
   std::mt19937 random(20261121);
   int read = 0;
   int rejected = 0;
-  for (int trial = 0; trial < 3000; ++trial) {
+  for (int trial = 0; trial < 1500; ++trial) {
     std::string text = original;
     const int edits = 1 + static_cast<int>(random() % 4);
     for (int edit = 0; edit < edits && !text.empty(); ++edit) {
@@ -49,8 +49,8 @@ TEST(DeckReaderRobustness, EditedDecksAreReadOrRejectedWithAPosition) {
     }
   }
   // Both outcomes must occur, or the edits test nothing.
-  EXPECT_GT(read, 100);
-  EXPECT_GT(rejected, 1000);
+  EXPECT_GT(read, 50);
+  EXPECT_GT(rejected, 500);
 }
 
 }  // namespace
