@@ -196,8 +196,8 @@ def check_rows(rows, n_cases, methods, guesses_per_case, nodes, points):
     f = np.full(len(xi), np.nan)
     with np.errstate(all="ignore"):  # a diverged method may return a huge xi
         f[finite] = geo.evaluate(nodes[rows["id"][finite]], points[rows["id"][finite]], xi[finite])[0]
-    d = np.sqrt(f)
-    bad = finite & (np.abs(d - rows["distance"]) > 1e-9 * np.maximum(d, 1.0))
+        d = np.sqrt(f)
+        bad = finite & np.isfinite(d) & (np.abs(d - rows["distance"]) > 1e-9 * np.maximum(d, 1.0))
     if bad.any():
         k = np.flatnonzero(bad)[0]
         raise lc.StudyError(f"distance {rows['distance'][k]} of case {rows['id'][k]} ({rows['method'][k]}) "

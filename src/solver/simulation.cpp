@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <sstream>
@@ -139,7 +140,22 @@ std::string describe_non_finite(const State& state) {
           return std::string("non-finite ") + label + " at node " + std::to_string(i) + " (component " +
                  "xyz"[c] + ")";
     }
-  return "non-finite energy";
+  // The fields are finite but their energy overflowed: name the fastest node.
+  std::size_t fastest = 0;
+  double largest = -1.0;
+  for (std::size_t i = 0; i < state.velocity.size(); ++i) {
+    const double speed = std::abs(state.velocity.x[i]) + std::abs(state.velocity.y[i]) + std::abs(state.velocity.z[i]);
+    if (speed > largest) largest = speed, fastest = i;
+  }
+  char text[160];
+  std::snprintf(text, sizeof text, "non-finite energy (the fastest node is %zu, |v|_1 = %.3g m/s)", fastest, largest);
+  return text;
+}
+
+std::string format_time(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g s", seconds);
+  return text;
 }
 
 // Writes the fields of step n: v^n = v^{n+1/2} - dt/2 a^n (the velocity update is done).
@@ -270,7 +286,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       const double total = energy.total();
       if (!std::isfinite(total))
         throw RunFailure(describe_non_finite(state) + " at step " + std::to_string(state.step) + ", time " +
-                             std::to_string(state.time) + " s",
+                             format_time(state.time),
                          state.step, state.time);
       if (state.step == 0) initial_total = total;
       largest_energy = std::max({largest_energy, std::abs(total), energy.kinetic, energy.internal + energy.hourglass});

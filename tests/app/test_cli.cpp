@@ -108,4 +108,18 @@ TEST(Cli, SetOverridesTheOutputInterval) {
   EXPECT_EQ(grids, 2u);  // the first and the last step only
 }
 
+TEST(Cli, UnstableRunExitsOneNamesTheStepAndLeavesAFailedSummary) {
+  exdyn::testing::TempDir directory;
+  // Courant 1.5 is beyond the stable limit of 1.0: the energy grows until it overflows.
+  const auto result = exdyn("run " + deck("wave_bar.yaml") + " --quiet --set time.courant=1.5 --set time.end_time=1e-4" +
+                            " --output " + directory.path().string());
+  EXPECT_EQ(result.status, 1) << result.out;
+  EXPECT_NE(result.out.find("at step "), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("node"), std::string::npos) << result.out;
+  std::ifstream json(directory.file("wave_bar.json"));
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;
+  EXPECT_TRUE(std::filesystem::exists(directory.file("wave_bar.xmf")));  // the steps written so far
+}
+
 }  // namespace
