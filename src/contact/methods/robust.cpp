@@ -236,7 +236,7 @@ void grid_values(const Surface<Terms>& s, const Vec3& ys, std::array<double, gri
 template <int Terms>
 ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, const ProjectionSettings& settings) {
   ProjectionResult result;
-  std::array<double, grid_points * grid_points> f{};
+  std::array<double, grid_points * grid_points> f;  // every entry written by grid_values
   grid_values(s, ys, f);
   result.evaluations = grid_points * grid_points;
 
@@ -244,15 +244,18 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
   constexpr int n = grid_points;
   const auto coordinate = [](int i) { return -1.0 + 2.0 * i / (n - 1); };
   const auto less = [&f](int a, int b) { return f[a] < f[b] || (f[a] == f[b] && a < b); };
-  std::array<bool, n * n> seed_at{};
+  std::array<bool, n * n> seed_at;  // every entry written below
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
       const int index = j * n + i;
-      bool minimum = true;
-      for (int dj = -1; dj <= 1 && minimum; ++dj) {
+      // Along the row first (most points fail there), then the rows below and above.
+      bool minimum = !(i > 0 && less(index - 1, index)) && !(i < n - 1 && less(index + 1, index));
+      for (int dj = -1; dj <= 1 && minimum; dj += 2) {
+        const int jj = j + dj;
+        if (jj < 0 || jj >= n) continue;
         for (int di = -1; di <= 1; ++di) {
-          const int jj = j + dj, ii = i + di;
-          if ((di == 0 && dj == 0) || jj < 0 || ii < 0 || jj >= n || ii >= n) continue;
+          const int ii = i + di;
+          if (ii < 0 || ii >= n) continue;
           if (less(jj * n + ii, index)) {
             minimum = false;
             break;
@@ -291,7 +294,7 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
     double f;
     Xi xi;
   };
-  std::array<Seed, max_seeds> seeds{};
+  std::array<Seed, max_seeds> seeds;  // the first seed_count entries are used
   int seed_count = 0;
   for (int index = 0; index < n * n; ++index) {
     if (!seed_at[index]) continue;
@@ -315,7 +318,7 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
 
   RobustSearch<Terms> search(s, ys, settings, result);
   Run best{seeds[0].xi, std::numeric_limits<double>::infinity(), false};
-  std::array<Xi, max_seeds + 2 * max_second_chances> found{};
+  std::array<Xi, max_seeds + 2 * max_second_chances> found;  // the first found_count entries
   int found_count = 0;
   for (int k = 0; k < seed_count; ++k) {
     const Run run = search.descend(seeds[k].xi);
