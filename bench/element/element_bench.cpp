@@ -55,9 +55,9 @@ std::unique_ptr<Model> make_model(int n, Formulation formulation, bool distorted
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const std::uint32_t nodes[8] = {node(i, j, k),     node(i + 1, j, k),     node(i + 1, j + 1, k),
-                                        node(i, j + 1, k), node(i, j, k + 1),     node(i + 1, j, k + 1),
-                                        node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
+        const std::uint32_t nodes[8] = {
+            node(i, j, k),     node(i + 1, j, k),     node(i + 1, j + 1, k),     node(i, j + 1, k),
+            node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
         model->connectivity.insert(model->connectivity.end(), nodes, nodes + 8);
       }
   const std::uint32_t count = static_cast<std::uint32_t>(n) * n * n;
@@ -68,7 +68,8 @@ std::unique_ptr<Model> make_model(int n, Formulation formulation, bool distorted
   model->f_int.resize(node_count);
   const double length = n * h;
   for (std::size_t id = 0; id < node_count; ++id) {
-    const double x = model->x_ref.x[id] / length, y = model->x_ref.y[id] / length, z = model->x_ref.z[id] / length;
+    const double x = model->x_ref.x[id] / length, y = model->x_ref.y[id] / length,
+                 z = model->x_ref.z[id] / length;
     model->u.x[id] = 1e-6 * (std::sin(3 * x + y) + 0.1 * unit(rng));
     model->u.y[id] = 1e-6 * (std::cos(2 * y - z) * x + 0.1 * unit(rng));
     model->u.z[id] = 1e-6 * (x * y * z + 0.1 * unit(rng));
@@ -92,15 +93,15 @@ void run(benchmark::State& state, Formulation formulation, bool distorted) {
   Model& model = cached_model(static_cast<int>(state.range(0)), formulation, distorted);
   double energy = 0.0;
   for (auto _ : state) {
-    const element::ElementEnergies e = element::add_internal_forces(model.block, model.u, model.f_int,
-                                                                    model.stress.data());
+    const element::ElementEnergies e =
+        element::add_internal_forces(model.block, model.u, model.f_int, model.stress.data());
     energy += e.strain + e.hourglass;
     benchmark::ClobberMemory();
   }
   benchmark::DoNotOptimize(energy);
   state.counters["elements"] = static_cast<double>(model.block.count);
-  state.counters["element_cycles_per_second"] =
-      benchmark::Counter(static_cast<double>(model.block.count), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["element_cycles_per_second"] = benchmark::Counter(
+      static_cast<double>(model.block.count), benchmark::Counter::kIsIterationInvariantRate);
   state.counters["parallelepiped_kernel"] = element::uses_parallelepiped_kernel(model.block) ? 1.0 : 0.0;
   state.counters["reference_bytes_per_element"] =
       static_cast<double>(model.block.reference.size() * sizeof(double)) / model.block.count;

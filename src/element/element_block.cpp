@@ -28,17 +28,19 @@ ReferenceLayout layout_of(const ElementBlock& block) {
   return static_cast<ReferenceLayout>(static_cast<int>(block.reference[0]));
 }
 
-bool is_paired(ReferenceLayout layout) {
-  return layout != ReferenceLayout::hex8_general;
-}
+bool is_paired(ReferenceLayout layout) { return layout != ReferenceLayout::hex8_general; }
 
 // Doubles of reference data per element.
 std::size_t stride_of(ReferenceLayout layout) {
   switch (layout) {
-    case ReferenceLayout::hex8_general: return hex8::reference_size;
-    case ReferenceLayout::hex8_parallelepiped: return hex8::parallelepiped_reference_size;
-    case ReferenceLayout::hex8r: return hex8r::reference_size;
-    case ReferenceLayout::hex8r_parallelepiped: return hex8r::parallelepiped_reference_size;
+    case ReferenceLayout::hex8_general:
+      return hex8::reference_size;
+    case ReferenceLayout::hex8_parallelepiped:
+      return hex8::parallelepiped_reference_size;
+    case ReferenceLayout::hex8r:
+      return hex8r::reference_size;
+    case ReferenceLayout::hex8r_parallelepiped:
+      return hex8r::parallelepiped_reference_size;
   }
   return 0;
 }
@@ -94,8 +96,6 @@ ElementEnergies element_loop(const ElementBlock& block, std::uint32_t begin, std
   return total;
 }
 
-
-
 BasicElementVectors<Pack2> gather_pair(const NodalVectors& v, const std::uint32_t* nodes0,
                                        const std::uint32_t* nodes1) {
   BasicElementVectors<Pack2> local;
@@ -111,7 +111,8 @@ BasicElementVectors<Pack2> gather_pair(const NodalVectors& v, const std::uint32_
   return local;
 }
 
-void scatter_add_lane(const BasicElementVectors<Pack2>& local, int lane, const std::uint32_t* nodes, NodalVectors& v) {
+void scatter_add_lane(const BasicElementVectors<Pack2>& local, int lane, const std::uint32_t* nodes,
+                      NodalVectors& v) {
   double* x = v.x.data();
   double* y = v.y.data();
   double* z = v.z.data();
@@ -128,8 +129,8 @@ void scatter_add_lane(const BasicElementVectors<Pack2>& local, int lane, const s
 // [begin, end) are computed but neither scattered nor counted.
 template <class Kernel>
 ElementEnergies element_pair_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
-                                  std::size_t stride, const NodalVectors& u, NodalVectors& f_int, double* stress,
-                                  Kernel kernel) {
+                                  std::size_t stride, const NodalVectors& u, NodalVectors& f_int,
+                                  double* stress, Kernel kernel) {
   ElementEnergies total;
   if (begin >= end) return total;
   const double* reference = block.reference.data() + header_size;
@@ -166,8 +167,9 @@ ElementEnergies element_pair_loop(const ElementBlock& block, std::uint32_t begin
 }  // namespace
 
 ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
-                                double hourglass_coefficient, std::uint32_t first_element, std::uint32_t count,
-                                const std::uint32_t* connectivity, const NodalVectors& x_ref) {
+                                double hourglass_coefficient, std::uint32_t first_element,
+                                std::uint32_t count, const std::uint32_t* connectivity,
+                                const NodalVectors& x_ref) {
   ElementBlock block;
   block.formulation = formulation;
   block.material = material;
@@ -180,7 +182,8 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
   // structured boxes of this program), the general ones otherwise.
   bool all_parallelepipeds = true;
   for (std::uint32_t e = 0; e < count && all_parallelepipeds; ++e)
-    all_parallelepipeds = hex8::is_parallelepiped(gather(x_ref, connectivity + 8 * static_cast<std::size_t>(e)));
+    all_parallelepipeds =
+        hex8::is_parallelepiped(gather(x_ref, connectivity + 8 * static_cast<std::size_t>(e)));
   ReferenceLayout layout = ReferenceLayout::hex8_general;
   if (formulation == input::Formulation::hex8)
     layout = all_parallelepipeds ? ReferenceLayout::hex8_parallelepiped : ReferenceLayout::hex8_general;
@@ -197,7 +200,9 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
     double* reference = paired ? scratch.data() : block.reference.data() + header_size + stride * e;
     double min_det_jacobian = 0.0;
     switch (layout) {
-      case ReferenceLayout::hex8_general: min_det_jacobian = hex8::make_reference(x, reference); break;
+      case ReferenceLayout::hex8_general:
+        min_det_jacobian = hex8::make_reference(x, reference);
+        break;
       case ReferenceLayout::hex8_parallelepiped:
         min_det_jacobian = hex8::make_parallelepiped_reference(x, reference);
         break;
@@ -205,7 +210,8 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
         min_det_jacobian = hex8r::make_reference(x, material.mu, hourglass_coefficient, reference);
         break;
       case ReferenceLayout::hex8r_parallelepiped:
-        min_det_jacobian = hex8r::make_parallelepiped_reference(x, material.mu, hourglass_coefficient, reference);
+        min_det_jacobian =
+            hex8r::make_parallelepiped_reference(x, material.mu, hourglass_coefficient, reference);
         break;
     }
     if (!(min_det_jacobian > 0.0)) throw_inverted(first_element + e, min_det_jacobian);
@@ -226,36 +232,39 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
   const std::size_t stride = stride_of(layout);
   switch (layout) {
     case ReferenceLayout::hex8_general:
-      return element_loop(block, element_begin, element_end, stride, u, f_int, stress,
-                          [lambda, mu](const double* reference, const ElementVectors& u_local,
-                                       ElementVectors& f_local, material::SymTensor& s) {
-                            return ElementEnergies{hex8::internal_forces(reference, lambda, mu, u_local, f_local, s),
-                                                   0.0};
-                          });
+      return element_loop(
+          block, element_begin, element_end, stride, u, f_int, stress,
+          [lambda, mu](const double* reference, const ElementVectors& u_local, ElementVectors& f_local,
+                       material::SymTensor& s) {
+            return ElementEnergies{hex8::internal_forces(reference, lambda, mu, u_local, f_local, s), 0.0};
+          });
     case ReferenceLayout::hex8_parallelepiped:
-      return element_pair_loop(block, element_begin, element_end, stride, u, f_int, stress,
-                               [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
-                                            BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
-                                 return std::array<Pack2, 2>{
-                                     hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s),
-                                     Pack2{0.0, 0.0}};
-                               });
+      return element_pair_loop(
+          block, element_begin, element_end, stride, u, f_int, stress,
+          [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
+                       BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
+            return std::array<Pack2, 2>{
+                hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s),
+                Pack2{0.0, 0.0}};
+          });
     case ReferenceLayout::hex8r:
-      return element_pair_loop(block, element_begin, element_end, stride, u, f_int, stress,
-                               [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
-                                            BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
-                                 const hex8r::BasicEnergies<Pack2> e =
-                                     hex8r::internal_forces(reference, lambda, mu, u_local, f_local, s);
-                                 return std::array<Pack2, 2>{e.strain, e.hourglass};
-                               });
+      return element_pair_loop(
+          block, element_begin, element_end, stride, u, f_int, stress,
+          [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
+                       BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
+            const hex8r::BasicEnergies<Pack2> e =
+                hex8r::internal_forces(reference, lambda, mu, u_local, f_local, s);
+            return std::array<Pack2, 2>{e.strain, e.hourglass};
+          });
     case ReferenceLayout::hex8r_parallelepiped:
-      return element_pair_loop(block, element_begin, element_end, stride, u, f_int, stress,
-                               [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
-                                            BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
-                                 const hex8r::BasicEnergies<Pack2> e =
-                                     hex8r::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s);
-                                 return std::array<Pack2, 2>{e.strain, e.hourglass};
-                               });
+      return element_pair_loop(
+          block, element_begin, element_end, stride, u, f_int, stress,
+          [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
+                       BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
+            const hex8r::BasicEnergies<Pack2> e =
+                hex8r::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s);
+            return std::array<Pack2, 2>{e.strain, e.hourglass};
+          });
   }
   return {};
 }

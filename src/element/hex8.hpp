@@ -95,14 +95,22 @@ inline constexpr int mode_count = 8;
 inline constexpr double mode_value(int mode, int node) {
   const Vector3& s = node_natural_coordinates[node];
   switch (mode) {
-    case 0: return 1.0;
-    case 1: return s[0];
-    case 2: return s[1];
-    case 3: return s[2];
-    case 4: return s[1] * s[2];
-    case 5: return s[2] * s[0];
-    case 6: return s[0] * s[1];
-    default: return s[0] * s[1] * s[2];
+    case 0:
+      return 1.0;
+    case 1:
+      return s[0];
+    case 2:
+      return s[1];
+    case 3:
+      return s[2];
+    case 4:
+      return s[1] * s[2];
+    case 5:
+      return s[2] * s[0];
+    case 6:
+      return s[0] * s[1];
+    default:
+      return s[0] * s[1] * s[2];
   }
 }
 
@@ -217,7 +225,8 @@ inline constexpr std::array<std::array<int, 4>, 6> faces{
 inline double face_area(const ElementVectors& x, const std::array<int, 4>& face) {
   const Vector3 d1{x.x[face[2]] - x.x[face[0]], x.y[face[2]] - x.y[face[0]], x.z[face[2]] - x.z[face[0]]};
   const Vector3 d2{x.x[face[3]] - x.x[face[1]], x.y[face[3]] - x.y[face[1]], x.z[face[3]] - x.z[face[1]]};
-  const Vector3 n{d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2], d1[0] * d2[1] - d1[1] * d2[0]};
+  const Vector3 n{d1[1] * d2[2] - d1[2] * d2[1], d1[2] * d2[0] - d1[0] * d2[2],
+                  d1[0] * d2[1] - d1[1] * d2[0]};
   return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
 }
 
@@ -282,7 +291,8 @@ inline std::array<material::SymTensor, 8> gauss_point_stresses(const ElementVect
   std::array<material::SymTensor, 8> stresses{};
   for (int g = 0; g < 8; ++g) {
     const Vector3& s = node_natural_coordinates[g];
-    const Matrix3 d = natural_gradient(c, gauss_abscissa * s[0], gauss_abscissa * s[1], gauss_abscissa * s[2]);
+    const Matrix3 d =
+        natural_gradient(c, gauss_abscissa * s[0], gauss_abscissa * s[1], gauss_abscissa * s[2]);
     const Matrix3& r = geometry.inverse_jacobian[g];
     Matrix3 h{};
     for (int i = 0; i < 3; ++i)
@@ -391,7 +401,8 @@ inline double internal_forces(const double* reference, double lambda, double mu,
       f4 += gauss_sign_zeta[g] * p[1][g] + gauss_sign_eta[g] * p[2][g];
       f5 += gauss_sign_zeta[g] * p[0][g] + gauss_sign_xi[g] * p[2][g];
       f6 += gauss_sign_eta[g] * p[0][g] + gauss_sign_xi[g] * p[1][g];
-      f7 += gauss_sign_eta_zeta[g] * p[0][g] + gauss_sign_zeta_xi[g] * p[1][g] + gauss_sign_xi_eta[g] * p[2][g];
+      f7 +=
+          gauss_sign_eta_zeta[g] * p[0][g] + gauss_sign_zeta_xi[g] * p[1][g] + gauss_sign_xi_eta[g] * p[2][g];
     }
     std::array<double, 8>& fm = *force_modes[i];
     fm = {0.0, f1, f2, f3, a * f4, a * f5, a * f6, a2 * f7};
@@ -435,10 +446,12 @@ namespace detail {
 // zero): sigma_t = C : sym(M_t dxi/dx), and out_a += weight (sigma_t (dxi/dx)^T)[:, a]
 // for the same columns. Returns sigma_t.
 template <bool column0, bool column1, bool column2, class Real>
-inline std::array<Real, 6> parallelepiped_term(double lambda, double mu, const std::array<Real, 9>& inverse_jacobian,
+inline std::array<Real, 6> parallelepiped_term(double lambda, double mu,
+                                               const std::array<Real, 9>& inverse_jacobian,
                                                const std::array<Real, 3>& d0, const std::array<Real, 3>& d1,
-                                               const std::array<Real, 3>& d2, Real weight, std::array<Real, 3>& out0,
-                                               std::array<Real, 3>& out1, std::array<Real, 3>& out2) {
+                                               const std::array<Real, 3>& d2, Real weight,
+                                               std::array<Real, 3>& out0, std::array<Real, 3>& out1,
+                                               std::array<Real, 3>& out2) {
   const std::array<Real, 9>& r = inverse_jacobian;
   std::array<Real, 9> h{};
   for (int i = 0; i < 3; ++i)
@@ -483,11 +496,11 @@ inline Real parallelepiped_internal_forces(const double* reference, double lambd
   std::array<Real, 3> unused{};
   const std::array<Real, 3>& none = unused;
   // M_1 = [c1 | c2 | c3]
-  mean_stress = detail::parallelepiped_term<true, true, true>(lambda, mu, inverse_jacobian, cm[1], cm[2], cm[3], w,
-                                                              force[1], force[2], force[3]);
+  mean_stress = detail::parallelepiped_term<true, true, true>(lambda, mu, inverse_jacobian, cm[1], cm[2],
+                                                              cm[3], w, force[1], force[2], force[3]);
   // M_xi = [0 | c6 | c5], M_eta = [c6 | 0 | c4], M_zeta = [c5 | c4 | 0]
-  detail::parallelepiped_term<false, true, true>(lambda, mu, inverse_jacobian, none, cm[6], cm[5], w_linear, unused,
-                                                 force[6], force[5]);
+  detail::parallelepiped_term<false, true, true>(lambda, mu, inverse_jacobian, none, cm[6], cm[5], w_linear,
+                                                 unused, force[6], force[5]);
   detail::parallelepiped_term<true, false, true>(lambda, mu, inverse_jacobian, cm[6], none, cm[4], w_linear,
                                                  force[6], unused, force[4]);
   detail::parallelepiped_term<true, true, false>(lambda, mu, inverse_jacobian, cm[5], cm[4], none, w_linear,

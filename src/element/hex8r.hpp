@@ -143,8 +143,8 @@ inline BasicEnergies<Real> internal_forces(const double* reference, double lambd
   for (int i = 0; i < 3; ++i) {
     Real s[3];
     for (int j = 0; j < 3; ++j)
-      s[j] = volume_8 * (sm[i][j] - k_over_volume * (q[0][i] * g[j] + q[1][i] * g[3 + j] + q[2][i] * g[6 + j] +
-                                                     q[3][i] * g[9 + j]));
+      s[j] = volume_8 * (sm[i][j] - k_over_volume * (q[0][i] * g[j] + q[1][i] * g[3 + j] +
+                                                     q[2][i] * g[6 + j] + q[3][i] * g[9 + j]));
     for (int m = 1; m < 8; ++m)
       fm[i][m] = s[0] * beta[3 * (m - 1)] + s[1] * beta[3 * (m - 1) + 1] + s[2] * beta[3 * (m - 1) + 2];
     for (int alpha = 0; alpha < 4; ++alpha) fm[i][4 + alpha] += k * q[alpha][i];
@@ -163,8 +163,8 @@ inline BasicEnergies<Real> internal_forces(const double* reference, double lambd
 // ---------------------------------------------------------------------------
 inline constexpr int parallelepiped_reference_size = 11;
 
-inline double make_parallelepiped_reference(const ElementVectors& x_ref, double mu, double hourglass_coefficient,
-                                            double* reference) {
+inline double make_parallelepiped_reference(const ElementVectors& x_ref, double mu,
+                                            double hourglass_coefficient, double* reference) {
   std::array<double, reference_size> general{};
   const double min_det_jacobian = make_reference(x_ref, mu, hourglass_coefficient, general.data());
   for (int k = 0; k < 9; ++k) reference[k] = general[k];
@@ -179,7 +179,8 @@ inline double make_parallelepiped_reference(const ElementVectors& x_ref, double 
 template <class Real>
 inline BasicEnergies<Real> parallelepiped_internal_forces(const double* reference, double lambda, double mu,
                                                           const BasicElementVectors<Real>& u,
-                                                          BasicElementVectors<Real>& f, std::array<Real, 6>& stress) {
+                                                          BasicElementVectors<Real>& f,
+                                                          std::array<Real, 6>& stress) {
   const hex8::BasicElementModes<Real> c = hex8::modes_from_nodal(u);
   std::array<Real, 9> beta;
   for (int k = 0; k < 9; ++k) beta[k] = load<Real>(reference, k);

@@ -41,9 +41,9 @@ Box make_box(int nx, int ny, int nz, double h) {
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
       for (int i = 0; i < nx; ++i) {
-        const std::uint32_t element[8] = {node(i, j, k),         node(i + 1, j, k),     node(i + 1, j + 1, k),
-                                          node(i, j + 1, k),     node(i, j, k + 1),     node(i + 1, j, k + 1),
-                                          node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
+        const std::uint32_t element[8] = {
+            node(i, j, k),     node(i + 1, j, k),     node(i + 1, j + 1, k),     node(i, j + 1, k),
+            node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
         box.connectivity.insert(box.connectivity.end(), element, element + 8);
         ++box.count;
       }
@@ -120,7 +120,8 @@ void check_block_against_hand_summed_elements(input::Formulation formulation) {
   EXPECT_NEAR(energies.hourglass, hourglass, 1e-12 * (strain + hourglass));
   // Entries of other blocks' elements are untouched.
   for (std::uint32_t k = 0; k < 6 * first_element; ++k) EXPECT_EQ(stress[k], sentinel);
-  for (std::size_t k = 6 * (first_element + box.count); k < stress.size(); ++k) EXPECT_EQ(stress[k], sentinel);
+  for (std::size_t k = 6 * (first_element + box.count); k < stress.size(); ++k)
+    EXPECT_EQ(stress[k], sentinel);
 
   // Adding again, in two ranges, doubles the forces (f_int +=).
   const ElementEnergies first = add_internal_forces(block, 0, 3, u, f_int, stress.data());
@@ -227,8 +228,8 @@ void check_odd_counts_and_ranges(bool distorted) {
   }
   for (input::Formulation formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
     const std::uint32_t first_element = 3;
-    const ElementBlock block =
-        make_element_block(formulation, steel, 0.05, first_element, box.count, box.connectivity.data(), box.x_ref);
+    const ElementBlock block = make_element_block(formulation, steel, 0.05, first_element, box.count,
+                                                  box.connectivity.data(), box.x_ref);
     ASSERT_EQ(uses_parallelepiped_kernel(block), !distorted);
     for (std::uint32_t begin = 0; begin <= box.count; ++begin) {
       for (std::uint32_t end = begin; end <= box.count; ++end) {
@@ -268,13 +269,15 @@ void check_odd_counts_and_ranges(bool distorted) {
 
 TEST(ElementBlock, BoxBlocksHandleOddCountsAndRangesStartingAnywhere) { check_odd_counts_and_ranges(false); }
 
-TEST(ElementBlock, DistortedBlocksHandleOddCountsAndRangesStartingAnywhere) { check_odd_counts_and_ranges(true); }
+TEST(ElementBlock, DistortedBlocksHandleOddCountsAndRangesStartingAnywhere) {
+  check_odd_counts_and_ranges(true);
+}
 
 TEST(ElementBlock, LumpedMassOfCubeIsRhoHCubedOverEightPerNode) {
   const double h = 2.5e-5;
   const Box box = make_box(1, 1, 1, h);
-  const ElementBlock block =
-      make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count, box.connectivity.data(), box.x_ref);
+  const ElementBlock block = make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count,
+                                                box.connectivity.data(), box.x_ref);
   std::vector<double> mass(box.x_ref.size(), 0.0);
   add_lumped_mass(block, box.x_ref, mass);
   for (double m : mass) EXPECT_NEAR(m, steel.density * h * h * h / 8, 1e-12 * m);
@@ -283,8 +286,8 @@ TEST(ElementBlock, LumpedMassOfCubeIsRhoHCubedOverEightPerNode) {
 TEST(ElementBlock, LumpedMassOfDistortedPatchSumsToRhoV) {
   std::mt19937_64 rng(43);
   const Box box = distorted_patch(rng);
-  const ElementBlock block =
-      make_element_block(input::Formulation::hex8r, steel, 0.05, 0, box.count, box.connectivity.data(), box.x_ref);
+  const ElementBlock block = make_element_block(input::Formulation::hex8r, steel, 0.05, 0, box.count,
+                                                box.connectivity.data(), box.x_ref);
   std::vector<double> mass(box.x_ref.size(), 0.0);
   add_lumped_mass(block, box.x_ref, mass);
   double total = 0.0, volume = 0.0;
@@ -300,8 +303,8 @@ TEST(ElementBlock, LumpedMassOfDistortedPatchSumsToRhoV) {
 TEST(ElementBlock, CriticalTimeStepOfCubeIsSideOverDilatationalWaveSpeed) {
   const double h = 2.5e-5;
   const Box box = make_box(2, 1, 1, h);
-  const ElementBlock block =
-      make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count, box.connectivity.data(), box.x_ref);
+  const ElementBlock block = make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count,
+                                                box.connectivity.data(), box.x_ref);
   const double c1 = std::sqrt((steel.lambda + 2 * steel.mu) / steel.density);
   EXPECT_NEAR(critical_time_step(block, box.x_ref), h / c1, 1e-12 * h / c1);
   // The plate-impact step: Courant 0.125 gives 5.1909e-10 s.
@@ -313,8 +316,8 @@ TEST(ElementBlock, CriticalTimeStepUsesTheSmallestElement) {
   // Squash the second element to half its length along x.
   for (std::size_t n = 0; n < box.x_ref.size(); ++n)
     if (box.x_ref.x[n] > 1.5) box.x_ref.x[n] = 1.5;
-  const ElementBlock block =
-      make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count, box.connectivity.data(), box.x_ref);
+  const ElementBlock block = make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count,
+                                                box.connectivity.data(), box.x_ref);
   EXPECT_NEAR(critical_time_step(block, box.x_ref) * steel.dilatational_wave_speed(), 0.5, 1e-14);
 }
 
@@ -325,7 +328,8 @@ TEST(ElementBlock, InvertedElementIsAnErrorNamingTheElement) {
   std::swap(box.connectivity[2], box.connectivity[6]);
   std::swap(box.connectivity[3], box.connectivity[7]);
   try {
-    make_element_block(input::Formulation::hex8, steel, 0.0, 17, box.count, box.connectivity.data(), box.x_ref);
+    make_element_block(input::Formulation::hex8, steel, 0.0, 17, box.count, box.connectivity.data(),
+                       box.x_ref);
     FAIL() << "expected an InputError";
   } catch (const InputError& error) {
     EXPECT_NE(std::string(error.what()).find("element 17"), std::string::npos) << error.what();
@@ -340,8 +344,8 @@ TEST(ElementBlock, RowOfHex8EqualsTheOneDimensionalChainOfThePlateImpact) {
   const int n = 100;
   const double h = 2.5e-5, v0 = 1.0;
   const Box box = make_box(n, 1, 1, h);
-  const ElementBlock block =
-      make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count, box.connectivity.data(), box.x_ref);
+  const ElementBlock block = make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count,
+                                                box.connectivity.data(), box.x_ref);
   std::vector<double> mass(box.x_ref.size(), 0.0);
   add_lumped_mass(block, box.x_ref, mass);
   const double dt = 0.125 * critical_time_step(block, box.x_ref);

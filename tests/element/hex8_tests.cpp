@@ -43,7 +43,8 @@ KernelOutput run_parallelepiped(const ElementVectors& x, const ElementVectors& u
   std::array<double, hex8::parallelepiped_reference_size> reference{};
   EXPECT_GT(hex8::make_parallelepiped_reference(x, reference.data()), 0.0);
   KernelOutput out;
-  out.energy = hex8::parallelepiped_internal_forces(reference.data(), m.lambda, m.mu, u, out.force, out.stress);
+  out.energy =
+      hex8::parallelepiped_internal_forces(reference.data(), m.lambda, m.mu, u, out.force, out.stress);
   return out;
 }
 
@@ -215,7 +216,11 @@ TEST(Hex8, InfinitesimalRotationGivesZeroForce) {
 
 // The exact stress of the linear field u = A x + d.
 material::SymTensor exact_stress(const Eigen::Matrix3d& a) {
-  const material::SymTensor strain{a(0, 0), a(1, 1), a(2, 2), 0.5 * (a(0, 1) + a(1, 0)), 0.5 * (a(1, 2) + a(2, 1)),
+  const material::SymTensor strain{a(0, 0),
+                                   a(1, 1),
+                                   a(2, 2),
+                                   0.5 * (a(0, 1) + a(1, 0)),
+                                   0.5 * (a(1, 2) + a(2, 1)),
                                    0.5 * (a(0, 2) + a(2, 0))};
   return material::stress_from_strain(steel, strain);
 }
@@ -236,7 +241,8 @@ TEST(Hex8, PatchTestLinearFieldGivesExactStressAtEveryGaussPointAndAsMean) {
   std::mt19937_64 rng(9);
   const Eigen::Matrix3d a = some_gradient();
   const material::SymTensor expected = exact_stress(a);
-  for (const ElementVectors& x : {cube(1.0), random_distorted_hex(rng), random_distorted_hex(rng, 1e-3, 0.25)}) {
+  for (const ElementVectors& x :
+       {cube(1.0), random_distorted_hex(rng), random_distorted_hex(rng, 1e-3, 0.25)}) {
     const ElementVectors u = linear_field(x, a, Eigen::Vector3d(1e-4, 2e-4, -1e-4));
     for (const material::SymTensor& s : hex8::gauss_point_stresses(x, steel.lambda, steel.mu, u))
       expect_stress_near(s, expected);
@@ -325,7 +331,8 @@ TEST(Hex8, UniaxialStrainOfCubeGivesDilatationalModulusTimesStrain) {
   EXPECT_NEAR(out.stress[1], steel.lambda * strain, 1e-9 * std::abs(out.stress[0]));
   EXPECT_NEAR(out.stress[2], steel.lambda * strain, 1e-9 * std::abs(out.stress[0]));
   for (int I = 0; I < 8; ++I)
-    EXPECT_NEAR(out.force.x[I], (x.x[I] > 0 ? 1 : -1) * out.stress[0] * h * h / 4, 1e-9 * std::abs(out.stress[0]) * h * h);
+    EXPECT_NEAR(out.force.x[I], (x.x[I] > 0 ? 1 : -1) * out.stress[0] * h * h / 4,
+                1e-9 * std::abs(out.stress[0]) * h * h);
 }
 
 }  // namespace

@@ -30,7 +30,8 @@ struct KernelOutput {
   double k = 0.0;  // hourglass stiffness used
 };
 
-KernelOutput run(const ElementVectors& x, const ElementVectors& u, double hourglass_coefficient = coefficient) {
+KernelOutput run(const ElementVectors& x, const ElementVectors& u,
+                 double hourglass_coefficient = coefficient) {
   std::array<double, hex8r::reference_size> reference{};
   EXPECT_GT(hex8r::make_reference(x, steel.mu, hourglass_coefficient, reference.data()), 0.0);
   KernelOutput out;
@@ -43,8 +44,8 @@ KernelOutput run_parallelepiped(const ElementVectors& x, const ElementVectors& u
   std::array<double, hex8r::parallelepiped_reference_size> reference{};
   EXPECT_GT(hex8r::make_parallelepiped_reference(x, steel.mu, coefficient, reference.data()), 0.0);
   KernelOutput out;
-  out.energies =
-      hex8r::parallelepiped_internal_forces(reference.data(), steel.lambda, steel.mu, u, out.force, out.stress);
+  out.energies = hex8r::parallelepiped_internal_forces(reference.data(), steel.lambda, steel.mu, u, out.force,
+                                                       out.stress);
   out.k = reference[10];
   return out;
 }
@@ -125,12 +126,17 @@ TEST(Hex8r, PatchTestLinearFieldGivesExactStress) {
   std::mt19937_64 rng(25);
   Eigen::Matrix3d a;
   a << 1e-3, 2e-4, -3e-4, 5e-4, -7e-4, 1e-4, -2e-4, 3e-4, 4e-4;
-  const material::SymTensor strain{a(0, 0), a(1, 1), a(2, 2), 0.5 * (a(0, 1) + a(1, 0)), 0.5 * (a(1, 2) + a(2, 1)),
+  const material::SymTensor strain{a(0, 0),
+                                   a(1, 1),
+                                   a(2, 2),
+                                   0.5 * (a(0, 1) + a(1, 0)),
+                                   0.5 * (a(1, 2) + a(2, 1)),
                                    0.5 * (a(0, 2) + a(2, 0))};
   const material::SymTensor expected = material::stress_from_strain(steel, strain);
   double scale = 0.0;
   for (double value : expected) scale = std::max(scale, std::abs(value));
-  for (const ElementVectors& x : {cube(1.0), random_distorted_hex(rng), random_distorted_hex(rng, 1e-3, 0.25)}) {
+  for (const ElementVectors& x :
+       {cube(1.0), random_distorted_hex(rng), random_distorted_hex(rng, 1e-3, 0.25)}) {
     const KernelOutput out = run(x, linear_field(x, a, Eigen::Vector3d(1e-4, 2e-4, -1e-4)));
     for (int k = 0; k < 6; ++k) EXPECT_NEAR(out.stress[k], expected[k], 1e-12 * scale);
   }
@@ -167,7 +173,8 @@ TEST(Hex8r, HourglassModeGivesForceExactlyScaledByK) {
       EXPECT_NEAR(out.energies.hourglass, 0.5 * out.k * 64 * amplitude * amplitude,
                   1e-12 * out.energies.hourglass);
       EXPECT_LT(std::abs(out.energies.strain), 1e-12 * out.energies.hourglass);
-      const std::array<double, 8>& fi = component == 0 ? out.force.x : (component == 1 ? out.force.y : out.force.z);
+      const std::array<double, 8>& fi =
+          component == 0 ? out.force.x : (component == 1 ? out.force.y : out.force.z);
       for (int I = 0; I < 8; ++I)
         EXPECT_NEAR(fi[I], out.k * 8 * amplitude * hex8::mode_value(4 + alpha, I), 1e-12 * out.k * amplitude);
     }
@@ -262,7 +269,8 @@ TEST(Hex8r, ParallelepipedKernelHasZeroForceForRigidMotionAndExactHourglassForce
   ElementVectors hourglass;
   for (int I = 0; I < 8; ++I) hourglass.y[I] = 1e-6 * hex8::mode_value(7, I);
   const KernelOutput out = run_parallelepiped(x, hourglass);
-  for (int I = 0; I < 8; ++I) EXPECT_NEAR(out.force.y[I], 8 * out.k * 1e-6 * hex8::mode_value(7, I), 1e-12 * out.k * 1e-6);
+  for (int I = 0; I < 8; ++I)
+    EXPECT_NEAR(out.force.y[I], 8 * out.k * 1e-6 * hex8::mode_value(7, I), 1e-12 * out.k * 1e-6);
   EXPECT_NEAR(out.energies.hourglass, 0.5 * out.k * 64e-12, 1e-12 * out.energies.hourglass);
 }
 

@@ -103,14 +103,16 @@ struct ReferenceResult {
 };
 
 // Fully integrated hex8: 8 Gauss points, f = sum B^T sigma w det J.
-inline ReferenceResult reference_hex8(const ElementVectors& x, double lambda, double mu, const ElementVectors& u) {
+inline ReferenceResult reference_hex8(const ElementVectors& x, double lambda, double mu,
+                                      const ElementVectors& u) {
   const double g = 1.0 / std::sqrt(3.0);
   const Eigen::Matrix<double, 6, 6> c = elasticity_matrix(lambda, mu);
   const Vector24 displacement = to_vector(u);
   ReferenceResult result;
   double volume = 0.0;
   for (int p = 0; p < 8; ++p) {
-    const GaussPointKinematics k = kinematics(x, g * node_sign[p][0], g * node_sign[p][1], g * node_sign[p][2]);
+    const GaussPointKinematics k =
+        kinematics(x, g * node_sign[p][0], g * node_sign[p][1], g * node_sign[p][2]);
     const Eigen::Matrix<double, 6, 1> strain = k.b * displacement;
     const Eigen::Matrix<double, 6, 1> stress = c * strain;
     result.force += k.b.transpose() * stress * k.det_jacobian;
@@ -132,7 +134,8 @@ inline ReferenceResult reference_hex8r(const ElementVectors& x, double lambda, d
   Eigen::Matrix<double, 8, 3> b = Eigen::Matrix<double, 8, 3>::Zero();
   double volume = 0.0;
   for (int p = 0; p < 8; ++p) {
-    const GaussPointKinematics k = kinematics(x, g * node_sign[p][0], g * node_sign[p][1], g * node_sign[p][2]);
+    const GaussPointKinematics k =
+        kinematics(x, g * node_sign[p][0], g * node_sign[p][1], g * node_sign[p][2]);
     b += k.dn_dx * k.det_jacobian;
     volume += k.det_jacobian;
   }
@@ -202,7 +205,8 @@ inline ElementVectors random_distorted_hex(std::mt19937_64& rng, double size = 1
   const Eigen::Vector3d shift(unit(rng), unit(rng), unit(rng));
   ElementVectors x;
   for (int I = 0; I < 8; ++I) {
-    Eigen::Vector3d p(0.5 * size * node_sign[I][0], 0.5 * size * node_sign[I][1], 0.5 * size * node_sign[I][2]);
+    Eigen::Vector3d p(0.5 * size * node_sign[I][0], 0.5 * size * node_sign[I][1],
+                      0.5 * size * node_sign[I][2]);
     for (int i = 0; i < 3; ++i) p(i) += distortion * size * unit(rng);
     p = map * p + size * shift;
     x.x[I] = p(0);
@@ -221,7 +225,8 @@ inline ElementVectors random_parallelepiped(std::mt19937_64& rng, double size = 
   const Eigen::Vector3d shift(unit(rng), unit(rng), unit(rng));
   ElementVectors x;
   for (int I = 0; I < 8; ++I) {
-    Eigen::Vector3d p(0.5 * size * node_sign[I][0], 0.5 * size * node_sign[I][1], 0.5 * size * node_sign[I][2]);
+    Eigen::Vector3d p(0.5 * size * node_sign[I][0], 0.5 * size * node_sign[I][1],
+                      0.5 * size * node_sign[I][2]);
     p = map * p + size * shift;
     x.x[I] = p(0);
     x.y[I] = p(1);
@@ -242,7 +247,8 @@ inline ElementVectors random_vectors(std::mt19937_64& rng, double scale = 1.0e-3
 }
 
 // u = A x + d at every node.
-inline ElementVectors linear_field(const ElementVectors& x, const Eigen::Matrix3d& a, const Eigen::Vector3d& d) {
+inline ElementVectors linear_field(const ElementVectors& x, const Eigen::Matrix3d& a,
+                                   const Eigen::Vector3d& d) {
   ElementVectors u;
   for (int I = 0; I < 8; ++I) {
     const Eigen::Vector3d p(x.x[I], x.y[I], x.z[I]);

@@ -61,7 +61,7 @@ class RobustSearch {
     for (int restart = 0; restart <= max_restarts; ++restart) {
       converged = newton(xi, l);
       // Hessian check on the free variables.
-      const bool free0 = !held(xi[0], l.g[0]), free1 = !held(xi[1], l.g[1]);
+      const bool free0 = !fixed(xi, l, 0), free1 = !fixed(xi, l, 1);
       const double zero = curvature_zero(l);
       Xi direction{0.0, 0.0};
       if (free0 && free1) {
@@ -85,6 +85,19 @@ class RobustSearch {
       l = better;
     }
     return {xi, l.f, converged};
+  }
+
+  // The same with xi[a] held at its bound whatever the gradient: the
+  // constrained minimum along that edge. Kept only when it is a minimum of
+  // the square's problem there (the gradient points out of the square).
+  Run descend_on_edge(Xi start, int a) {
+    pinned_ = a;
+    Run run = descend(start);
+    pinned_ = -1;
+    const LocalGradient lg = evaluate_gradient(s_, ys_, run.xi);
+    ++counts_.evaluations;
+    if (!held(run.xi[a], lg.g[a])) run.f = std::numeric_limits<double>::infinity();
+    return run;
   }
 
   // Steps until |step| <= tolerance; returns whether that test was met.
@@ -143,13 +156,16 @@ class RobustSearch {
   // -g on the free variables, with the exact step along it when the curvature
   // is positive, else a parametric length of 2.
   Xi gradient_direction(Xi xi, const Local& l) const {
-    Xi p{held(xi[0], l.g[0]) ? 0.0 : -l.g[0], held(xi[1], l.g[1]) ? 0.0 : -l.g[1]};
+    Xi p{fixed(xi, l, 0) ? 0.0 : -l.g[0], fixed(xi, l, 1) ? 0.0 : -l.g[1]};
     const double pp = dot2(p, p);
     if (!(pp > 0.0)) return {0.0, 0.0};
     const double curvature = dot2(p, l.H * p);
     const double alpha = curvature > 0.0 ? pp / curvature : 2.0 / std::sqrt(pp);
     return scaled(alpha, p);
   }
+
+  // Variable a does not move: an active bound, or the edge of descend_on_edge.
+  bool fixed(Xi xi, const Local& l, int a) const { return a == pinned_ || held(xi[a], l.g[a]); }
 
   double curvature_zero(const Local& l) const {
     const double r_norm = std::sqrt(l.f);
@@ -168,7 +184,7 @@ class RobustSearch {
 
   // The search direction on the free variables.
   Xi direction(Xi xi, const Local& l) const {
-    const bool free0 = !held(xi[0], l.g[0]), free1 = !held(xi[1], l.g[1]);
+    const bool free0 = !fixed(xi, l, 0), free1 = !fixed(xi, l, 1);
     const double zero = curvature_zero(l);
     if (free0 && free1) {
       const double d = det(l.H);
@@ -209,6 +225,7 @@ class RobustSearch {
   const ProjectionSettings& settings_;
   ProjectionResult& counts_;
   double f_noise_ = 0.0;
+  int pinned_ = -1;  // a variable held at its bound by descend_on_edge, or -1
 };
 
 // f on the grid, row by row: y(u, v) = A(v) + u B(v) + u^2 C(v).
@@ -338,19 +355,24 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
     const double margin = 0.25 * lambda * h * h;
     int extra = 0;
     // (d) an interior point found near an edge may hide a constrained minimum
-    // on that edge, beyond a ridge thinner than the grid: descend from the
-    // point's projection on each edge within 1.5 h when f decreases out there.
+    // on that edge beyond a ridge thinner than the grid: descend along each
+    // edge within 1.5 h from the point's projection on it.
+    // (e) Conversely, a point found on an edge may hide an interior minimum
+    // just inside it: descend from the point moved h / 2 into the square.
     const int descents = found_count;
-    for (int k = 0; k < descents && extra < max_second_chances; ++k) {
-      for (int a = 0; a < 2; ++a) {
+    for (int k = 0; k < descents; ++k) {
+      for (int a = 0; a < 2 && extra < max_second_chances; ++a) {
         const double x = found[k][a];
-        if (std::fabs(x) >= 1.0 || std::fabs(x) < 1.0 - 1.5 * h) continue;
+        if (std::fabs(x) < 1.0 - 1.5 * h) continue;
         Xi q = found[k];
-        q[a] = x > 0.0 ? 1.0 : -1.0;
-        const LocalGradient lg = evaluate_gradient(s, ys, q);
-        ++result.evaluations;
-        if (!held(q[a], lg.g[a]) || extra >= max_second_chances) continue;
-        const Run run = search.descend(q);
+        Run run;
+        if (std::fabs(x) < 1.0) {  // (d)
+          q[a] = x > 0.0 ? 1.0 : -1.0;
+          run = search.descend_on_edge(q, a);
+        } else {  // (e)
+          q[a] = x > 0.0 ? 1.0 - 0.5 * h : -1.0 + 0.5 * h;
+          run = search.descend(q);
+        }
         found[found_count++] = run.xi;
         ++extra;
         if (run.f < best.f) best = run;

@@ -1,0 +1,163 @@
+"""Pictures of a plate impact result with ParaView (issue 5). Needs X: run it through
+../shared/tools/paraview/run_pvpython.sh, which starts xvfb.
+
+    run_pvpython.sh scripts/paraview/plate_pictures.py RESULT.xmf --out-dir DIR \
+        [--prefix results_pv] [--range -6e7 6e7] [--scale 1000] [--time T]
+
+Writes, at the last time (or --time):
+  PREFIX_sigma_xx.png  the mesh warped by displacement x SCALE, coloured by stress XX
+                       (Pa) with a fixed colour range, the z = 0 sample line drawn on it;
+  PREFIX_line.png      ParaView's PlotOverLine along z = 0 (sigma_x* = sigma_x c1 / (lambda v0)
+                       against x/d), with the exact step;
+  PREFIX_line.csv      the samples of that line.
+The line runs through cell interiors (y = z = h/2, h the y thickness of the
+one-element-thick plates): a line on the cell faces samples whichever neighbour it hits.
+Prints one JSON line; exit status 0 when both PNGs were written.
+"""
+import argparse
+import json
+import math
+import os
+import sys
+
+# The case (../shared/reference/plate-impact.md).
+E_MODULUS, POISSON, DENSITY, V0 = 2.1e11, 0.3, 7800.0, 1.0
+LAMBDA = E_MODULUS * POISSON / ((1 + POISSON) * (1 - 2 * POISSON))
+C1 = math.sqrt((LAMBDA + E_MODULUS / (1 + POISSON)) / DENSITY)
+PLATEAU_X = -(1 - POISSON) / POISSON
+FRONT_OVER_D = 0.56
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("xmf")
+    p.add_argument("--out-dir", default=".")
+    p.add_argument("--prefix", default="results_pv")
+    p.add_argument("--range", type=float, nargs=2, default=[-6.0e7, 6.0e7], metavar=("MIN", "MAX"),
+                   help="fixed colour range of stress XX in Pa")
+    p.add_argument("--scale", type=float, default=1000.0, help="displacement warp factor")
+    p.add_argument("--time", type=float, default=None)
+    p.add_argument("--size", type=int, nargs=2, default=[1000, 560])
+    args = p.parse_args()
+    if not os.path.exists(args.xmf):
+        print(json.dumps({"ok": False, "error": "file not found: %s" % args.xmf}))
+        return 2
+    import numpy as np
+    import paraview.simple as ps
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+
+    os.makedirs(args.out_dir, exist_ok=True)
+    xmf = os.path.abspath(args.xmf)
+    reader = ps.Xdmf3ReaderS(FileName=[xmf])
+    reader.UpdatePipelineInformation()
+    times = [float(t) for t in (reader.TimestepValues or [0.0])]
+    t = times[-1] if args.time is None else min(times, key=lambda x: abs(x - args.time))
+    reader.UpdatePipeline(t)  # explicitly, or downstream filters may come out empty
+    b = reader.GetDataInformation().GetBounds()
+    h = b[3] - b[2]                      # one element thick in y: the element size
+    d = max(-b[0], b[1])                 # plates from -d to 0 and 0 to d (or one plate)
+
+    # --- the warped mesh coloured by sigma_xx ------------------------------------------
+    warp = ps.WarpByVector(Input=reader)
+    warp.Vectors = ["POINTS", "displacement"]
+    warp.ScaleFactor = args.scale
+    warp.UpdatePipeline(t)
+    view = ps.CreateView("RenderView")
+    view.ViewSize = list(args.size)
+    view.ViewTime = t
+    view.OrientationAxesVisibility = 1
+    try:
+        view.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    view.Background = [1.0, 1.0, 1.0]
+    disp = ps.Show(warp, view)
+    disp.SetRepresentationType("Surface")
+    ps.ColorBy(disp, ("CELLS", "stress", "XX"))
+    lut = ps.GetColorTransferFunction("stress")
+    lut.VectorMode = "Component"
+    lut.VectorComponent = 0
+    lut.ApplyPreset("Cool to Warm", True)
+    lut.RescaleTransferFunction(args.range[0], args.range[1])
+    lut.AutomaticRescaleRangeMode = "Never"
+    disp.SetScalarBarVisibility(view, True)
+    bar = ps.GetScalarBar(lut, view)
+    bar.Title = "stress XX (Pa)"
+    bar.ComponentTitle = ""
+    bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
+    bar.TitleFontSize = bar.LabelFontSize = 14
+    bar.RangeLabelFormat = "%-#6.2g"
+
+    line_src = ps.Line(Point1=[-d, h / 2, h / 2], Point2=[d, h / 2, h / 2])
+    line_disp = ps.Show(line_src, view)
+    line_disp.AmbientColor = line_disp.DiffuseColor = [0.0, 0.0, 0.0]
+    line_disp.LineWidth = 3.0
+    text = ps.Text(Text="%s   t = %.4g s   displacement x %g\nblack line: PlotOverLine along z = h/2"
+                   % (os.path.basename(xmf), t, args.scale))
+    text_disp = ps.Show(text, view)
+    text_disp.Color = [0.0, 0.0, 0.0]
+    text_disp.FontSize = 14
+    text_disp.WindowLocation = "Upper Left Corner"
+
+    view.ResetCamera()
+    cam = view.GetActiveCamera()
+    fp = cam.GetFocalPoint()
+    cam.SetPosition(fp[0], fp[1] - 1.0, fp[2])   # look along +y at the x-z plane, z up
+    cam.SetViewUp(0, 0, 1)
+    view.ResetCamera()
+    cam.Zoom(1.7)
+    ps.Render(view)
+    png_field = os.path.join(args.out_dir, args.prefix + "_sigma_xx.png")
+    ps.SaveScreenshot(png_field, view, ImageResolution=list(args.size))
+    ps.Delete(view)   # before teardown: a view left to exit gives GLXBadContext under Xvfb
+    del view
+
+    # --- PlotOverLine along z = 0 --------------------------------------------------------
+    pol = ps.PlotOverLine(Input=reader)
+    pol.Point1 = [-d + 1e-3 * h, h / 2, h / 2]
+    pol.Point2 = [d - 1e-3 * h, h / 2, h / 2]
+    pol.SamplingPattern = "Sample At Segment Centers"
+    pol.UpdatePipeline(t)
+    out = pol.GetClientSideObject().GetOutputDataObject(0)
+    if out.IsA("vtkCompositeDataSet"):
+        merged = ps.MergeBlocks(Input=pol)
+        merged.UpdatePipeline(t)
+        out = merged.GetClientSideObject().GetOutputDataObject(0)
+    pd = out.GetPointData()
+    pts = vtk_to_numpy(out.GetPoints().GetData())
+    mask = vtk_to_numpy(pd.GetArray("vtkValidPointMask")).astype(bool)
+    stress = vtk_to_numpy(pd.GetArray("stress")).reshape(len(pts), -1)
+    x = pts[mask, 0]
+    sx = stress[mask, 0] * C1 / (LAMBDA * V0)
+    csv = os.path.join(args.out_dir, args.prefix + "_line.csv")
+    np.savetxt(csv, np.column_stack([x, stress[mask, 0], sx]), delimiter=",",
+               header="x,stress_xx,sigma_x_star", comments="", fmt="%.17g")
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7.0, 3.6), dpi=100)
+    ax.plot(x / d, sx, color="C0", lw=1.2, label="ParaView PlotOverLine, z = h/2")
+    xe = np.array([-1, -FRONT_OVER_D, -FRONT_OVER_D, FRONT_OVER_D, FRONT_OVER_D, 1])
+    ye = np.array([0, 0, PLATEAU_X, PLATEAU_X, 0, 0])
+    if b[1] <= 1e-12 * d:   # one plate (reference): only x < 0
+        xe, ye = xe[:3].tolist() + [0.0], ye[:3].tolist() + [PLATEAU_X]
+    ax.plot(xe, ye, "k--", lw=1, label="exact")
+    ax.set_xlabel("x / d")
+    ax.set_ylabel(r"$\sigma_x^* = \sigma_x c_1 / (\lambda v_0)$")
+    ax.set_title("%s, t = %.4g s" % (os.path.basename(xmf), t), fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower center")
+    fig.tight_layout()
+    png_line = os.path.join(args.out_dir, args.prefix + "_line.png")
+    fig.savefig(png_line)
+    plt.close(fig)
+
+    ok = all(os.path.exists(f) and os.path.getsize(f) > 0 for f in (png_field, png_line))
+    print(json.dumps({"ok": ok, "time": t, "h": h, "d": d, "samples": int(mask.sum()),
+                      "png": [png_field, png_line], "csv": csv}))
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
