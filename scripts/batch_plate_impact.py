@@ -168,6 +168,7 @@ def run_grid(cases, args):
     skipped = len(cases) - len(todo)
     log(f"batch: {len(cases)} cases, {skipped} already done, {len(todo)} to run on {args.jobs} job(s)")
     failures = 0
+    load_start = os.getloadavg()[0]
     t0 = time.perf_counter()
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         futures = {pool.submit(run_case, c, args.exdyn): c for c in todo}
@@ -184,6 +185,12 @@ def run_grid(cases, args):
                     f"{s['element_cycles_per_second'] / 1e6:.2f} M element-cycles/s)")
     total = time.perf_counter() - t0
     log(f"batch: ran {len(todo)} cases, skipped {skipped}, {failures} failed, {total:.1f} s")
+    if todo:   # the invocations that ran cases, for the document
+        with open(os.path.join(args.out, "invocations.jsonl"), "a") as f:
+            f.write(json.dumps({"finished": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+                                "command": args.command, "jobs": args.jobs, "ran": len(todo), "skipped": skipped,
+                                "failed": failures, "seconds": round(total, 1),
+                                "load_average": [round(load_start, 2), round(os.getloadavg()[0], 2)]}) + "\n")
     return len(todo), skipped, failures, total
 
 
@@ -244,12 +251,13 @@ def num(v):
 
 
 def pareto(rows):
-    """Cases no other case beats in both wall time and profile error (smaller is better)."""
+    """Cases no other case beats in both wall time and profile error (smaller is better). Errors
+    that agree to 1e-9 (relative) are equal: the methods give the same answer to round-off."""
     pts = sorted((num(r["wall_seconds"]), num(r["profile_error"]), i) for i, r in enumerate(rows)
                  if math.isfinite(num(r["profile_error"])))
     front, best = [], float("inf")
     for t, e, i in pts:
-        if e < best:
+        if e < best * (1 - 1e-9):
             front.append(i)
             best = e
     return [rows[i] for i in front]
@@ -280,7 +288,7 @@ def chart_fig8(contact_plates, reference_plate, title, ax):
     ax.set_ylabel(r"$\sigma_x^*$")
     ax.set_title(title, fontsize=10)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower center")
+    ax.legend(fontsize=8, loc="upper center")
 
 
 def chart_fig9(contact_plate, reference_plate, title, ax):
@@ -295,7 +303,7 @@ def chart_fig9(contact_plate, reference_plate, title, ax):
     ax.set_ylabel(r"$\sigma_z^*$")
     ax.set_title(title, fontsize=10)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    ax.legend(fontsize=8, loc="upper left")
 
 
 def make_charts(cases, rows, args, figdir):
@@ -337,10 +345,11 @@ def make_charts(cases, rows, args, figdir):
             chart_fig9(cp[0], rp, f"Fig. 9: {fig_mesh} x {fig_mesh} per plate, {form}, {method}", ax)
         save(fig, "results_fig9.png")
 
-    # Convergence: every mesh on one chart (contact, plate A), per formulation.
-    fig, axes = plt.subplots(len(forms), 2, figsize=(12, 3.6 * len(forms)), squeeze=False)
+    # Convergence: every mesh on one chart (contact, plate A), the first formulation (the
+    # others agree with it to round-off along z = 0: see the summary).
+    fig, axes = plt.subplots(1, 2, figsize=(12, 3.8), squeeze=False)
     cmap = plt.get_cmap("viridis")
-    for fi, form in enumerate(forms):
+    for fi, form in enumerate(forms[:1]):
         meshes = [n for n in args.meshes if ok(by_name.get(f"contact_{form}_n{n}_{method}"))]
         for mi, n in enumerate(meshes):
             col = cmap(mi / max(1, len(meshes) - 1) * 0.85)
@@ -429,8 +438,15 @@ def make_pictures(cases, args, figdir):
         log(f"paraview: {PVPYTHON_RUNNER} not found: skipped")
         return []
     t0 = time.perf_counter()
-    proc = subprocess.run([PVPYTHON_RUNNER, PICTURES_SCRIPT, c.xmf_path, "--out-dir", figdir,
-                           "--prefix", "results_pv"], capture_output=True, text=True)
+    # xvfb-run -a can lose a race for a display number to another xvfb-run on the machine
+    # (pvpython then aborts: "bad X server connection"): try again.
+    for attempt in range(4):
+        proc = subprocess.run([PVPYTHON_RUNNER, PICTURES_SCRIPT, c.xmf_path, "--out-dir", figdir,
+                               "--prefix", "results_pv"], capture_output=True, text=True)
+        if proc.returncode == 0 or "X server" not in proc.stderr:
+            break
+        log(f"paraview: no X display (attempt {attempt + 1}), trying again")
+        time.sleep(2 + 3 * attempt)
     if proc.returncode != 0:
         log(f"paraview: FAILED (exit {proc.returncode}): {proc.stderr[-500:]}")
         return []
@@ -466,6 +482,14 @@ def git_commit():
         return "unknown"
 
 
+def invocations(out):
+    try:
+        with open(os.path.join(out, "invocations.jsonl")) as f:
+            return [json.loads(line) for line in f if line.strip()]
+    except (OSError, ValueError):
+        return []
+
+
 def fmt(v, spec):
     x = num(v)
     return "" if not math.isfinite(x) else format(x, spec)
@@ -487,16 +511,20 @@ def doc_sections(cases, rows, args, stats, command, exdyn_version):
     sec = {}
     sec["run"] = "\n".join([
         f"- measured: {now}, on {cpu_model()}, {os.cpu_count()} cores visible, {platform.system()} "
-        f"{platform.release()}; exdyn {exdyn_version}, repository at {git_commit()};",
+        f"{platform.release()}; {exdyn_version}, repository at {git_commit()};",
         f"- grid: meshes {', '.join(str(n) for n in args.meshes)} elements per plate side; formulations "
         f"{', '.join(args.formulations)}; local search methods {', '.join(args.methods)}; "
         f"{len(cases)} cases ({sum(c.kind == 'contact' for c in cases)} contact, "
         f"{sum(c.kind == 'reference' for c in cases)} reference), {len(completed)} completed;",
-        f"- this invocation ran {ran} cases and skipped {skipped} already done (resume), {failures} failed, "
-        f"in {total:.0f} s with {args.jobs} job(s); the completed cases' exdyn wall times add up to "
-        f"{wall_sum:.0f} s (processes: {proc_sum:.0f} s). Each case runs on one thread; with "
-        f"{args.jobs} jobs on a machine shared with other builds the wall times include waiting for a core;",
-        "- command:", "", "```sh", command, "```"])
+        f"- the invocations that ran cases (from `{os.path.join(os.path.basename(args.out), 'invocations.jsonl')}`):"]
+        + [f"  - {i['finished']}: `{i['command']}`: ran {i['ran']} cases ({i['failed']} failed), skipped "
+           f"{i['skipped']}, {i['seconds']:.0f} s with {i['jobs']} job(s); 1-minute load average "
+           f"{i['load_average'][0]:.1f} at the start, {i['load_average'][1]:.1f} at the end"
+           for i in invocations(args.out)]
+        + [f"- the completed cases' exdyn wall times add up to {wall_sum:.0f} s (processes: {proc_sum:.0f} s); "
+           "each case runs on one thread, and on a machine shared with other work the wall times include "
+           "waiting for a core;",
+           f"- this page was written by `{command}` (ran {ran} cases, skipped {skipped}, {failures} failed)."])
 
     # Accuracy per mesh and formulation (the figure method and the reference).
     acc = []
@@ -582,6 +610,12 @@ def summary_lines(args, row_of, contact):
                      + ", ".join(f"{fmt(c[n]['front_error_over_h'], '+.2f')} h (N = {n})" for n in meshes)
                      + "; in d: " + ", ".join(fmt(num(c[n]["front_over_d"]) - pm.FRONT_EXACT_OVER_D, "+.4f")
                                                for n in meshes) + ".")
+        lag = [pm.FRONT_EXACT_OVER_D - num(c[n]["front_over_d"]) for n in meshes]
+        rates = [math.log(lag[i] / lag[i + 1]) / math.log(meshes[i + 1] / meshes[i])
+                 for i in range(len(meshes) - 1) if lag[i] > 0 and lag[i + 1] > 0]
+        if rates:
+            lines.append(f"- {form}, `{m}`: the front lag in d falls like h^p with observed p = "
+                         + ", ".join(fmt(r, ".2f") for r in rates) + " between successive meshes.")
         errs = [num(c[n]["profile_error"]) for n in meshes]
         orders = [math.log(errs[i] / errs[i + 1]) / math.log(meshes[i + 1] / meshes[i])
                   for i in range(len(meshes) - 1) if errs[i + 1] > 0]
@@ -713,6 +747,7 @@ def main(argv):
         return 2
     if args.figure_method not in args.methods:
         args.figure_method = args.methods[0]
+    args.command = "/usr/bin/python3 scripts/batch_plate_impact.py " + " ".join(_quote(a) for a in argv)
     args.out = os.path.abspath(args.out)
     args.exdyn = os.path.abspath(args.exdyn) if os.path.exists(args.exdyn) else args.exdyn
     try:
@@ -738,9 +773,8 @@ def main(argv):
             written += make_pictures(cases, args, figdir)
         for w in written:
             log(f"batch: wrote {w} ({os.path.getsize(w) // 1024} kB)")
-        command = "/usr/bin/python3 scripts/batch_plate_impact.py " + " ".join(_quote(a) for a in argv)
         doc = os.path.join(args.docs, "results.md")
-        write_doc(doc, doc_sections(cases, rows, args, stats, command.strip(), exdyn_version))
+        write_doc(doc, doc_sections(cases, rows, args, stats, args.command.strip(), exdyn_version))
         log(f"batch: wrote {doc}")
     return 1 if stats[2] else 0
 

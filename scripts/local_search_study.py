@@ -249,8 +249,19 @@ def study_table1(runner, repeats):
     A = np.array([[a1[0] @ a1[0], a1[0] @ a2[0]], [a1[0] @ a2[0], a2[0] @ a2[0]]])
     M = A - H[0] / 2  # = r.y_,ab
     lsp_rate = np.abs(np.linalg.eigvals(np.linalg.solve(A, M))).max()
+    # the Hessian at each start: where it is indefinite a first Newton step (and B0 = H^-1) heads for a saddle
+    a1, a2 = geo.tangents(nodes, np.zeros((1, 2)))
+    r0 = point - geo.position(nodes, np.zeros((1, 2)))
+    A0 = np.array([[a1[0] @ a1[0], a1[0] @ a2[0]], [a1[0] @ a2[0], a2[0] @ a2[0]]])
+    start_xi = {"lsp": np.linalg.solve(A0, [r0[0] @ a1[0], r0[0] @ a2[0]]), "center": np.zeros(2)}
+    start_xi.update({f"corner{i + 1}": geo.NODE_XI[i] for i in range(4)})
+    starts_h = {}
+    for g in guesses:
+        if g in start_xi:
+            H0 = geo.evaluate(nodes, point, start_xi[g][None])[2]
+            starts_h[g] = (start_xi[g], geo.stationary_kind(H0)[0], np.linalg.eigvalsh(H0[0]))
     return dict(rows=rows, ns=ns, ref_ns=ns[ref], outcome=outcome, guesses=guesses, truth=truth,
-                stationary=stat, repeats=repeats, lsp_rate=lsp_rate)
+                stationary=stat, repeats=repeats, lsp_rate=lsp_rate, starts_h=starts_h)
 
 
 def cluster_stationary(xi, d, gn, kind, box):
@@ -285,6 +296,10 @@ def table1_markdown(t1, methods):
                "Stationary points of f with |xi_a| <= 4 (plain Newton from an 81 x 81 grid of starts): "
                + "; ".join(f"{k} at {fmt_xi(x)} ({'inside' if np.all(np.abs(x) <= 1) else 'outside'}, "
                            f"distance {d:.4f})" for x, d, k in t1["stationary"]) + ".\n")
+    definite = {"minimum": "positive definite", "saddle": "indefinite", "maximum": "negative definite"}
+    out.append("Hessian of f at the six starts (eigenvalues): " + "; ".join(
+        f"`{g}` {fmt_xi(x, 3)}: {definite.get(k, k)} ({ev[0]:.3f}, {ev[1]:.3f})"
+        for g, (x, k, ev) in t1["starts_h"].items()) + ".\n")
     rate = t1["lsp_rate"]
     out.append(f"LSP's linear rate at the closest point (spectral radius of A^-1 (r.y_,ab), A_ab = a_a.a_b): "
                f"{rate:.3f}, so each iteration divides the error by {1 / rate:.3f} and reaching 1e-10 from an error "
@@ -363,12 +378,15 @@ def study_robustness(runner, rng, per_cell):
                 outcome, _ = lc.classify(rows, truth, nodes, points)
                 batches.append(dict(n_nodes=n_nodes, level=level, guess=guess, rows=rows, outcome=outcome,
                                     where=np.array(where, dtype=object)[rows["id"]],
-                                    interior=truth["interior"][rows["id"]]))
+                                    interior=truth["interior"][rows["id"]],
+                                    true_distance=truth["distance"][rows["id"]], true_xi=truth["xi"][rows["id"]]))
     # one flat table
     cat = {k: np.concatenate([b["rows"][k] for b in batches]) for k in batches[0]["rows"]}
     cat["outcome"] = np.concatenate([b["outcome"] for b in batches])
     cat["where"] = np.concatenate([b["where"] for b in batches])
     cat["interior"] = np.concatenate([b["interior"] for b in batches])
+    cat["true_distance"] = np.concatenate([b["true_distance"] for b in batches])
+    cat["true_xi"] = np.concatenate([b["true_xi"] for b in batches])
     cat["n_nodes"] = np.concatenate([np.full(len(b["outcome"]), b["n_nodes"]) for b in batches])
     cat["level"] = np.concatenate([np.full(len(b["outcome"]), b["level"]) for b in batches])
     cat["guess"] = np.concatenate([np.full(len(b["outcome"]), b["guess"], dtype=object) for b in batches])
@@ -403,10 +421,12 @@ def robustness_markdown(rb, methods):
                f"of the reference page), with `--max-iterations {ROBUSTNESS_MAX_ITERATIONS}` and the default "
                "tolerance.\n")
     out.append(f"**Outcomes** (% of the {rb['cases']} runs of each line):\n")
-    out.append("| method | " + " | ".join(lc.OUTCOMES) + " |")
-    out.append("|---|" + "---|" * len(lc.OUTCOMES))
+    out.append("| method | " + " | ".join(lc.OUTCOMES) + " | wrong minima outside the segment |")
+    out.append("|---|" + "---|" * (len(lc.OUTCOMES) + 1))
     for label, sel in runs:
-        out.append(f"| {label} | " + " | ".join(pct((r["outcome"][sel] == o).mean()) for o in lc.OUTCOMES) + " |")
+        wrong = sel & (r["outcome"] == "wrong minimum")
+        out.append(f"| {label} | " + " | ".join(pct((r["outcome"][sel] == o).mean()) for o in lc.OUTCOMES)
+                   + f" | {(wrong & (r['inside'] == 0)).sum()} of {wrong.sum()} |")
     out.append("")
     out.append("**True closest point by segment and distortion level** (% of "
                f"{rb['per_cell'] * len(POSITIONS)} runs per cell):\n")
@@ -429,6 +449,17 @@ def robustness_markdown(rb, methods):
             cells.append(" / ".join(pct((r["outcome"][m] == o).mean()) for o in lc.OUTCOMES))
         out.append(f"| {label} | " + " | ".join(cells) + " |")
     out.append("")
+    if "robust" in methods:
+        miss = np.flatnonzero((r["method"] == "robust") & (r["guess"] == "lsp") & ~success)
+        out.append(f"Runs of `robust` not on the true closest point: {len(miss)} of {rb['cases']}"
+                   + (":" if len(miss) else ".") + "\n")
+        for k in miss[:10]:
+            out.append(f"- quad{r['n_nodes'][k]}, level {r['level'][k]}, slave point {r['where'][k]} (case "
+                       f"{r['id'][k]} of its batch): {r['outcome'][k]} at xi = {fmt_xi((r['xi1'][k], r['xi2'][k]))}, "
+                       f"distance {r['distance'][k]:.6f}; the closest point is at xi = {fmt_xi(r['true_xi'][k])} "
+                       f"({'inside' if r['interior'][k] else 'on the boundary'}), distance {r['true_distance'][k]:.6f}.")
+        if len(miss):
+            out.append("")
     vals = [pct(success[runs[-1][1] & (r["n_nodes"] == 8) & (r["level"] == lv)].mean()) for lv in LEVELS]
     out.append(f"Newton from the centre on quad8 at levels {', '.join(map(str, LEVELS))}: "
                f"{' %, '.join(vals)} % on the true closest point; the reference page quotes roughly 80, 72 and "
@@ -451,7 +482,7 @@ def study_basins(runner, grid):
     for name in names:
         nodes, point = lc.reference_segments()[name]
         jobs.append((np.repeat(nodes[None], n, 0), np.repeat(point[None], n, 0), None, 1, starts,
-                     runner.untimed or []))
+                     ["--max-iterations", ROBUSTNESS_MAX_ITERATIONS] + (runner.untimed or [])))
     results = runner.run_parallel(jobs)  # the times are not used: the two runs may share the CPU
     res = {}
     for name, rows, job in zip(names, results, jobs):
@@ -517,6 +548,7 @@ def basins_markdown(bs, methods, figure_names):
         b = bs[name]
         r = b["rows"]
         out.append(f"**{name}**: {b['grid']} x {b['grid']} starting points on [-1,1]^2, "
+                   f"`--max-iterations {ROBUSTNESS_MAX_ITERATIONS}`, "
                    f"![basins of {name}](figures/{figure_names[name]})\n")
         out.append("Share of starting points (%) ending on each point:\n")
         out.append("| method | " + " | ".join(b["label_names"]) + " |")
@@ -551,6 +583,16 @@ def speed_markdown(sp, figure_name, cases):
     for s in sorted(sp, key=lambda s: s["mean_ns"]):
         out.append(f"| {s['method']} | {pct(s['success'])} | {s['mean_ns']:.0f} | {s['median_ns']:.0f} | "
                    f"{s['iterations']:.1f} | {s['evaluations']:.1f} |")
+    # the methods no other method beats on both counts
+    front = [a for a in sp if not any(b["mean_ns"] <= a["mean_ns"] and b["success"] >= a["success"]
+                                      and (b["mean_ns"] < a["mean_ns"] or b["success"] > a["success"]) for b in sp)]
+    front.sort(key=lambda s: s["mean_ns"])
+    fastest = front[0]
+    out.append("\nNo other method is both faster and more often right than: "
+               + ", ".join(f"{a['method']} ({a['mean_ns']:.0f} ns, {pct(a['success'])} %)" for a in front) + ". "
+               + "Mean time relative to " + fastest["method"] + ": "
+               + ", ".join(f"{a['method']} {a['mean_ns'] / fastest['mean_ns']:.1f}x"
+                           for a in sorted(sp, key=lambda s: s["mean_ns"]) if a is not fastest) + ".")
     return "\n".join(out)
 
 

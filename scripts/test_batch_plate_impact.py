@@ -8,11 +8,13 @@ Checks: the batch runs every case; a second run resumes without rerunning anythi
 (same summary files, untouched); a case whose summary is removed is run again, and only
 it; the CSV has every column and a row per case with finite measures; the charts (and,
 when pvpython is installed, the ParaView pictures) exist and are small; results.md has
-its generated sections; bad usage exits 2. Prints `N passed, M failed`; exit 0 when all passed.
+its generated sections; ParaView reads the picture case with named stress components and
+a time series; bad usage exits 2. Prints `N passed, M failed`; exit 0 when all passed.
 """
 
 import argparse
 import csv
+import json
 import os
 import re
 import shutil
@@ -100,6 +102,23 @@ def main():
     for name in figures:
         p = os.path.join(docs, "figures", name)
         check(f"{name} written, < 200 kB", os.path.exists(p) and 0 < os.path.getsize(p) < 200_000)
+    if pictures:   # what a user opening the picture case's .xmf in ParaView sees
+        xmf = os.path.join(out, "cases", "contact_hex8_n20_bfgs", "plate_impact.xmf")
+        report = os.path.join(work, "check_xdmf.json")
+        proc = subprocess.run([batch.PVPYTHON_RUNNER, "check_xdmf.py", xmf, "--fields",
+                               "displacement:point:3,velocity:point:3,stress:cell:6,von_mises:cell:1",
+                               "--strict", "--compact", "--json", report], capture_output=True, text=True)
+        try:
+            with open(report) as f:
+                info = json.load(f)
+        except (OSError, ValueError):
+            info = {}
+        check("ParaView reads the picture case (3 readers)", proc.returncode == 0 and info.get("ok"),
+              proc.stdout[-1000:] + proc.stderr[-1000:])
+        names = info.get("fields", {}).get("stress", {}).get("component_names")
+        check("ParaView names the stress components XX YY ZZ XY YZ XZ",
+              names == ["XX", "YY", "ZZ", "XY", "YZ", "XZ"], str(names))
+        check("ParaView has a time series (> 2 steps)", info.get("n_times", 0) > 2, str(info.get("n_times")))
     with open(os.path.join(docs, "results.md")) as f:
         doc = f.read()
     for key in ("run", "accuracy", "reference", "cases", "pareto", "share"):

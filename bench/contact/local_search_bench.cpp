@@ -73,8 +73,8 @@ void register_all() {
   for (const auto& [method, method_name] : search_method_names) {
     for (const SegmentType type : {SegmentType::quad4, SegmentType::quad8}) {
       for (const Distortion d : {Distortion::mild, Distortion::strong}) {
-        const std::string label = std::string(method_name) + "/" + std::string(name(type)) + "/" +
-                                  testing::distortion_name(d);
+        const std::string label =
+            std::string(method_name) + "/" + std::string(name(type)) + "/" + testing::distortion_name(d);
         benchmark::RegisterBenchmark(label.c_str(), bench_projection, method, type, d, false);
       }
     }

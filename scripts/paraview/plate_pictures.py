@@ -88,24 +88,26 @@ def main():
     bar.TitleFontSize = bar.LabelFontSize = 14
     bar.RangeLabelFormat = "%-#6.2g"
 
-    line_src = ps.Line(Point1=[-d, h / 2, h / 2], Point2=[d, h / 2, h / 2])
+    # Drawn in front of the mesh (y = -h) so that the camera sees it; sampled at y = h/2 below.
+    line_src = ps.Line(Point1=[-d, -h, h / 2], Point2=[d, -h, h / 2])
     line_disp = ps.Show(line_src, view)
     line_disp.AmbientColor = line_disp.DiffuseColor = [0.0, 0.0, 0.0]
     line_disp.LineWidth = 3.0
-    text = ps.Text(Text="%s   t = %.4g s   displacement x %g\nblack line: PlotOverLine along z = h/2"
+    text = ps.Text(Text="%s   t = %.4g s   displacement x %g   black line: PlotOverLine, z = h/2"
                    % (os.path.basename(xmf), t, args.scale))
     text_disp = ps.Show(text, view)
     text_disp.Color = [0.0, 0.0, 0.0]
     text_disp.FontSize = 14
     text_disp.WindowLocation = "Upper Left Corner"
 
-    view.ResetCamera()
-    cam = view.GetActiveCamera()
-    fp = cam.GetFocalPoint()
-    cam.SetPosition(fp[0], fp[1] - 1.0, fp[2])   # look along +y at the x-z plane, z up
-    cam.SetViewUp(0, 0, 1)
-    view.ResetCamera()
-    cam.Zoom(1.7)
+    ps.Render(view)   # the first Render resets the camera: place it after that
+    # Look along +y at the x-z plane, z up, parallel projection framing the plates.
+    view.CameraParallelProjection = 1
+    view.CameraViewUp = [0, 0, 1]
+    centre_x = 0.5 * (b[0] + b[1]) + 0.12 * d     # the plates left of centre, the colour bar right
+    view.CameraFocalPoint = [centre_x, 0.0, 0.5 * d]
+    view.CameraPosition = [centre_x, -10 * d, 0.5 * d]
+    view.CameraParallelScale = 0.8 * d
     ps.Render(view)
     png_field = os.path.join(args.out_dir, args.prefix + "_sigma_xx.png")
     ps.SaveScreenshot(png_field, view, ImageResolution=list(args.size))

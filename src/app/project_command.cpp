@@ -35,12 +35,15 @@ std::vector<SearchMethod> parse_methods(const std::string& text) {
   std::size_t start = 0;
   for (;;) {
     const std::size_t comma = text.find(',', start);
-    const std::string name = trim(std::string_view(text).substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    const std::string name = trim(
+        std::string_view(text).substr(start, comma == std::string::npos ? std::string::npos : comma - start));
     const auto method = contact::from_name(contact::search_method_names, name);
     if (!method) {
       std::string known;
-      for (const auto& entry : contact::search_method_names) known += std::string(known.empty() ? "" : ", ") + std::string(entry.second);
-      throw InputError("--method: unknown method '" + name + "' (expected all or one or more of " + known + ")");
+      for (const auto& entry : contact::search_method_names)
+        known += std::string(known.empty() ? "" : ", ") + std::string(entry.second);
+      throw InputError("--method: unknown method '" + name + "' (expected all or one or more of " + known +
+                       ")");
     }
     methods.push_back(*method);
     if (comma == std::string::npos) break;
@@ -71,8 +74,8 @@ struct Guess {
 std::optional<std::vector<Guess>> parse_guesses(const std::string& text) {
   const std::string value = trim(text);
   if (value.empty()) return std::nullopt;  // the case's own, or lsp
-  const std::vector<Guess> corners{{"corner1", Xi{-1, -1}}, {"corner2", Xi{1, -1}},
-                                   {"corner3", Xi{1, 1}}, {"corner4", Xi{-1, 1}}};
+  const std::vector<Guess> corners{
+      {"corner1", Xi{-1, -1}}, {"corner2", Xi{1, -1}}, {"corner3", Xi{1, 1}}, {"corner4", Xi{-1, 1}}};
   if (value == "lsp") return std::vector<Guess>{{"lsp", std::nullopt}};
   if (value == "center" || value == "centre") return std::vector<Guess>{{"center", Xi{0, 0}}};
   if (value == "corners") return corners;
@@ -87,13 +90,16 @@ std::optional<std::vector<Guess>> parse_guesses(const std::string& text) {
     double x = 0.0;
     const auto [end, error] = std::from_chars(t.data(), t.data() + t.size(), x);
     if (t.empty() || error != std::errc() || end != t.data() + t.size() || !std::isfinite(x)) {
-      throw InputError("--initial-guess: expected lsp, center, corners, all or two numbers a,b; got '" + text + "'");
+      throw InputError("--initial-guess: expected lsp, center, corners, all or two numbers a,b; got '" +
+                       text + "'");
     }
     return x;
   };
   if (separator == std::string::npos)
-    throw InputError("--initial-guess: expected lsp, center, corners, all or two numbers a,b; got '" + text + "'");
-  const Xi xi{number(std::string_view(value).substr(0, separator)), number(std::string_view(value).substr(separator + 1))};
+    throw InputError("--initial-guess: expected lsp, center, corners, all or two numbers a,b; got '" + text +
+                     "'");
+  const Xi xi{number(std::string_view(value).substr(0, separator)),
+              number(std::string_view(value).substr(separator + 1))};
   return std::vector<Guess>{{shortest(xi[0]) + ";" + shortest(xi[1]), xi}};
 }
 
@@ -108,8 +114,8 @@ contact::Segment to_segment(const input::ProjectCase& c) {
 // Wall time of one projection (nanoseconds): batches of repetitions, each of
 // at least min_seconds / 5, and the least average over 5 batches (the least
 // disturbed by other work on the machine). min_seconds = 0: one run.
-double time_projection(contact::ProjectFn fn, const contact::Segment& segment, const contact::Vec3& point, Xi xi0,
-                       const contact::ProjectionSettings& settings, double min_seconds) {
+double time_projection(contact::ProjectFn fn, const contact::Segment& segment, const contact::Vec3& point,
+                       Xi xi0, const contact::ProjectionSettings& settings, double min_seconds) {
   using Clock = std::chrono::steady_clock;
   constexpr int batches = 5;
   volatile double sink = 0.0;
@@ -123,7 +129,8 @@ double time_projection(contact::ProjectFn fn, const contact::Segment& segment, c
   double seconds = run_batch(repetitions);
   while (seconds < batch_seconds && repetitions < (1L << 30)) {
     const double factor = seconds > 0.0 ? 1.2 * batch_seconds / seconds : 10.0;
-    repetitions = std::max(repetitions * 2, static_cast<long>(static_cast<double>(repetitions) * std::min(factor, 1000.0)));
+    repetitions = std::max(repetitions * 2,
+                           static_cast<long>(static_cast<double>(repetitions) * std::min(factor, 1000.0)));
     seconds = run_batch(repetitions);
   }
   double best = seconds;
@@ -138,13 +145,15 @@ void run_project_command(const ProjectCommandOptions& options, std::ostream& out
   if (!(options.tolerance > 0.0) || !std::isfinite(options.tolerance))
     throw InputError("--tolerance: expected a number > 0, got " + full_precision(options.tolerance));
   if (options.max_iterations < 1)
-    throw InputError("--max-iterations: expected an integer >= 1, got " + std::to_string(options.max_iterations));
+    throw InputError("--max-iterations: expected an integer >= 1, got " +
+                     std::to_string(options.max_iterations));
   if (!(options.timing_seconds >= 0.0)) throw InputError("timing: expected seconds >= 0");
   const std::vector<SearchMethod> methods = parse_methods(options.methods);
   const std::optional<std::vector<Guess>> given_guesses = parse_guesses(options.initial_guess);
   const std::vector<input::ProjectCase> cases = input::read_project_cases(options.cases_file);
 
-  out << "id,method,initial_guess,xi1,xi2,converged,iterations,evaluations,stationary,inside,distance,gap,nanoseconds\n";
+  out << "id,method,initial_guess,xi1,xi2,converged,iterations,evaluations,stationary,inside,distance,gap,"
+         "nanoseconds\n";
   for (const input::ProjectCase& c : cases) {
     const contact::Segment segment = to_segment(c);
     const contact::Vec3 point{c.point[0], c.point[1], c.point[2]};
@@ -169,8 +178,8 @@ void run_project_command(const ProjectCommandOptions& options, std::ostream& out
         const double nanoseconds = time_projection(fn, segment, point, xi0, settings, options.timing_seconds);
         std::array<char, 64> ns{};
         std::snprintf(ns.data(), ns.size(), "%.1f", nanoseconds);
-        out << c.id << ',' << contact::name(method) << ',' << guess.label << ',' << full_precision(r.xi[0]) << ','
-            << full_precision(r.xi[1]) << ',' << (r.converged ? 1 : 0) << ',' << r.iterations << ','
+        out << c.id << ',' << contact::name(method) << ',' << guess.label << ',' << full_precision(r.xi[0])
+            << ',' << full_precision(r.xi[1]) << ',' << (r.converged ? 1 : 0) << ',' << r.iterations << ','
             << r.evaluations << ',' << contact::name(r.stationary) << ',' << (r.inside ? 1 : 0) << ','
             << full_precision(r.distance) << ',' << full_precision(r.gap) << ',' << ns.data() << '\n';
       }

@@ -28,8 +28,8 @@ struct ProjectCommandOptions {
   // lsp | center | corners | all | "a,b" (also "a;b"); empty (not given): the
   // case's own `initial_guess` when it has one, otherwise lsp.
   std::string initial_guess;
-  double tolerance = 1.0e-10;    // > 0
-  int max_iterations = 100;      // >= 1
+  double tolerance = 1.0e-10;      // > 0
+  int max_iterations = 100;        // >= 1
   double timing_seconds = 1.0e-3;  // minimum total time per timed projection; 0: time one run
 };
 

@@ -6,20 +6,30 @@ namespace exdyn::contact {
 
 ProjectFn select_method(SearchMethod method) {
   switch (method) {
-    case SearchMethod::newton: return &project_newton;
-    case SearchMethod::lsp: return &project_lsp;
-    case SearchMethod::steepest_descent: return &project_steepest_descent;
-    case SearchMethod::broyden: return &project_broyden;
-    case SearchMethod::bfgs: return &project_bfgs;
-    case SearchMethod::dfp: return &project_dfp;
-    case SearchMethod::simplex: return &project_simplex;
-    case SearchMethod::hybrid: return &project_hybrid;
-    case SearchMethod::robust: return &project_robust;
+    case SearchMethod::newton:
+      return &project_newton;
+    case SearchMethod::lsp:
+      return &project_lsp;
+    case SearchMethod::steepest_descent:
+      return &project_steepest_descent;
+    case SearchMethod::broyden:
+      return &project_broyden;
+    case SearchMethod::bfgs:
+      return &project_bfgs;
+    case SearchMethod::dfp:
+      return &project_dfp;
+    case SearchMethod::simplex:
+      return &project_simplex;
+    case SearchMethod::hybrid:
+      return &project_hybrid;
+    case SearchMethod::robust:
+      return &project_robust;
   }
   return &project_robust;  // unreachable for a valid enumerator
 }
 
-ProjectionResult project(const Segment& segment, const Vec3& point, Xi initial, const ProjectionSettings& settings) {
+ProjectionResult project(const Segment& segment, const Vec3& point, Xi initial,
+                         const ProjectionSettings& settings) {
   return select_method(settings.method)(segment, point, initial, settings);
 }
 

@@ -70,24 +70,25 @@ struct ProjectionSettings {
 };
 
 // Tolerances of the classification (relative; documented in docs/local-search.md).
-inline constexpr double inside_tolerance = 1.0e-8;           // inside: |xi_a| <= 1 + this
+inline constexpr double inside_tolerance = 1.0e-8;               // inside: |xi_a| <= 1 + this
 inline constexpr double stationary_gradient_tolerance = 1.0e-6;  // |g| <= this * 2 |a| (|r| + L)
-inline constexpr double eigenvalue_tolerance = 1.0e-8;       // |lambda| <= this * 2 (|a1|^2 + |a2|^2 + |r||y''|): zero
-inline constexpr double singular_matrix_tolerance = 1.0e-14; // |det M| <= this * ||M||_F^2: singular
+inline constexpr double eigenvalue_tolerance =
+    1.0e-8;  // |lambda| <= this * 2 (|a1|^2 + |a2|^2 + |r||y''|): zero
+inline constexpr double singular_matrix_tolerance = 1.0e-14;    // |det M| <= this * ||M||_F^2: singular
 inline constexpr double singular_jacobian_tolerance = 1.0e-12;  // |a1 x a2| <= this * L^2
 
 struct ProjectionResult {
-  Xi xi{};                  // the point found (unconstrained methods: may lie outside [-1,1]^2)
-  bool converged = false;   // the stopping test was met within max_iterations
-  int iterations = 0;       // updates of xi (simplex: Nelder-Mead iterations; hybrid and robust: all phases)
-  int evaluations = 0;      // points at which f (with whatever derivatives the method uses) was evaluated
+  Xi xi{};                 // the point found (unconstrained methods: may lie outside [-1,1]^2)
+  bool converged = false;  // the stopping test was met within max_iterations
+  int iterations = 0;      // updates of xi (simplex: Nelder-Mead iterations; hybrid and robust: all phases)
+  int evaluations = 0;     // points at which f (with whatever derivatives the method uses) was evaluated
   StationaryKind stationary = StationaryKind::none;
   FailureReason failure = FailureReason::none;
-  bool inside = false;      // |xi_1|, |xi_2| <= 1 + inside_tolerance
-  bool on_boundary = false; // robust only: the closest point is on an edge or a corner, where f's gradient
-                            // points out of the segment (the unconstrained closest point lies outside)
-  double distance = 0.0;    // |ys - y(xi)|
-  double gap = 0.0;         // (ys - y(xi)).n, negative behind the segment; 0 when n is undefined
+  bool inside = false;       // |xi_1|, |xi_2| <= 1 + inside_tolerance
+  bool on_boundary = false;  // robust only: the closest point is on an edge or a corner, where f's gradient
+                             // points out of the segment (the unconstrained closest point lies outside)
+  double distance = 0.0;     // |ys - y(xi)|
+  double gap = 0.0;          // (ys - y(xi)).n, negative behind the segment; 0 when n is undefined
 };
 
 using ProjectFn = ProjectionResult (*)(const Segment& segment, const Vec3& point, Xi initial,

@@ -49,9 +49,9 @@ constexpr std::array<Xi, 8> node_xi{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {0, -1}
 
 // The position and its derivatives at one xi.
 struct SurfacePoint {
-  Vec3 y;             // position
-  Vec3 a1, a2;        // dy/dxi1, dy/dxi2 (tangents)
-  Vec3 y11, y12, y22; // second derivatives d2y/dxi_a dxi_b
+  Vec3 y;              // position
+  Vec3 a1, a2;         // dy/dxi1, dy/dxi2 (tangents)
+  Vec3 y11, y12, y22;  // second derivatives d2y/dxi_a dxi_b
 };
 
 // Monomial form of a segment with Terms = 4 (quad4) or 8 (quad8) coefficients.

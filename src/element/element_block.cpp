@@ -194,7 +194,10 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
   const std::size_t stored = paired ? 2 * ((static_cast<std::size_t>(count) + 1) / 2) : count;
   block.reference.assign(header_size + stride * stored, 0.0);
   block.reference[0] = static_cast<double>(static_cast<int>(layout));
-  std::array<double, hex8::reference_size> scratch{};  // the largest layout
+  static_assert(hex8::reference_size >= hex8r::reference_size &&
+                hex8::reference_size >= hex8r::parallelepiped_reference_size &&
+                hex8::reference_size >= hex8::parallelepiped_reference_size);
+  std::array<double, hex8::reference_size> scratch{};  // one element's data, the largest layout
   for (std::uint32_t e = 0; e < count; ++e) {
     const ElementVectors x = gather(x_ref, connectivity + 8 * static_cast<std::size_t>(e));
     double* reference = paired ? scratch.data() : block.reference.data() + header_size + stride * e;

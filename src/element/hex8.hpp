@@ -1,6 +1,7 @@
 // The trilinear eight-node hexahedron: shape functions, its mode basis, geometry,
-// and the fully integrated (2x2x2 Gauss) small-strain kernel. Free functions on
-// fixed-size local data; no allocation, no exceptions (docs/theory.md, "hex8").
+// and the fully integrated (2x2x2 Gauss) small-strain kernels, general and for
+// parallelepipeds. Free functions on fixed-size local data; no allocation, no
+// exceptions (docs/theory.md, "Element library").
 //
 // Nodes in VTK hexahedron order: 0..3 the face zeta = -1 counter-clockwise seen
 // from +zeta, (-1,-1,-1) (1,-1,-1) (1,1,-1) (-1,1,-1); 4..7 the same at zeta = +1.
@@ -10,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "material/elastic.hpp"
 
@@ -18,8 +20,9 @@ namespace exdyn::element {
 using Vector3 = std::array<double, 3>;
 using Matrix3 = std::array<double, 9>;  // row-major
 
-// Two elements' values side by side, one per SSE lane: the constant-Jacobian
-// kernels below are templates on the value type and run on element pairs.
+// Two elements' values side by side, one per SSE lane. The kernels that are
+// templates on the value type (hex8 parallelepiped, hex8r) run on element pairs
+// with it, and on single elements with double.
 using Pack2 = double __attribute__((vector_size(16)));
 
 // Value k of an element's reference data: data[k] for one element; for an
@@ -188,7 +191,8 @@ inline Matrix3 inverse(const Matrix3& a) {
 // Geometry of the reference configuration.
 // ---------------------------------------------------------------------------
 
-// Smallest det(dx/dxi) over the Gauss points and the volume V = sum_g det J_g (m^3).
+// The Jacobian at the 2x2x2 Gauss points, the volume V = sum_g det J_g (m^3) and
+// the smallest det J (<= 0: an inverted or degenerate element).
 struct GaussGeometry {
   std::array<Matrix3, 8> inverse_jacobian{};  // dxi_a/dx_j at each Gauss point, row a
   std::array<double, 8> det_jacobian{};       // det(dx_j/dxi_a), m^3 (weights are 1)
@@ -199,7 +203,7 @@ struct GaussGeometry {
 inline GaussGeometry gauss_geometry(const ElementVectors& x_ref) {
   GaussGeometry geometry;
   const ElementModes c = modes_from_nodal(x_ref);
-  geometry.min_det_jacobian = HUGE_VAL;
+  geometry.min_det_jacobian = std::numeric_limits<double>::infinity();
   for (int g = 0; g < 8; ++g) {
     const Vector3& s = node_natural_coordinates[g];
     const Matrix3 jacobian =

@@ -55,17 +55,24 @@ class CasesReader {
  private:
   static std::string kind(const YAML::Node& node) {
     switch (node.Type()) {
-      case YAML::NodeType::Null: return "nothing";
-      case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
-      case YAML::NodeType::Sequence: return "a list";
-      case YAML::NodeType::Map: return "a map";
-      default: return "an undefined value";
+      case YAML::NodeType::Null:
+        return "nothing";
+      case YAML::NodeType::Scalar:
+        return "'" + node.Scalar() + "'";
+      case YAML::NodeType::Sequence:
+        return "a list";
+      case YAML::NodeType::Map:
+        return "a map";
+      default:
+        return "an undefined value";
     }
   }
 
   ProjectCase read_case(const YAML::Node& node, std::size_t index) const {
     const std::string path = "cases[" + std::to_string(index) + "]";
-    if (!node.IsMap()) fail(node, path, "expected a map with keys id, segment, nodes, point, initial_guess; got " + kind(node));
+    if (!node.IsMap())
+      fail(node, path,
+           "expected a map with keys id, segment, nodes, point, initial_guess; got " + kind(node));
     static const std::array<std::string_view, 5> keys{"id", "segment", "nodes", "point", "initial_guess"};
     for (const auto& entry : node) {
       const std::string key = entry.first.as<std::string>();
@@ -80,7 +87,8 @@ class CasesReader {
 
     const YAML::Node segment = node["segment"];
     if (!segment) fail(node, path + ".segment", "missing key: expected quad4 or quad8");
-    if (!segment.IsScalar()) fail(segment, path + ".segment", "expected quad4 or quad8, got " + kind(segment));
+    if (!segment.IsScalar())
+      fail(segment, path + ".segment", "expected quad4 or quad8, got " + kind(segment));
     std::array<std::string_view, contact::segment_type_names.size()> type_names{};
     for (std::size_t k = 0; k < type_names.size(); ++k) type_names[k] = contact::segment_type_names[k].second;
     const auto type = contact::from_name(contact::segment_type_names, segment.Scalar());
@@ -93,8 +101,11 @@ class CasesReader {
     const std::size_t count = c.segment == contact::SegmentType::quad4 ? 4 : 8;
 
     const YAML::Node nodes = node["nodes"];
-    if (!nodes) fail(node, path + ".nodes", "missing key: expected a list of " + std::to_string(count) + " points [x, y, z]");
-    if (!nodes.IsSequence()) fail(nodes, path + ".nodes", "expected a list of points [x, y, z], got " + kind(nodes));
+    if (!nodes)
+      fail(node, path + ".nodes",
+           "missing key: expected a list of " + std::to_string(count) + " points [x, y, z]");
+    if (!nodes.IsSequence())
+      fail(nodes, path + ".nodes", "expected a list of points [x, y, z], got " + kind(nodes));
     if (nodes.size() != count) {
       fail(nodes, path + ".nodes",
            "expected " + std::to_string(count) + " points for a " + segment.Scalar() + " segment, got " +
@@ -106,7 +117,8 @@ class CasesReader {
     const YAML::Node point = node["point"];
     if (!point) fail(node, path + ".point", "missing key: expected the slave point [x, y, z]");
     c.point = read_vector<3>(point, path + ".point");
-    if (const YAML::Node guess = node["initial_guess"]) c.initial_guess = read_vector<2>(guess, path + ".initial_guess");
+    if (const YAML::Node guess = node["initial_guess"])
+      c.initial_guess = read_vector<2>(guess, path + ".initial_guess");
     return c;
   }
 

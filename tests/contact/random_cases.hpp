@@ -31,9 +31,12 @@ class Random {
 enum class Distortion { mild, moderate, strong };
 inline double amplitude(Distortion d) {
   switch (d) {
-    case Distortion::mild: return 0.1;
-    case Distortion::moderate: return 0.25;
-    case Distortion::strong: return 0.4;
+    case Distortion::mild:
+      return 0.1;
+    case Distortion::moderate:
+      return 0.25;
+    case Distortion::strong:
+      return 0.4;
   }
   return 0.0;
 }
@@ -46,7 +49,8 @@ struct RigidMotion {
   std::array<std::array<double, 3>, 3> R{};
   Vec3 t{};
   Vec3 apply(const Vec3& p) const {
-    return {R[0][0] * p.x + R[0][1] * p.y + R[0][2] * p.z + t.x, R[1][0] * p.x + R[1][1] * p.y + R[1][2] * p.z + t.y,
+    return {R[0][0] * p.x + R[0][1] * p.y + R[0][2] * p.z + t.x,
+            R[1][0] * p.x + R[1][1] * p.y + R[1][2] * p.z + t.y,
             R[2][0] * p.x + R[2][1] * p.y + R[2][2] * p.z + t.z};
   }
 };
@@ -165,10 +169,14 @@ Truth brute_force_closest_point(const Surface<Terms>& s, const Vec3& point, int 
   for (int edge = 0; edge < 4; ++edge) {
     const auto at = [edge](double t) -> Xi {
       switch (edge) {
-        case 0: return {t, -1.0};
-        case 1: return {1.0, t};
-        case 2: return {t, 1.0};
-        default: return {-1.0, t};
+        case 0:
+          return {t, -1.0};
+        case 1:
+          return {1.0, t};
+        case 2:
+          return {t, 1.0};
+        default:
+          return {-1.0, t};
       }
     };
     // All 1D local minima of a dense grid, each refined by golden section.
@@ -176,10 +184,12 @@ Truth brute_force_closest_point(const Surface<Terms>& s, const Vec3& point, int 
     for (int k = 0; k < m; ++k) values[static_cast<std::size_t>(k)] = d2(at(-1.0 + 2.0 * k / (m - 1)));
     for (int k = 0; k < m; ++k) {
       const double v = values[static_cast<std::size_t>(k)];
-      if ((k > 0 && values[static_cast<std::size_t>(k - 1)] < v) || (k < m - 1 && values[static_cast<std::size_t>(k + 1)] < v))
+      if ((k > 0 && values[static_cast<std::size_t>(k - 1)] < v) ||
+          (k < m - 1 && values[static_cast<std::size_t>(k + 1)] < v))
         continue;
       const double h = 2.0 / (m - 1);
-      double lo = std::max(-1.0, -1.0 + 2.0 * k / (m - 1) - h), hi = std::min(1.0, -1.0 + 2.0 * k / (m - 1) + h);
+      double lo = std::max(-1.0, -1.0 + 2.0 * k / (m - 1) - h),
+             hi = std::min(1.0, -1.0 + 2.0 * k / (m - 1) + h);
       const double ratio = 0.5 * (std::sqrt(5.0) - 1.0);
       double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
       double f1 = d2(at(x1)), f2 = d2(at(x2));
@@ -195,7 +205,8 @@ Truth brute_force_closest_point(const Surface<Terms>& s, const Vec3& point, int 
       for (const double end : {-1.0, 1.0}) candidates.push_back({d2(at(end)), at(end)});
     }
   }
-  std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.f < b.f; });
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.f < b.f; });
   Truth truth;
   truth.xi = candidates.front().xi;
   truth.distance = std::sqrt(candidates.front().f);

@@ -35,11 +35,15 @@ struct BadFile {
 
 TEST(ProjectCases, MalformedFilesNameTheCaseTheKeyAndWhatWasExpected) {
   const std::vector<BadFile> files{
-      {"wrong_node_count.yaml", {"wrong_node_count.yaml:9:12:", "cases[1].nodes", "expected 8 points", "got 4"}},
-      {"non_numeric.yaml", {"non_numeric.yaml:5:", "cases[0].nodes[2][1]", "expected a finite number", "'one'"}},
-      {"unknown_segment.yaml", {"unknown_segment.yaml:4:14:", "cases[0].segment", "quad9", "did you mean 'quad"}},
+      {"wrong_node_count.yaml",
+       {"wrong_node_count.yaml:9:12:", "cases[1].nodes", "expected 8 points", "got 4"}},
+      {"non_numeric.yaml",
+       {"non_numeric.yaml:5:", "cases[0].nodes[2][1]", "expected a finite number", "'one'"}},
+      {"unknown_segment.yaml",
+       {"unknown_segment.yaml:4:14:", "cases[0].segment", "quad9", "did you mean 'quad"}},
       {"missing_point.yaml", {"missing_point.yaml:3:", "cases[0].point", "missing key"}},
-      {"unknown_key.yaml", {"unknown_key.yaml:6:5:", "cases[0].pointt", "unknown key", "did you mean 'point'"}},
+      {"unknown_key.yaml",
+       {"unknown_key.yaml:6:5:", "cases[0].pointt", "unknown key", "did you mean 'point'"}},
       {"short_point.yaml", {"short_point.yaml:6:12:", "cases[0].point", "expected a list of 3 numbers"}},
       {"bad_initial_guess.yaml", {"cases[0].initial_guess[1]", "expected a finite number"}},
       {"not_yaml.yaml", {"not_yaml.yaml:", "not valid YAML"}},
@@ -48,7 +52,8 @@ TEST(ProjectCases, MalformedFilesNameTheCaseTheKeyAndWhatWasExpected) {
   for (const BadFile& bad : files) {
     const std::string message = error_of(bad.file);
     for (const std::string& part : bad.must_contain)
-      EXPECT_NE(message.find(part), std::string::npos) << bad.file << ": '" << part << "' not in: " << message;
+      EXPECT_NE(message.find(part), std::string::npos)
+          << bad.file << ": '" << part << "' not in: " << message;
   }
 }
 
@@ -70,7 +75,8 @@ TEST(ProjectCases, ReferenceFileReadsEveryCase) {
 
 TEST(ProjectCases, OptionalIdAndInitialGuess) {
   const auto cases = input::parse_project_cases(
-      "cases:\n  - segment: quad4\n    nodes: [[-1,-1,0],[1,-1,0],[1,1,0],[-1,1,0]]\n    point: [0.1, 0.2, 1]\n"
+      "cases:\n  - segment: quad4\n    nodes: [[-1,-1,0],[1,-1,0],[1,1,0],[-1,1,0]]\n    point: [0.1, 0.2, "
+      "1]\n"
       "    initial_guess: [0.5, -0.25]\n",
       "memory");
   ASSERT_EQ(cases.size(), 1u);
@@ -107,8 +113,9 @@ TEST(ProjectCommand, CsvHasTheContractHeaderAndOneRowPerCaseMethodAndGuess) {
   options.initial_guess = "all";
   const auto rows = parse_csv(run(options));
   ASSERT_FALSE(rows.empty());
-  const std::vector<std::string> header{"id", "method", "initial_guess", "xi1", "xi2", "converged", "iterations",
-                                        "evaluations", "stationary", "inside", "distance", "gap", "nanoseconds"};
+  const std::vector<std::string> header{"id",        "method",     "initial_guess", "xi1",        "xi2",
+                                        "converged", "iterations", "evaluations",   "stationary", "inside",
+                                        "distance",  "gap",        "nanoseconds"};
   EXPECT_EQ(rows[0], header);
   ASSERT_EQ(rows.size(), 1u + 8u * 9u * 6u);
   const std::vector<std::string> guesses{"lsp", "center", "corner1", "corner2", "corner3", "corner4"};
@@ -119,7 +126,8 @@ TEST(ProjectCommand, CsvHasTheContractHeaderAndOneRowPerCaseMethodAndGuess) {
     EXPECT_EQ(rows[k][2], guesses[index % 6]);
     EXPECT_TRUE(rows[k][5] == "0" || rows[k][5] == "1");
     EXPECT_TRUE(rows[k][9] == "0" || rows[k][9] == "1");
-    EXPECT_TRUE(rows[k][8] == "minimum" || rows[k][8] == "saddle" || rows[k][8] == "maximum" || rows[k][8] == "none");
+    EXPECT_TRUE(rows[k][8] == "minimum" || rows[k][8] == "saddle" || rows[k][8] == "maximum" ||
+                rows[k][8] == "none");
   }
 }
 
@@ -135,7 +143,8 @@ TEST(ProjectCommand, CsvValuesRoundTripTheLibraryResultWith17Digits) {
     const auto& c = cases[(k - 1) / 2];
     contact::Segment s;
     s.type = c.segment;
-    for (std::size_t i = 0; i < c.nodes.size(); ++i) s.nodes[i] = {c.nodes[i][0], c.nodes[i][1], c.nodes[i][2]};
+    for (std::size_t i = 0; i < c.nodes.size(); ++i)
+      s.nodes[i] = {c.nodes[i][0], c.nodes[i][1], c.nodes[i][2]};
     contact::ProjectionSettings st;
     st.method = (k - 1) % 2 == 0 ? contact::SearchMethod::newton : contact::SearchMethod::robust;
     const auto r = contact::project(s, {c.point[0], c.point[1], c.point[2]}, {0.25, -0.5}, st);

@@ -1,10 +1,10 @@
 // `exdyn project` through the executable: exit status and messages.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 namespace {
 
@@ -19,7 +19,8 @@ Outcome run(const std::string& arguments) {
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return outcome;
   std::array<char, 4096> buffer{};
-  while (const std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) outcome.output.append(buffer.data(), n);
+  while (const std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
+    outcome.output.append(buffer.data(), n);
   const int status = pclose(pipe);
   outcome.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return outcome;
@@ -52,10 +53,11 @@ TEST(ProjectCli, ReferenceCasesPrintTheCsv) {
   const Outcome o =
       run("project " + source + "/tests/contact/cases/reference.yaml --method all --initial-guess all");
   EXPECT_EQ(o.status, 0) << o.output;
-  EXPECT_EQ(o.output.rfind("id,method,initial_guess,xi1,xi2,converged,iterations,evaluations,stationary,inside,"
-                           "distance,gap,nanoseconds\n",
-                           0),
-            0u);
+  EXPECT_EQ(
+      o.output.rfind("id,method,initial_guess,xi1,xi2,converged,iterations,evaluations,stationary,inside,"
+                     "distance,gap,nanoseconds\n",
+                     0),
+      0u);
   std::size_t lines = 0;
   for (char ch : o.output) lines += ch == '\n';
   EXPECT_EQ(lines, 1u + 8u * 9u * 6u);

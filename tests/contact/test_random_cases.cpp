@@ -85,8 +85,8 @@ TEST(RandomCases, RobustFindsTheClosestPointOfTheSegmentInEveryCase) {
           ++failures;
           ADD_FAILURE() << name(type) << " " << testing::distortion_name(d) << " " << case_text(s, point)
                         << "\n robust xi (" << r.xi[0] << ", " << r.xi[1] << ") d " << r.distance
-                        << " converged " << r.converged << "\n truth  xi (" << truth.xi[0] << ", " << truth.xi[1]
-                        << ") d " << truth.distance;
+                        << " converged " << r.converged << "\n truth  xi (" << truth.xi[0] << ", "
+                        << truth.xi[1] << ") d " << truth.distance;
           continue;
         }
         if (truth.second_distance > truth.distance + 1e-6) {

@@ -19,7 +19,8 @@ Segment flat_q8() {
 }
 Segment t2_segment() {  // z = 0.5 x^2 + 0.1 y^2 at the nodes
   Segment s = flat_q8();
-  for (int i = 0; i < 8; ++i) s.nodes[i].z = 0.5 * s.nodes[i].x * s.nodes[i].x + 0.1 * s.nodes[i].y * s.nodes[i].y;
+  for (int i = 0; i < 8; ++i)
+    s.nodes[i].z = 0.5 * s.nodes[i].x * s.nodes[i].x + 0.1 * s.nodes[i].y * s.nodes[i].y;
   return s;
 }
 Segment t3_segment() {
@@ -44,8 +45,12 @@ struct Start {
 };
 // The paper's six starting points: one LSP step, the centre, the four corners.
 std::vector<Start> six_starts(const Segment& s, const Vec3& point) {
-  return {{"lsp", initial_guess_lsp(s, point)}, {"center", {0, 0}}, {"corner1", {-1, -1}},
-          {"corner2", {1, -1}}, {"corner3", {1, 1}}, {"corner4", {-1, 1}}};
+  return {{"lsp", initial_guess_lsp(s, point)},
+          {"center", {0, 0}},
+          {"corner1", {-1, -1}},
+          {"corner2", {1, -1}},
+          {"corner3", {1, 1}},
+          {"corner4", {-1, 1}}};
 }
 
 ProjectionSettings settings_for(SearchMethod m) {
@@ -56,13 +61,14 @@ ProjectionSettings settings_for(SearchMethod m) {
   return st;
 }
 
-constexpr std::array gradient_methods{SearchMethod::newton, SearchMethod::lsp, SearchMethod::steepest_descent,
-                                      SearchMethod::broyden, SearchMethod::bfgs, SearchMethod::dfp};
+constexpr std::array gradient_methods{
+    SearchMethod::newton,  SearchMethod::lsp,  SearchMethod::steepest_descent,
+    SearchMethod::broyden, SearchMethod::bfgs, SearchMethod::dfp};
 
 std::string describe(SearchMethod m, const std::string& start, const ProjectionResult& r) {
   return std::string(name(m)) + " from " + start + ": xi (" + std::to_string(r.xi[0]) + ", " +
-         std::to_string(r.xi[1]) + ") it " + std::to_string(r.iterations) + " " + std::string(name(r.stationary)) +
-         " " + std::string(name(r.failure));
+         std::to_string(r.xi[1]) + ") it " + std::to_string(r.iterations) + " " +
+         std::string(name(r.stationary)) + " " + std::string(name(r.failure));
 }
 
 TEST(ReferenceCases, T1FlatEveryGradientMethodInAtMostTwoIterationsFromAnywhere) {
@@ -327,7 +333,8 @@ TEST(ReferenceCases, DeadZoneOutsideBothFacesTheClosestPointIsTheEdge) {
       EXPECT_TRUE(newton.converged);
       EXPECT_FALSE(newton.inside);
       // robust: the edge point (0, 0, 0), distance 0.5, direction (0.6, 0, 0.8).
-      const ProjectionResult r = project(s, point, initial_guess_lsp(s, point), settings_for(SearchMethod::robust));
+      const ProjectionResult r =
+          project(s, point, initial_guess_lsp(s, point), settings_for(SearchMethod::robust));
       EXPECT_TRUE(r.on_boundary);
       EXPECT_NEAR(r.distance, 0.5, 1e-12);
       const Vec3 y = position(s, r.xi);

@@ -12,7 +12,7 @@ bool bfgs_update(Mat2& B, Xi s, Xi y) {
   const double sy = dot2(s, y);
   if (vanishes(sy, s, y)) return false;
   const double rho = 1.0 / sy;
-  const Xi By = B * y;   // B symmetric: B y = (y^T B)^T
+  const Xi By = B * y;  // B symmetric: B y = (y^T B)^T
   const double yBy = dot2(y, By);
   const double c = rho * rho * yBy + rho;
   // B - rho (s (By)^T + (By) s^T) + (rho^2 y.B.y + rho) s s^T
@@ -24,7 +24,8 @@ bool bfgs_update(Mat2& B, Xi s, Xi y) {
 }
 
 template <int Terms>
-ProjectionResult bfgs_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, const ProjectionSettings& settings) {
+ProjectionResult bfgs_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
+                             const ProjectionSettings& settings) {
   return quasi_newton_loop(s, ys, xi0, settings, bfgs_update);
 }
 template ProjectionResult bfgs_kernel<4>(const Surface<4>&, const Vec3&, Xi, const ProjectionSettings&);
@@ -32,7 +33,8 @@ template ProjectionResult bfgs_kernel<8>(const Surface<8>&, const Vec3&, Xi, con
 
 }  // namespace detail
 
-ProjectionResult project_bfgs(const Segment& segment, const Vec3& point, Xi xi0, const ProjectionSettings& settings) {
+ProjectionResult project_bfgs(const Segment& segment, const Vec3& point, Xi xi0,
+                              const ProjectionSettings& settings) {
   return detail::dispatch(segment, point, xi0, settings,
                           [](const auto& s, const Vec3& ys, Xi x, const ProjectionSettings& st) {
                             return detail::quasi_newton_loop(s, ys, x, st, detail::bfgs_update);

@@ -24,7 +24,8 @@ bool dfp_update(detail::Mat2& B, Xi s, Xi y) {
 
 }  // namespace
 
-ProjectionResult project_dfp(const Segment& segment, const Vec3& point, Xi xi0, const ProjectionSettings& settings) {
+ProjectionResult project_dfp(const Segment& segment, const Vec3& point, Xi xi0,
+                             const ProjectionSettings& settings) {
   return detail::dispatch(segment, point, xi0, settings,
                           [](const auto& s, const Vec3& ys, Xi x, const ProjectionSettings& st) {
                             return detail::quasi_newton_loop(s, ys, x, st, dfp_update);

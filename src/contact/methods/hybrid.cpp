@@ -8,7 +8,8 @@ namespace exdyn::contact {
 namespace {
 
 template <int Terms>
-ProjectionResult hybrid_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, const ProjectionSettings& settings) {
+ProjectionResult hybrid_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
+                               const ProjectionSettings& settings) {
   const ProjectionResult coarse = detail::simplex_kernel(s, ys, xi0, settings, settings.hybrid_switch_size);
   ProjectionResult fine = detail::bfgs_kernel(s, ys, coarse.xi, settings);
   fine.iterations += coarse.iterations;

@@ -30,7 +30,9 @@ inline Mat2 inverse(const Sym2& m) {
   const double inv = 1.0 / det(m);
   return {m.yy * inv, -m.xy * inv, -m.xy * inv, m.xx * inv};
 }
-inline Xi operator*(const Mat2& m, Xi v) { return {m.m00 * v[0] + m.m01 * v[1], m.m10 * v[0] + m.m11 * v[1]}; }
+inline Xi operator*(const Mat2& m, Xi v) {
+  return {m.m00 * v[0] + m.m01 * v[1], m.m10 * v[0] + m.m11 * v[1]};
+}
 inline Xi operator*(const Sym2& m, Xi v) { return {m.xx * v[0] + m.xy * v[1], m.xy * v[0] + m.yy * v[1]}; }
 inline double dot2(Xi a, Xi b) { return a[0] * b[0] + a[1] * b[1]; }
 inline double norm2(Xi a) { return std::sqrt(dot2(a, a)); }
@@ -50,11 +52,11 @@ inline Xi eigenvalues(const Sym2& m) {
 // f, g and H at one point (with the surface point they came from).
 struct Local {
   SurfacePoint p;
-  Vec3 r;     // ys - y
-  double f;   // r.r
-  Xi g;       // g_a = -2 r.a_a
-  Sym2 H;     // H_ab = 2 (a_a.a_b - r.y_,ab)
-  Sym2 A;     // Gauss-Newton matrix A_ab = a_a.a_b (LSP)
+  Vec3 r;    // ys - y
+  double f;  // r.r
+  Xi g;      // g_a = -2 r.a_a
+  Sym2 H;    // H_ab = 2 (a_a.a_b - r.y_,ab)
+  Sym2 A;    // Gauss-Newton matrix A_ab = a_a.a_b (LSP)
 };
 
 template <int Terms>

@@ -8,7 +8,8 @@ namespace exdyn::contact {
 namespace {
 
 template <int Terms>
-ProjectionResult lsp_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, const ProjectionSettings& settings) {
+ProjectionResult lsp_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
+                            const ProjectionSettings& settings) {
   using namespace detail;
   ProjectionResult result;
   Xi xi = xi0;
@@ -43,7 +44,8 @@ ProjectionResult lsp_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, con
 
 }  // namespace
 
-ProjectionResult project_lsp(const Segment& segment, const Vec3& point, Xi xi0, const ProjectionSettings& settings) {
+ProjectionResult project_lsp(const Segment& segment, const Vec3& point, Xi xi0,
+                             const ProjectionSettings& settings) {
   return detail::dispatch(segment, point, xi0, settings,
                           [](const auto& s, const Vec3& ys, Xi x, const ProjectionSettings& st) {
                             return lsp_kernel(s, ys, x, st);

@@ -7,7 +7,8 @@ namespace exdyn::contact {
 namespace {
 
 template <int Terms>
-ProjectionResult newton_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, const ProjectionSettings& settings) {
+ProjectionResult newton_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
+                               const ProjectionSettings& settings) {
   using namespace detail;
   ProjectionResult result;
   Xi xi = xi0;

@@ -10,7 +10,9 @@
 
 namespace exdyn::contact::detail {
 
-inline Xi row_times(Xi s, const Mat2& m) { return {s[0] * m.m00 + s[1] * m.m10, s[0] * m.m01 + s[1] * m.m11}; }
+inline Xi row_times(Xi s, const Mat2& m) {
+  return {s[0] * m.m00 + s[1] * m.m10, s[0] * m.m01 + s[1] * m.m11};
+}
 
 // Relative test for a vanishing denominator u.v of an update.
 inline bool vanishes(double denominator, Xi u, Xi v) {

@@ -1,18 +1,19 @@
-// `robust`: the closest point of the segment itself, xi in [-1,1]^2, in every
-// case (docs/local-search.md, "The robust method"):
-//  1. seeds: f on a 5 x 5 grid over [-1,1]^2 (and at the clamped initial
-//     guess); every discrete local minimum of the grid is a seed, best first
-//     (at most max_seeds);
-//  2. from each seed, Newton with an active set on the bounds: a bound whose
-//     gradient points out of the square is held; the free variables take the
-//     Newton step when their Hessian is positive definite, otherwise a step
-//     with |eigenvalues| (damped Newton, plus a move along the negative
-//     curvature); the step is projected onto the square and halved until f
+// `robust`: the closest point of the segment itself, xi in [-1,1]^2
+// (docs/local-search.md, "The robust method"):
+//  1. seeds from f on a 9 x 9 grid over [-1,1]^2: (a) the grid's discrete local
+//     minima, (b) points of the edges that are discrete minima along the edge
+//     where f decreases out of the square; the clamped initial guess if better;
+//  2. from each seed, Newton with an active set on the bounds (a bound whose
+//     gradient points out of the square is held); damped (|eigenvalues|, plus a
+//     move along negative curvature) when H is not positive definite; the step
+//     cut to one grid spacing, projected onto the square and halved until f
 //     decreases (Armijo);
-//  3. at the end, a Hessian check on the free variables: negative curvature
-//     means a saddle or maximum of the reduced problem, so the search restarts
-//     from a point moved along that direction;
-//  4. the best point over all seeds is the answer.
+//  3. a Hessian check on the free variables at the end of each descent:
+//     negative curvature restarts from a point moved along it;
+//  4. second chances: (c) grid points whose f is within lambda h^2 / 4 of the
+//     best and far from every point found; (d) along an edge near an interior
+//     point found; (e) just inside an edge point found;
+//  5. the lowest f over all descents.
 #include <algorithm>
 
 #include "contact/methods/kernel_support.hpp"
@@ -22,13 +23,13 @@ namespace {
 
 using namespace detail;
 
-constexpr int grid_points = 9;       // per direction, including the edges
-constexpr int max_seeds = 8;         // Newton runs, at most
-constexpr int max_second_chances = 8;  // further Newton runs, at most
-constexpr int max_restarts = 3;      // Hessian-check restarts per seed
+constexpr int grid_points = 9;                        // per direction, including the edges
+constexpr int max_seeds = 8;                          // Newton runs, at most
+constexpr int max_second_chances = 8;                 // further Newton runs, at most
+constexpr int max_restarts = 3;                       // Hessian-check restarts per seed
 constexpr double max_step = 2.0 / (grid_points - 1);  // parametric
-constexpr double armijo = 1.0e-4;    // sufficient decrease
-constexpr double escape_step = 0.25; // parametric move off a saddle or maximum
+constexpr double armijo = 1.0e-4;                     // sufficient decrease
+constexpr double escape_step = 0.25;                  // parametric move off a saddle or maximum
 
 inline double clamp1(double x) { return std::clamp(x, -1.0, 1.0); }
 inline Xi clamp_box(Xi x) { return {clamp1(x[0]), clamp1(x[1])}; }
@@ -45,7 +46,8 @@ struct Run {
 template <int Terms>
 class RobustSearch {
  public:
-  RobustSearch(const Surface<Terms>& s, const Vec3& ys, const ProjectionSettings& settings, ProjectionResult& counts)
+  RobustSearch(const Surface<Terms>& s, const Vec3& ys, const ProjectionSettings& settings,
+               ProjectionResult& counts)
       : s_(s), ys_(ys), settings_(settings), counts_(counts) {
     const double size = std::sqrt(size2(s));
     f_noise_ = 1.0e-14 * (size * size + dot(ys - s.c[0], ys - s.c[0]));
@@ -169,8 +171,8 @@ class RobustSearch {
 
   double curvature_zero(const Local& l) const {
     const double r_norm = std::sqrt(l.f);
-    return eigenvalue_tolerance *
-           2.0 * (l.A.xx + l.A.yy + r_norm * (norm(l.p.y11) + 2.0 * norm(l.p.y12) + norm(l.p.y22)));
+    return eigenvalue_tolerance * 2.0 *
+           (l.A.xx + l.A.yy + r_norm * (norm(l.p.y11) + 2.0 * norm(l.p.y12) + norm(l.p.y22)));
   }
 
   static Xi eigenvector(const Sym2& H, double lambda) {
@@ -251,35 +253,38 @@ void grid_values(const Surface<Terms>& s, const Vec3& ys, std::array<double, gri
 }
 
 template <int Terms>
-ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, const ProjectionSettings& settings) {
+ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
+                               const ProjectionSettings& settings) {
   ProjectionResult result;
   std::array<double, grid_points * grid_points> f;  // every entry written by grid_values
   grid_values(s, ys, f);
   result.evaluations = grid_points * grid_points;
 
-  // Seeds, (a): the grid's discrete local minima (ties broken by index).
+  // Seeds, (a): the grid's discrete local minima (no lower value among the up
+  // to 8 neighbours; equal neighbours are both seeds).
   constexpr int n = grid_points;
   const auto coordinate = [](int i) { return -1.0 + 2.0 * i / (n - 1); };
   const auto less = [&f](int a, int b) { return f[a] < f[b] || (f[a] == f[b] && a < b); };
+  // The least f over each point's 3 x 3 neighbourhood, by two separable passes
+  // (branch-free); a point is a seed when it equals that least value.
+  std::array<double, n * n> row_min;  // every entry written below
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const int index = j * n + i;
+      double m = f[index];
+      if (i > 0) m = std::min(m, f[index - 1]);
+      if (i < n - 1) m = std::min(m, f[index + 1]);
+      row_min[index] = m;
+    }
+  }
   std::array<bool, n * n> seed_at;  // every entry written below
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
       const int index = j * n + i;
-      // Along the row first (most points fail there), then the rows below and above.
-      bool minimum = !(i > 0 && less(index - 1, index)) && !(i < n - 1 && less(index + 1, index));
-      for (int dj = -1; dj <= 1 && minimum; dj += 2) {
-        const int jj = j + dj;
-        if (jj < 0 || jj >= n) continue;
-        for (int di = -1; di <= 1; ++di) {
-          const int ii = i + di;
-          if (ii < 0 || ii >= n) continue;
-          if (less(jj * n + ii, index)) {
-            minimum = false;
-            break;
-          }
-        }
-      }
-      seed_at[index] = minimum;
+      double m = row_min[index];
+      if (j > 0) m = std::min(m, row_min[index - n]);
+      if (j < n - 1) m = std::min(m, row_min[index + n]);
+      seed_at[index] = f[index] <= m;
     }
   }
   // (b): on each edge, the discrete local minima along the edge where f
@@ -289,10 +294,14 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
     // edge 0: xi2 = -1, 1: xi1 = +1, 2: xi2 = +1, 3: xi1 = -1
     const auto index_of = [edge](int k) {
       switch (edge) {
-        case 0: return k;
-        case 1: return k * n + (n - 1);
-        case 2: return (n - 1) * n + k;
-        default: return k * n;
+        case 0:
+          return k;
+        case 1:
+          return k * n + (n - 1);
+        case 2:
+          return (n - 1) * n + k;
+        default:
+          return k * n;
       }
     };
     for (int k = 0; k < n; ++k) {
@@ -302,7 +311,10 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
       const Xi xi{coordinate(index % n), coordinate(index / n)};
       const LocalGradient lg = evaluate_gradient(s, ys, xi);
       ++result.evaluations;
-      const bool outward = edge == 0 ? lg.g[1] > 0.0 : edge == 1 ? lg.g[0] < 0.0 : edge == 2 ? lg.g[1] < 0.0 : lg.g[0] > 0.0;
+      const bool outward = edge == 0   ? lg.g[1] > 0.0
+                           : edge == 1 ? lg.g[0] < 0.0
+                           : edge == 2 ? lg.g[1] < 0.0
+                                       : lg.g[0] > 0.0;
       seed_at[index] = outward;
     }
   }
@@ -365,7 +377,7 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
         const double x = found[k][a];
         if (std::fabs(x) < 1.0 - 1.5 * h) continue;
         Xi q = found[k];
-        Run run;
+        Run run{q, 0.0, false};
         if (std::fabs(x) < 1.0) {  // (d)
           q[a] = x > 0.0 ? 1.0 : -1.0;
           run = search.descend_on_edge(q, a);
@@ -396,8 +408,8 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0, 
   result.failure = best.converged ? FailureReason::none : FailureReason::max_iterations;
   // On an edge or a corner with the gradient pointing out of the square.
   const Local l = evaluate_local(s, ys, best.xi);
-  const double gradient_floor =
-      stationary_gradient_tolerance * 2.0 * std::sqrt(l.A.xx + l.A.yy) * (std::sqrt(l.f) + std::sqrt(size2(s)));
+  const double gradient_floor = stationary_gradient_tolerance * 2.0 * std::sqrt(l.A.xx + l.A.yy) *
+                                (std::sqrt(l.f) + std::sqrt(size2(s)));
   for (int a = 0; a < 2; ++a)
     if (held(best.xi[a], l.g[a]) && std::fabs(l.g[a]) > gradient_floor) result.on_boundary = true;
   return result;

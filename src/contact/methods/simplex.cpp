@@ -78,8 +78,10 @@ ProjectionResult simplex_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
   result.xi = v[0];
   return result;
 }
-template ProjectionResult simplex_kernel<4>(const Surface<4>&, const Vec3&, Xi, const ProjectionSettings&, double);
-template ProjectionResult simplex_kernel<8>(const Surface<8>&, const Vec3&, Xi, const ProjectionSettings&, double);
+template ProjectionResult simplex_kernel<4>(const Surface<4>&, const Vec3&, Xi, const ProjectionSettings&,
+                                            double);
+template ProjectionResult simplex_kernel<8>(const Surface<8>&, const Vec3&, Xi, const ProjectionSettings&,
+                                            double);
 
 }  // namespace detail
 
