@@ -30,6 +30,7 @@ import math
 import os
 import platform
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -189,7 +190,8 @@ def run_grid(cases, args):
         with open(os.path.join(args.out, "invocations.jsonl"), "a") as f:
             f.write(json.dumps({"finished": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
                                 "command": args.command, "jobs": args.jobs, "ran": len(todo), "skipped": skipped,
-                                "failed": failures, "seconds": round(total, 1),
+                                "failed": failures, "seconds": round(total, 1), "exdyn": args.exdyn_label,
+                                "repository": git_commit(),
                                 "load_average": [round(load_start, 2), round(os.getloadavg()[0], 2)]}) + "\n")
     return len(todo), skipped, failures, total
 
@@ -297,8 +299,8 @@ def chart_fig9(contact_plate, reference_plate, title, ax):
     z, v = pm.sigma_z_line(reference_plate)
     ax.plot(z / pm.D, v, "o", color="C1", ms=2.2, label="reference")
     ax.plot([0, pm.DIFFRACTED_Z_OVER_D], [pm.PLATEAU_Z] * 2, "k--", lw=1, label="exact, z/d < 0.6081")
-    ax.axvline(pm.DIFFRACTED_Z_OVER_D, color="0.5", lw=0.8, ls=":")
-    ax.axvline(pm.HEAD_WAVE_Z_OVER_D, color="0.5", lw=0.8, ls="-.", label="diffracted / head wave arrive")
+    ax.axvline(pm.DIFFRACTED_Z_OVER_D, color="0.5", lw=0.8, ls=":", label="diffracted wave arrives")
+    ax.axvline(pm.HEAD_WAVE_Z_OVER_D, color="0.5", lw=0.8, ls="-.", label="head wave arrives")
     ax.set_xlabel("z / d   (x / d = 0.4)")
     ax.set_ylabel(r"$\sigma_z^*$")
     ax.set_title(title, fontsize=10)
@@ -440,14 +442,16 @@ def make_pictures(cases, args, figdir):
     t0 = time.perf_counter()
     # xvfb-run -a can lose a race for a display number to another xvfb-run on the machine
     # (pvpython then aborts: "bad X server connection"): try again.
+    # The script's JSON line is what counts: xvfb-run can fail to clean up after a good run.
     for attempt in range(4):
         proc = subprocess.run([PVPYTHON_RUNNER, PICTURES_SCRIPT, c.xmf_path, "--out-dir", figdir,
                                "--prefix", "results_pv"], capture_output=True, text=True)
-        if proc.returncode == 0 or "X server" not in proc.stderr:
+        ok = '"ok": true' in proc.stdout
+        if ok or "X server" not in proc.stderr:
             break
         log(f"paraview: no X display (attempt {attempt + 1}), trying again")
         time.sleep(2 + 3 * attempt)
-    if proc.returncode != 0:
+    if not ok:
         log(f"paraview: FAILED (exit {proc.returncode}): {proc.stderr[-500:]}")
         return []
     csv_path = os.path.join(figdir, "results_pv_line.csv")
@@ -510,8 +514,8 @@ def doc_sections(cases, rows, args, stats, command, exdyn_version):
     now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
     sec = {}
     sec["run"] = "\n".join([
-        f"- measured: {now}, on {cpu_model()}, {os.cpu_count()} cores visible, {platform.system()} "
-        f"{platform.release()}; {exdyn_version}, repository at {git_commit()};",
+        f"- machine: {cpu_model()}, {os.cpu_count()} cores visible, {platform.system()} {platform.release()}; "
+        f"page written {now}; the cases were measured by the invocations below;",
         f"- grid: meshes {', '.join(str(n) for n in args.meshes)} elements per plate side; formulations "
         f"{', '.join(args.formulations)}; local search methods {', '.join(args.methods)}; "
         f"{len(cases)} cases ({sum(c.kind == 'contact' for c in cases)} contact, "
@@ -519,7 +523,8 @@ def doc_sections(cases, rows, args, stats, command, exdyn_version):
         f"- the invocations that ran cases (from `{os.path.join(os.path.basename(args.out), 'invocations.jsonl')}`):"]
         + [f"  - {i['finished']}: `{i['command']}`: ran {i['ran']} cases ({i['failed']} failed), skipped "
            f"{i['skipped']}, {i['seconds']:.0f} s with {i['jobs']} job(s); 1-minute load average "
-           f"{i['load_average'][0]:.1f} at the start, {i['load_average'][1]:.1f} at the end"
+           f"{i['load_average'][0]:.1f} at the start, {i['load_average'][1]:.1f} at the end; "
+           f"{i.get('exdyn', 'exdyn not recorded')}; repository at {i.get('repository', 'not recorded')}"
            for i in invocations(args.out)]
         + [f"- the completed cases' exdyn wall times add up to {wall_sum:.0f} s (processes: {proc_sum:.0f} s); "
            "each case runs on one thread, and on a machine shared with other work the wall times include "
@@ -752,6 +757,9 @@ def main(argv):
     args.exdyn = os.path.abspath(args.exdyn) if os.path.exists(args.exdyn) else args.exdyn
     try:
         exdyn_version = subprocess.run([args.exdyn, "--version"], capture_output=True, text=True).stdout.strip()
+        built = datetime.datetime.fromtimestamp(os.path.getmtime(shutil.which(args.exdyn) or args.exdyn),
+                                                datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+        args.exdyn_label = f"{exdyn_version} ({args.exdyn}, built {built})"
     except OSError:
         print(f"batch_plate_impact: cannot run {args.exdyn}", file=sys.stderr)
         return 2

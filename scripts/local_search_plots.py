@@ -83,12 +83,14 @@ def speed_accuracy(sp, path, cases):
         ax.annotate(sp[i]["method"], (x[i], y[i]), textcoords="offset points",
                     xytext=(4, 6 if rank % 2 == 0 else -12), fontsize=8)
     ax.set_xscale("log")
+    ax.set_xlim(x.min() / 1.3, x.max() * 1.4)  # room for the labels
     ax.set_xlabel("mean time per projection [ns] (log scale)")
     ax.set_ylabel("runs ending on the true closest point [%]")
     ax.set_title(f"Speed against accuracy, {cases} random segments, guess lsp", fontsize=10)
     lo = max(0.0, np.floor(y.min()) - 2)
     ax.set_ylim(lo, 100.5)
-    ticks = [t for t in (50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000) if x.min() / 1.5 <= t <= x.max() * 1.5]
+    ticks = [t for t in (50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000)
+             if x.min() / 1.5 <= t <= x.max() * 1.5]
     ax.set_xticks(ticks)
     ax.set_xticklabels([str(t) for t in ticks])
     ax.minorticks_off()

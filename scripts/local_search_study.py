@@ -325,7 +325,10 @@ def table1_markdown(t1, methods):
             cells.append(f"{rows['iterations'][k]} / {ns[k] / ref_ns:.2f}{mark[o]}")
         ours = f"{min(its)}-{max(its)}" + (f", {nsp} sp" if nsp else "")
         paper = PAPER_TABLE1.get(m)
-        paper_txt = f"{paper[0]}" + (f", {paper[1]} sp" if paper[1] not in ("0", "0 (never)") else "") if paper else "not in the paper"
+        if paper is None:
+            paper_txt = "not in the paper"
+        else:
+            paper_txt = paper[0] + (f", {paper[1]} sp" if paper[1] not in ("0", "0 (never)") else "")
         out.append(f"| {m} | " + " | ".join(cells) + f" | {ours} | {paper_txt} |")
         summary.append((m, min(its), max(its), nsp, sum(t1["outcome"][k] == "not converged" for k in
                         np.flatnonzero(rows["method"] == m)), paper))
@@ -457,7 +460,8 @@ def robustness_markdown(rb, methods):
             out.append(f"- quad{r['n_nodes'][k]}, level {r['level'][k]}, slave point {r['where'][k]} (case "
                        f"{r['id'][k]} of its batch): {r['outcome'][k]} at xi = {fmt_xi((r['xi1'][k], r['xi2'][k]))}, "
                        f"distance {r['distance'][k]:.6f}; the closest point is at xi = {fmt_xi(r['true_xi'][k])} "
-                       f"({'inside' if r['interior'][k] else 'on the boundary'}), distance {r['true_distance'][k]:.6f}.")
+                       f"({'inside' if r['interior'][k] else 'on the boundary'}), "
+                       f"distance {r['true_distance'][k]:.6f}.")
         if len(miss):
             out.append("")
     vals = [pct(success[runs[-1][1] & (r["n_nodes"] == 8) & (r["level"] == lv)].mean()) for lv in LEVELS]
@@ -555,8 +559,8 @@ def basins_markdown(bs, methods, figure_names):
         out.append("|---|" + "---|" * len(b["label_names"]))
         for m in methods:
             sel = r["method"] == m
-            out.append(f"| {m} | " + " | ".join(pct((b["labels"][sel] == j).mean()) for j in range(len(b["label_names"])))
-                       + " |")
+            shares = [pct((b["labels"][sel] == j).mean()) for j in range(len(b["label_names"]))]
+            out.append(f"| {m} | " + " | ".join(shares) + " |")
         out.append("")
     return "\n".join(out)
 
@@ -657,8 +661,9 @@ def stamp_markdown(args, seconds, runner, exdyn):
     except OSError:
         version = "?"
     load = os.getloadavg()
+    shown = os.path.relpath(exdyn, REPO) if exdyn.startswith(REPO + os.sep) else exdyn
     return (f"Numbers above: run of {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, "
-            f"`{version}`, on {cpu_model()} ({os.cpu_count()} logical CPUs, load average "
+            f"`{version}` (`{shown}`), on {cpu_model()} ({os.cpu_count()} logical CPUs, load average "
             f"{load[0]:.1f} at the end of the run), seed {args.seed}"
             f"{', --quick sizes' if args.quick else ''}; {runner.count} runs of `exdyn project` took "
             f"{runner.seconds:.0f} s of the study's {seconds:.0f} s.")

@@ -107,7 +107,8 @@ def main():
         report = os.path.join(work, "check_xdmf.json")
         proc = subprocess.run([batch.PVPYTHON_RUNNER, "check_xdmf.py", xmf, "--fields",
                                "displacement:point:3,velocity:point:3,stress:cell:6,von_mises:cell:1",
-                               "--strict", "--compact", "--json", report], capture_output=True, text=True)
+                               "--strict", "--compact", "--json", report], capture_output=True, text=True,
+                              env=dict(os.environ, PV_HEADLESS="none"))   # reads only: no X needed
         try:
             with open(report) as f:
                 info = json.load(f)
