@@ -109,6 +109,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   project->add_option("--max-iterations", project_options.max_iterations, "Iteration limit")
       ->capture_default_str();
+  project->add_option("--timing-seconds", project_options.timing_seconds,
+                      "Least total time spent timing each projection (0: time one run)")
+      ->capture_default_str();
 
   try {
     app.parse(argc, argv);
