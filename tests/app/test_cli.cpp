@@ -1,7 +1,6 @@
 // The command line (../shared/spec/cli.md) through the real executable: exit
 // statuses, `check`, `--set`, and that bad input writes nothing.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <array>
@@ -11,38 +10,24 @@
 #include <memory>
 #include <string>
 
+#include "../support/run_exdyn.hpp"
 #include "../support/temp_dir.hpp"
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out;  // stdout and stderr
-};
-
-Result exdyn(const std::string& arguments) {
-  const std::string command = std::string(EXDYN_EXECUTABLE) + " " + arguments + " 2>&1";
-  Result result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), int(buffer.size()), pipe)) result.out += buffer.data();
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+exdyn::testing::CommandResult exdyn(const std::string& arguments) { return exdyn::testing::run_exdyn(arguments); }
 
 std::string deck(const std::string& name) { return std::string(EXDYN_SOURCE_DIR) + "/input/" + name; }
 
 TEST(Cli, VersionAndHelpExitZero) {
   const auto version = exdyn("--version");
   EXPECT_EQ(version.status, 0);
-  EXPECT_NE(version.out.find("exdyn 0.1.0"), std::string::npos) << version.out;
+  EXPECT_NE(version.output.find("exdyn 0.1.0"), std::string::npos) << version.output;
   for (const char* args : {"--help", "run --help", "check --help", "project --help"}) {
     const auto help = exdyn(args);
     EXPECT_EQ(help.status, 0) << args;
   }
-  EXPECT_NE(exdyn("run --help").out.find("--set"), std::string::npos);
+  EXPECT_NE(exdyn("run --help").output.find("--set"), std::string::npos);
 }
 
 TEST(Cli, BadUsageExitsTwo) {
@@ -55,22 +40,22 @@ TEST(Cli, BadUsageExitsTwo) {
 
 TEST(Cli, CheckPrintsTheResolvedDeckWithDefaultsAndOverrides) {
   const auto result = exdyn("check " + deck("wave_bar.yaml") + " --set time.courant=0.25");
-  ASSERT_EQ(result.status, 0) << result.out;
-  EXPECT_NE(result.out.find("courant: 0.25"), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find("formulation: hex8"), std::string::npos) << result.out;  // a default filled in
-  EXPECT_NE(result.out.find("history_every: 1"), std::string::npos) << result.out;
+  ASSERT_EQ(result.status, 0) << result.output;
+  EXPECT_NE(result.output.find("courant: 0.25"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("formulation: hex8"), std::string::npos) << result.output;  // a default filled in
+  EXPECT_NE(result.output.find("history_every: 1"), std::string::npos) << result.output;
 }
 
 TEST(Cli, CheckOutputIsAValidDeckThatChecksToTheSameText) {
   exdyn::testing::TempDir directory;
   const auto first = exdyn("check " + deck("plate_impact_reference.yaml"));
-  ASSERT_EQ(first.status, 0) << first.out;
-  std::ofstream(directory.file("echo.yaml")) << first.out;
+  ASSERT_EQ(first.status, 0) << first.output;
+  std::ofstream(directory.file("echo.yaml")) << first.output;
   const auto second = exdyn("check " + directory.file("echo.yaml"));
-  ASSERT_EQ(second.status, 0) << second.out;
+  ASSERT_EQ(second.status, 0) << second.output;
   // The first line is a comment naming the source file; the rest must agree.
   auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
-  EXPECT_EQ(body(second.out), body(first.out));
+  EXPECT_EQ(body(second.output), body(first.output));
 }
 
 TEST(Cli, BadDeckExitsTwoNamesTheKeyAndWritesNothing) {
@@ -78,29 +63,29 @@ TEST(Cli, BadDeckExitsTwoNamesTheKeyAndWritesNothing) {
   const std::string out = directory.file("out");
   const auto result = exdyn("run " + deck("wave_bar.yaml") + " --set materials.steel.density=-7800 --output " + out);
   EXPECT_EQ(result.status, 2);
-  EXPECT_NE(result.out.find("materials.steel.density"), std::string::npos) << result.out;
+  EXPECT_NE(result.output.find("materials.steel.density"), std::string::npos) << result.output;
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(Cli, RunWritesTheThreeFilesAndOneSummaryLineWhenNotATerminal) {
   exdyn::testing::TempDir directory;
   const auto result = exdyn("run " + deck("wave_bar.yaml") + " --output " + directory.path().string());
-  ASSERT_EQ(result.status, 0) << result.out;
+  ASSERT_EQ(result.status, 0) << result.output;
   for (const char* suffix : {".h5", ".xmf", ".json"})
     EXPECT_TRUE(std::filesystem::exists(directory.file(std::string("wave_bar") + suffix))) << suffix;
   // stdout is a pipe here: no progress line, only the final summary line.
-  EXPECT_EQ(std::count(result.out.begin(), result.out.end(), '\n'), 1) << result.out;
-  EXPECT_NE(result.out.find("completed"), std::string::npos);
+  EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
+  EXPECT_NE(result.output.find("completed"), std::string::npos);
   const auto quiet = exdyn("run " + deck("wave_bar.yaml") + " --quiet --output " + directory.path().string());
   EXPECT_EQ(quiet.status, 0);
-  EXPECT_EQ(quiet.out, "");
+  EXPECT_EQ(quiet.output, "");
 }
 
 TEST(Cli, SetOverridesTheOutputInterval) {
   exdyn::testing::TempDir directory;
   const auto result = exdyn("run " + deck("wave_bar.yaml") + " --quiet --set output.every=1000 --output " +
                             directory.path().string());
-  ASSERT_EQ(result.status, 0) << result.out;
+  ASSERT_EQ(result.status, 0) << result.output;
   std::ifstream xmf(directory.file("wave_bar.xmf"));
   const std::string text((std::istreambuf_iterator<char>(xmf)), std::istreambuf_iterator<char>());
   std::size_t grids = 0;
@@ -113,9 +98,9 @@ TEST(Cli, UnstableRunExitsOneNamesTheStepAndLeavesAFailedSummary) {
   // Courant 1.5 is beyond the stable limit of 1.0: the energy grows until it overflows.
   const auto result = exdyn("run " + deck("wave_bar.yaml") + " --quiet --set time.courant=1.5 --set time.end_time=1e-4" +
                             " --output " + directory.path().string());
-  EXPECT_EQ(result.status, 1) << result.out;
-  EXPECT_NE(result.out.find("at step "), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find("node"), std::string::npos) << result.out;
+  EXPECT_EQ(result.status, 1) << result.output;
+  EXPECT_NE(result.output.find("at step "), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("node"), std::string::npos) << result.output;
   std::ifstream json(directory.file("wave_bar.json"));
   const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;

@@ -1,30 +1,13 @@
 // `exdyn project` through the executable: exit status and messages.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <string>
+
+#include "../support/run_exdyn.hpp"
 
 namespace {
 
-struct Outcome {
-  int status = -1;
-  std::string output;  // stdout and stderr
-};
-
-Outcome run(const std::string& arguments) {
-  const std::string command = std::string(EXDYN_EXECUTABLE) + " " + arguments + " 2>&1";
-  Outcome outcome;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return outcome;
-  std::array<char, 4096> buffer{};
-  while (const std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe))
-    outcome.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  outcome.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return outcome;
-}
+exdyn::testing::CommandResult run(const std::string& arguments) { return exdyn::testing::run_exdyn(arguments); }
 
 const std::string source = EXDYN_SOURCE_DIR;
 
@@ -36,7 +19,7 @@ TEST(ProjectCli, MalformedCasesFileExitsTwoNamingTheCaseAndKey) {
       {"unknown_key.yaml", "cases[0].pointt"},
   }};
   for (const auto& [file, key] : files) {
-    const Outcome o = run("project " + source + "/tests/contact/bad_cases/" + file);
+    const auto o = run("project " + source + "/tests/contact/bad_cases/" + file);
     EXPECT_EQ(o.status, 2) << file << ": " << o.output;
     EXPECT_NE(o.output.find(key), std::string::npos) << file << ": " << o.output;
     EXPECT_NE(o.output.find(file), std::string::npos) << file << ": " << o.output;
@@ -44,13 +27,13 @@ TEST(ProjectCli, MalformedCasesFileExitsTwoNamingTheCaseAndKey) {
 }
 
 TEST(ProjectCli, UnknownMethodExitsTwo) {
-  const Outcome o = run("project " + source + "/tests/contact/cases/reference.yaml --method newtn");
+  const auto o = run("project " + source + "/tests/contact/cases/reference.yaml --method newtn");
   EXPECT_EQ(o.status, 2) << o.output;
   EXPECT_NE(o.output.find("newtn"), std::string::npos) << o.output;
 }
 
 TEST(ProjectCli, ReferenceCasesPrintTheCsv) {
-  const Outcome o =
+  const auto o =
       run("project " + source + "/tests/contact/cases/reference.yaml --method all --initial-guess all");
   EXPECT_EQ(o.status, 0) << o.output;
   EXPECT_EQ(
