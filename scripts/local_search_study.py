@@ -705,7 +705,7 @@ def main():
     doc_path = os.path.join(out_dir, "local-search.md")
 
     rng = np.random.default_rng(args.seed)
-    with tempfile.TemporaryDirectory(dir=out_dir, prefix=".local_search_study_") as work:
+    with tempfile.TemporaryDirectory(prefix="local_search_study_") as work:
         runner = Runner(exdyn, work, methods)
         try:
             log("Table 1")
