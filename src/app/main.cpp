@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -47,6 +48,18 @@ void print_progress(const exdyn::solver::Progress& p) {
   std::fflush(stderr);
 }
 
+// SIGINT (Ctrl-C) and SIGTERM ask the run to finish its step, write it and stop;
+// a second one ends the process at once (the files stay valid: docs/stability.md).
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void request_stop(int signal_number) {
+  if (stop_signal != 0) {
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+  }
+  stop_signal = signal_number;
+}
+
 struct RunArguments {
   std::string deck;
   std::string output;
@@ -60,6 +73,9 @@ int run_command(const RunArguments& arguments) {
   exdyn::solver::RunControls controls;
   controls.output_directory = arguments.output;
   controls.threads = arguments.threads;
+  controls.stop_signal = &stop_signal;
+  std::signal(SIGINT, request_stop);
+  std::signal(SIGTERM, request_stop);
   if (!arguments.quiet && isatty(STDERR_FILENO)) controls.on_progress = print_progress;
   try {
     const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);

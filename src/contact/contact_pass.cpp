@@ -181,8 +181,10 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         force.y[quad[i]] -= N[i] * F * n.y;
         force.z[quad[i]] -= N[i] * F * n.z;
       }
-      statistics.max_penetration_over_h =
-          std::max(statistics.max_penetration_over_h, -contact.gap / surfaces.normal_length[p]);
+      if (const double depth = -contact.gap / surfaces.normal_length[p]; depth > statistics.max_penetration_over_h) {
+        statistics.max_penetration_over_h = depth;
+        statistics.deepest_node = slave;
+      }
     }
   }
 }

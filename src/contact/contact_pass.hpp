@@ -76,6 +76,7 @@ struct ContactStatistics {
   long not_converged = 0;    // stopping test not met (no force from them)
   long saddle_points = 0;    // converged to a saddle or a maximum (no force from them)
   double max_penetration_over_h = 0.0;
+  std::uint32_t deepest_node = 0;   // the slave node of that largest penetration
   double max_pair_stiffness = 0.0;  // largest k of a node pair used (all passes), N/m
 };
 

@@ -277,6 +277,43 @@ ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVector
   return add_internal_forces(block, 0, block.count, u, f_int, stress);
 }
 
+InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t element_begin,
+                                      std::uint32_t element_end, const NodalVectors& x_ref, const NodalVectors& u) {
+  EXDYN_ASSERT(element_begin <= element_end && element_end <= block.count);
+  // Neighbours of each corner along xi, eta, zeta, and the sign that orients the
+  // edge towards +xi, +eta, +zeta (VTK order: 0-3 at zeta = -1, 4-7 at zeta = +1).
+  static constexpr int neighbour[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7},
+                                          {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
+  // -sx sy sz of the corner at (sx, sy, sz): +1 where all three edges already point the + way.
+  static constexpr double orientation[8] = {1.0, -1.0, 1.0, -1.0, -1.0, 1.0, -1.0, 1.0};
+  double smallest_ratio = std::numeric_limits<double>::infinity();  // det J / ||J||_F^2, m
+  for (std::uint32_t e = element_begin; e < element_end; ++e) {
+    const std::uint32_t* nodes = block.connectivity + 8 * static_cast<std::size_t>(e);
+    const ElementVectors x0 = gather(x_ref, nodes);
+    const ElementVectors du = gather(u, nodes);
+    std::array<double, 8> x, y, z;
+    for (int k = 0; k < 8; ++k) x[k] = x0.x[k] + du.x[k], y[k] = x0.y[k] + du.y[k], z[k] = x0.z[k] + du.z[k];
+    for (int a = 0; a < 8; ++a) {
+      const int i = neighbour[a][0], j = neighbour[a][1], k = neighbour[a][2];
+      const double ax = x[i] - x[a], ay = y[i] - y[a], az = z[i] - z[a];
+      const double bx = x[j] - x[a], by = y[j] - y[a], bz = z[j] - z[a];
+      const double cx = x[k] - x[a], cy = y[k] - y[a], cz = z[k] - z[a];
+      const double det =
+          orientation[a] * (ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx));
+      if (!(det > 0.0)) return {true, block.first_element + e, a, det, 0.0};
+      const double frobenius2 = ax * ax + ay * ay + az * az + bx * bx + by * by + bz * bz + cx * cx + cy * cy + cz * cz;
+      smallest_ratio = std::min(smallest_ratio, det / frobenius2);
+    }
+  }
+  InvertedElement none;
+  none.safety_radius = smallest_ratio / (2.0 * std::sqrt(3.0));
+  return none;
+}
+
+InvertedElement find_inverted_element(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
+  return find_inverted_element(block, 0, block.count, x_ref, u);
+}
+
 bool uses_parallelepiped_kernel(const ElementBlock& block) {
   if (block.reference.empty()) return false;
   const ReferenceLayout layout = layout_of(block);

@@ -58,6 +58,30 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
                                     std::uint32_t element_end, const NodalVectors& u, NodalVectors& f_int,
                                     double* stress);
 
+// An element whose current configuration x = x_ref + u is inverted.
+struct InvertedElement {
+  bool found = false;
+  std::uint32_t element = 0;  // global element index
+  int corner = 0;             // local node (VTK order) where det J <= 0
+  double det_jacobian = 0.0;  // det of the corner's edge vectors there, m^3
+  // When none is inverted: no element can invert before some node has moved by this
+  // much from the configuration checked, m (a lower bound, see below).
+  double safety_radius = 0.0;
+};
+
+// The lowest-indexed element of [element_begin, element_end) (local indices) with a
+// non-positive corner Jacobian in the current configuration: at each corner a,
+// det[e_xi, e_eta, e_zeta] with e the edges from a towards its three neighbours,
+// oriented along +xi, +eta, +zeta (the trilinear map's Jacobian at a, times 8).
+// All eight positive is the usual validity test of a hexahedron. The safety radius:
+// moving the nodes by at most delta changes each edge by at most 2 delta, so the
+// corner matrix J by ||E||_2 <= ||E||_F <= 2 sqrt(3) delta, and det J keeps its sign
+// while that stays below sigma_min(J) >= det J / ||J||_F^2 (as sigma_1 sigma_2 <=
+// ||J||_F^2); hence delta < min over corners of det J / (2 sqrt(3) ||J||_F^2).
+InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t element_begin,
+                                      std::uint32_t element_end, const NodalVectors& x_ref, const NodalVectors& u);
+InvertedElement find_inverted_element(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u);
+
 // True when every element of the block is a parallelepiped, so that the block
 // runs the constant-Jacobian kernels (hex8::parallelepiped_internal_forces,
 // hex8r::parallelepiped_internal_forces).

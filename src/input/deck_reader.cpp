@@ -43,7 +43,7 @@ constexpr std::array<BoxSide, 6> all_box_sides{BoxSide::xmin, BoxSide::xmax, Box
 constexpr std::array<std::string_view, 3> component_names{"x", "y", "z"};
 
 std::vector<std::string> top_level_keys() {
-  return {"name", "materials", "parts", "boundary_conditions", "contact", "time", "output"};
+  return {"name", "materials", "parts", "boundary_conditions", "contact", "time", "output", "guards"};
 }
 
 template <class Enum, std::size_t N>
@@ -303,6 +303,7 @@ class DeckValidator {
   LocalSearchOptions local_search(const YAML::Node& node, const std::string& path) const;
   TimeOptions time(const YAML::Node& node, const std::string& path) const;
   OutputOptions output(const YAML::Node& node, const std::string& path) const;
+  GuardOptions guards(const YAML::Node& node, const std::string& path) const;
 
   std::string source_name_;
   const std::vector<Override>& overrides_;
@@ -805,6 +806,19 @@ OutputOptions DeckValidator::output(const YAML::Node& node, const std::string& p
   return result;
 }
 
+GuardOptions DeckValidator::guards(const YAML::Node& node, const std::string& path) const {
+  GuardOptions result;
+  if (node.IsNull()) return result;
+  check_map(node, path, {"energy_growth", "max_penetration"});
+  if (const YAML::Node growth = optional(node, "energy_growth"); growth.IsDefined())
+    result.energy_growth =
+        number_where(growth, child_path(path, "energy_growth"), "a number > 0 (a fraction)", positive);
+  if (const YAML::Node penetration = optional(node, "max_penetration"); penetration.IsDefined())
+    result.max_penetration = number_where(penetration, child_path(path, "max_penetration"),
+                                          "a number > 0 (a fraction of the element length)", positive);
+  return result;
+}
+
 Deck DeckValidator::deck(const YAML::Node& root) const {
   if (!root.IsMap())
     fail(root, "",
@@ -823,6 +837,8 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
   result.time = time(required(root, "", "time"), "time");
   if (const YAML::Node node = optional(root, "output"); node.IsDefined())
     result.output = output(node, "output");
+  if (const YAML::Node node = optional(root, "guards"); node.IsDefined())
+    result.guards = guards(node, "guards");
   return result;
 }
 
@@ -1081,7 +1097,10 @@ std::string to_yaml(const Deck& deck) {
       << "  directory: " << yaml_text(deck.output.directory) << "\n"
       << "  every: " << deck.output.every << "\n"
       << "  fields: [" << join(fields, ", ") << "]\n"
-      << "  history_every: " << deck.output.history_every << "\n";
+      << "  history_every: " << deck.output.history_every << "\n"
+      << "guards:\n"
+      << "  energy_growth: " << yaml_number(deck.guards.energy_growth) << "\n"
+      << "  max_penetration: " << yaml_number(deck.guards.max_penetration) << "\n";
   return out.str();
 }
 

@@ -123,6 +123,19 @@ struct OutputOptions {
   bool operator==(const OutputOptions&) const = default;
 };
 
+// Run-time guards (docs/stability.md): a run stops with a RunFailure when one fires.
+// Non-finite values and inverted elements are always checked.
+struct GuardOptions {
+  // Total energy E^n - E^0 beyond this fraction of the largest energy seen: the
+  // signature of an explicit instability (a stable elastic run stays near 1e-13).
+  double energy_growth = 0.05;
+  // Contact penetration beyond this fraction of h (the slave element's length
+  // normal to its face); the contact search itself looks no deeper than h / 2.
+  double max_penetration = 0.25;
+
+  bool operator==(const GuardOptions&) const = default;
+};
+
 // Every struct compares member by member, so that a test can check that reading
 // to_yaml(deck) back gives the same deck.
 struct Deck {
@@ -134,6 +147,7 @@ struct Deck {
   std::vector<ContactOptions> contact;
   TimeOptions time;
   OutputOptions output;
+  GuardOptions guards;
 
   bool operator==(const Deck&) const = default;
 };

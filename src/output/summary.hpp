@@ -13,6 +13,7 @@ struct PhaseSeconds {
   double contact_forces = 0.0;
   double time_integration = 0.0;
   double output = 0.0;
+  double guards = 0.0;  // the run-time checks of docs/stability.md (not in the spec's list: an addition)
 };
 
 struct EnergySummary {
@@ -31,6 +32,11 @@ struct ContactSummary {
   double penalty_stiffness = 0.0;
 };
 
+// The run-time guards (docs/stability.md); an addition to the spec's keys.
+struct GuardSummary {
+  long inversion_passes = 0;  // steps at which every element was checked for inversion
+};
+
 struct RunSummary {
   std::string name;
   std::string status = "completed";  // "completed" or "failed"
@@ -47,6 +53,7 @@ struct RunSummary {
   PhaseSeconds phase_seconds;
   EnergySummary energy;
   ContactSummary contact;
+  GuardSummary guard_checks;
 };
 
 // Writes the summary as JSON to `path` (atomically: temporary file + rename).

@@ -129,4 +129,11 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
   return contact;
 }
 
+std::string ContactModel::pair_of(std::uint32_t node) const {
+  for (const auto& pair : pairs)
+    for (const auto& pass : pair.passes)
+      if (std::binary_search(pass.slave_nodes.begin(), pass.slave_nodes.end(), node)) return pair.name;
+  return "?";
+}
+
 }  // namespace exdyn::solver

@@ -21,6 +21,10 @@ struct ContactPair {
 struct ContactModel {
   std::vector<ContactPair> pairs;
   std::vector<std::uint32_t> nodes;  // every node of every contact surface, unique
+
+  // The name of the first pair with `node` as a slave node of one of its passes
+  // ("?" if none): for messages.
+  std::string pair_of(std::uint32_t node) const;
 };
 
 // dt: the step in force (s); critical_dt: the mesh's stable step without the

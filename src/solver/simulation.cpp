@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -38,6 +39,7 @@ struct State {
   NodalVectors contact_force;   // f_contact(x^n), N
   NodalVectors previous_contact_force;  // f_contact(x^{n-1}), N (for the contact work)
   std::vector<double> gap;      // signed normal gap of each slave node, m (0: no candidate)
+  std::vector<double> previous_gap;  // the gap of step n-1 (to step back after a non-finite step)
   std::vector<double> stress;   // 6 per element: xx yy zz xy yz xz, Pa
   double contact_energy = 0.0;  // work done against the contact forces, J
 };
@@ -70,6 +72,7 @@ element::ElementEnergies compute_internal_forces(const Model& model, State& stat
 void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt,
                             contact::ContactStatistics& statistics, contact::ContactPhaseSeconds& seconds) {
   std::swap(state.contact_force, state.previous_contact_force);
+  for (std::uint32_t node : contact.nodes) state.previous_gap[node] = state.gap[node];
   for (std::uint32_t node : contact.nodes) {
     state.contact_force.x[node] = state.contact_force.y[node] = state.contact_force.z[node] = 0.0;
     state.gap[node] = std::numeric_limits<double>::infinity();
@@ -89,22 +92,35 @@ void compute_contact_forces(const Model& model, ContactModel& contact, State& st
 }
 
 // a = M^-1 (f_contact - f_int); the fixed components get a = 0 so that they keep v = 0.
-void compute_accelerations(const Model& model, State& state) {
+// Returns false when an acceleration is not finite: 0 x a stays 0 for every finite
+// a and becomes NaN for an infinite or NaN one, so the sum checks them all for the
+// price of one add per value.
+bool compute_accelerations(const Model& model, State& state) {
   const std::size_t n = model.mesh.node_count();
+  double non_finite = 0.0;
   for (int c = 0; c < 3; ++c) {
     const double* f = state.internal_force.component(c).data();
     const double* f_contact = state.contact_force.component(c).data();
     double* a = state.acceleration.component(c).data();
     const double* inverse_mass = model.inverse_mass.data();
-    for (std::size_t i = 0; i < n; ++i) a[i] = (f_contact[i] - f[i]) * inverse_mass[i];
+    for (std::size_t i = 0; i < n; ++i) {
+      a[i] = (f_contact[i] - f[i]) * inverse_mass[i];
+      non_finite += 0.0 * a[i];
+    }
   }
   apply_fixed_components(model, state.acceleration);
+  return non_finite == 0.0;
 }
 
-// v^{n+1/2} = v^{n-1/2} + dt a^n; returns K^n = 1/2 sum m v^{n-1/2}.v^{n+1/2} (J).
-double update_velocities(const Model& model, State& state, double dt) {
+struct VelocityUpdate {
+  double kinetic = 0.0;          // K^n = 1/2 sum m v^{n-1/2}.v^{n+1/2}, J
+  double largest_component = 0;  // max |v^{n+1/2}| over nodes and components, m/s
+};
+
+// v^{n+1/2} = v^{n-1/2} + dt a^n.
+VelocityUpdate update_velocities(const Model& model, State& state, double dt) {
   const std::size_t n = model.mesh.node_count();
-  double twice_kinetic = 0.0;
+  double twice_kinetic = 0.0, largest = 0.0;
   for (int c = 0; c < 3; ++c) {
     double* v = state.velocity.component(c).data();
     const double* a = state.acceleration.component(c).data();
@@ -112,10 +128,11 @@ double update_velocities(const Model& model, State& state, double dt) {
     for (std::size_t i = 0; i < n; ++i) {
       const double v_new = v[i] + dt * a[i];
       twice_kinetic += m[i] * v[i] * v_new;
+      largest = std::max(largest, std::abs(v_new));
       v[i] = v_new;
     }
   }
-  return 0.5 * twice_kinetic;
+  return {0.5 * twice_kinetic, largest};
 }
 
 // u^{n+1} = u^n + dt v^{n+1/2}.
@@ -128,7 +145,21 @@ void update_displacements(State& state, double dt) {
   }
 }
 
-// Names the first node with a non-finite displacement, velocity or acceleration.
+// The node with the largest |v|_1 (m/s): where an instability grows fastest.
+std::string describe_fastest_node(const NodalVectors& velocity) {
+  std::size_t fastest = 0;
+  double largest = -1.0;
+  for (std::size_t i = 0; i < velocity.size(); ++i) {
+    const double speed = std::abs(velocity.x[i]) + std::abs(velocity.y[i]) + std::abs(velocity.z[i]);
+    if (speed > largest) largest = speed, fastest = i;
+  }
+  char text[96];
+  std::snprintf(text, sizeof text, "the fastest node is %zu, |v|_1 = %.3g m/s", fastest, largest);
+  return text;
+}
+
+// Names the first node with a non-finite acceleration, velocity or displacement,
+// else the first element with a non-finite stress, else the fastest node.
 std::string describe_non_finite(const State& state) {
   const std::pair<const char*, const NodalVectors*> fields[] = {
       {"acceleration", &state.acceleration}, {"velocity", &state.velocity}, {"displacement", &state.displacement}};
@@ -140,21 +171,22 @@ std::string describe_non_finite(const State& state) {
           return std::string("non-finite ") + label + " at node " + std::to_string(i) + " (component " +
                  "xyz"[c] + ")";
     }
-  // The fields are finite but their energy overflowed: name the fastest node.
-  std::size_t fastest = 0;
-  double largest = -1.0;
-  for (std::size_t i = 0; i < state.velocity.size(); ++i) {
-    const double speed = std::abs(state.velocity.x[i]) + std::abs(state.velocity.y[i]) + std::abs(state.velocity.z[i]);
-    if (speed > largest) largest = speed, fastest = i;
-  }
-  char text[160];
-  std::snprintf(text, sizeof text, "non-finite energy (the fastest node is %zu, |v|_1 = %.3g m/s)", fastest, largest);
-  return text;
+  for (std::size_t k = 0; k < state.stress.size(); ++k)
+    if (!std::isfinite(state.stress[k]))
+      return "non-finite stress in element " + std::to_string(k / 6) + " (component " + std::to_string(k % 6) +
+             " of xx yy zz xy yz xz)";
+  return "non-finite energy (" + describe_fastest_node(state.velocity) + ")";
 }
 
 std::string format_time(double seconds) {
   char text[32];
   std::snprintf(text, sizeof text, "%.6g s", seconds);
+  return text;
+}
+
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
   return text;
 }
 
@@ -247,6 +279,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   state.contact_force.resize(node_count);
   state.previous_contact_force.resize(node_count);
   state.gap.assign(node_count, 0.0);
+  state.previous_gap.assign(node_count, 0.0);
   state.stress.assign(6 * model.mesh.element_count(), 0.0);
   state.velocity = initial_velocity(deck, model);
   StepWriter step_writer(writer, model);
@@ -257,10 +290,48 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   Stopwatch loop_watch;
   double last_progress = -1.0;
   double initial_total = 0.0, largest_energy = 0.0, max_energy_error = 0.0;
+  long last_written = -1;  // the last step written to NAME.h5
+  // The inversion guard runs its element pass only when some element could have
+  // inverted: when the nodes may have moved (bound: sum of dt max|v|) as far as the
+  // safety radius of the last configuration checked (element_block.hpp). A stable
+  // run checks rarely (the plate case: once in about 4600 steps), a blowing-up one
+  // every step.
+  double moved_since_check = std::numeric_limits<double>::infinity(), safety_radius = 0.0, largest_speed = 0.0;
+  Energies energy;
+
+  // "..., at step n, time t s"
+  const auto when = [&] { return " at step " + std::to_string(state.step) + ", time " + format_time(state.time); };
+  // Writes the current step (if it is not written yet) as the final output step and
+  // stops the run: the catch below writes the summary with status "failed".
+  const auto stop_run = [&](const std::string& message) {
+    ScopedTimer timer(phase.output);
+    if (state.step > last_written) {
+      writer.add_history({state.time, energy.kinetic, energy.internal, energy.contact, energy.hourglass,
+                          energy.external_work, energy.total()});
+      step_writer.write(state, dt);
+      last_written = state.step;
+    }
+    throw RunFailure(message, state.step, state.time);
+  };
+  // Step n produced a non-finite value: go back to step n-1, the last finite state,
+  // from u^{n-1} = u^n - dt v^{n-1/2} (state.velocity holds v^{n-1/2}), with that
+  // step's contact forces and gaps, and stop there.
+  const auto step_back_and_stop = [&](const std::string& message) {
+    if (state.step == 0) throw RunFailure(message, state.step, state.time);
+    update_displacements(state, -dt);
+    compute_internal_forces(model, state);
+    std::swap(state.contact_force, state.previous_contact_force);
+    std::swap(state.gap, state.previous_gap);
+    compute_accelerations(model, state);
+    --state.step;
+    state.time = static_cast<double>(state.step) * dt;
+    stop_run(message + " (the last finite state, step " + std::to_string(state.step) + ", is written)");
+  };
+
   try {
     for (state.step = 0;; ++state.step) {
       state.time = static_cast<double>(state.step) * dt;
-      Energies energy;
+      energy = Energies{};
       {
         ScopedTimer timer(phase.element_forces);
         const element::ElementEnergies element_energy = compute_internal_forces(model, state);
@@ -273,7 +344,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       }
       {
         ScopedTimer timer(phase.time_integration);
-        compute_accelerations(model, state);
+        if (!compute_accelerations(model, state)) step_back_and_stop(describe_non_finite(state) + when());
         if (state.step == 0) {  // v^{-1/2} = v^0 - dt/2 a^0
           for (int c = 0; c < 3; ++c) {
             auto& v = state.velocity.component(c);
@@ -281,17 +352,65 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
             for (std::size_t i = 0; i < node_count; ++i) v[i] -= 0.5 * dt * a[i];
           }
         }
-        energy.kinetic = update_velocities(model, state, dt);
+        const VelocityUpdate update = update_velocities(model, state, dt);
+        energy.kinetic = update.kinetic;
+        largest_speed = std::sqrt(3.0) * update.largest_component;  // >= |v^{n+1/2}|_2 of every node
       }
       const double total = energy.total();
-      if (!std::isfinite(total))
-        throw RunFailure(describe_non_finite(state) + " at step " + std::to_string(state.step) + ", time " +
-                             format_time(state.time),
-                         state.step, state.time);
+      if (!std::isfinite(total)) {
+        const std::string message = describe_non_finite(state) + when();
+        for (int c = 0; c < 3; ++c) {  // v^{n-1/2} = v^{n+1/2} - dt a^n (a^n is finite)
+          auto& v = state.velocity.component(c);
+          const auto& a = state.acceleration.component(c);
+          for (std::size_t i = 0; i < node_count; ++i) v[i] -= dt * a[i];
+        }
+        step_back_and_stop(message);
+      }
       if (state.step == 0) initial_total = total;
       largest_energy = std::max({largest_energy, std::abs(total), energy.kinetic, energy.internal + energy.hourglass});
       if (largest_energy > 0.0)
         max_energy_error = std::max(max_energy_error, std::abs(total - initial_total) / largest_energy);
+      summary.energy = {initial_total, total, max_energy_error};
+      summarise_contact(contact_statistics, contact_seconds, summary);
+
+      {  // the guards of docs/stability.md; the state of step n is finite here
+        ScopedTimer timer(phase.guards);
+        if (moved_since_check >= safety_radius) {
+          safety_radius = std::numeric_limits<double>::infinity();
+          for (const auto& block : model.blocks) {
+            const element::InvertedElement inverted =
+                element::find_inverted_element(block, model.mesh.x_ref, state.displacement);
+            if (inverted.found) {
+              const std::uint32_t node =
+                  model.mesh.connectivity[8 * std::size_t(inverted.element) + std::size_t(inverted.corner)];
+              char detail[160];
+              std::snprintf(detail, sizeof detail, " (det J = %.3g m^3 at its corner node %u)",
+                            inverted.det_jacobian, node);
+              stop_run("element " + std::to_string(inverted.element) + " is inverted" + detail + when());
+            }
+            safety_radius = std::min(safety_radius, inverted.safety_radius);
+          }
+          moved_since_check = 0.0;
+          ++summary.guard_checks.inversion_passes;
+        }
+        moved_since_check += dt * largest_speed;  // u^{n+1} - u^n = dt v^{n+1/2}
+        if (largest_energy > 0.0 && total - initial_total > deck.guards.energy_growth * largest_energy) {
+          char detail[200];
+          std::snprintf(detail, sizeof detail,
+                        "total energy grew by %.3g %% of the largest energy seen (guards.energy_growth = %.3g %%): "
+                        "an instability; ",
+                        100.0 * (total - initial_total) / largest_energy, 100.0 * deck.guards.energy_growth);
+          stop_run(detail + describe_fastest_node(state.velocity) + when() + "; time.courant is " +
+                   format_number(dt / critical_dt) + " of the stable step");
+        }
+        if (contact_statistics.max_penetration_over_h > deck.guards.max_penetration) {
+          char detail[200];
+          std::snprintf(detail, sizeof detail, " penetrates by %.3g h (guards.max_penetration = %.3g h)",
+                        contact_statistics.max_penetration_over_h, deck.guards.max_penetration);
+          stop_run("contact pair " + contact.pair_of(contact_statistics.deepest_node) + ": slave node " +
+                   std::to_string(contact_statistics.deepest_node) + detail + when());
+        }
+      }
 
       const bool last = state.step == stepping.steps;
       {
@@ -299,15 +418,19 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
         if (state.step % deck.output.history_every == 0 || last)
           writer.add_history({state.time, energy.kinetic, energy.internal, energy.contact, energy.hourglass,
                               energy.external_work, total});
-        if (state.step % deck.output.every == 0 || last) step_writer.write(state, dt);
+        if (state.step % deck.output.every == 0 || last) {
+          step_writer.write(state, dt);
+          last_written = state.step;
+        }
       }
-      summary.energy = {initial_total, total, max_energy_error};
-      summarise_contact(contact_statistics, contact_seconds, summary);
       if (controls.on_progress && (last || loop_watch.seconds() - last_progress >= 0.25)) {
         last_progress = loop_watch.seconds();
         controls.on_progress({state.step, stepping.steps, state.time, dt, last_progress});
       }
       if (last) break;
+      if (controls.stop_signal != nullptr && *controls.stop_signal != 0)
+        stop_run(std::string("interrupted by ") + (*controls.stop_signal == SIGINT ? "SIGINT" : "SIGTERM") + when() +
+                 "; the results up to this step are written");
       {
         ScopedTimer timer(phase.time_integration);
         update_displacements(state, dt);

@@ -2,6 +2,7 @@
 // writes the results (../shared/spec/output.md).
 #pragma once
 
+#include <csignal>
 #include <functional>
 #include <string>
 
@@ -22,13 +23,18 @@ struct Progress {
 struct RunControls {
   std::string output_directory;  // empty: the deck's output.directory
   int threads = 1;
+  // Set to a signal number (SIGINT, SIGTERM) by the caller's signal handler: the run
+  // finishes its step, writes it, and stops with a RunFailure. May be null.
+  const volatile std::sig_atomic_t* stop_signal = nullptr;
   // Called every few steps and at the end; may be empty.
   std::function<void(const Progress&)> on_progress;
 };
 
 // Runs the deck to its end time. Returns the summary (also written to NAME.json).
-// A physical failure writes the last good state, a summary with status "failed"
-// and rethrows the RunFailure.
+// A guard that fires (docs/stability.md: non-finite value, inverted element,
+// energy growth, penetration) or a stop signal ends the run with a RunFailure
+// naming what, where and when, after writing the last finite state as the final
+// output step and a summary with status "failed".
 output::RunSummary run_simulation(const input::Deck& deck, const RunControls& controls);
 
 }  // namespace exdyn::solver

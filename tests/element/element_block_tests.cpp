@@ -321,6 +321,90 @@ TEST(ElementBlock, CriticalTimeStepUsesTheSmallestElement) {
   EXPECT_NEAR(critical_time_step(block, box.x_ref) * steel.dilatational_wave_speed(), 0.5, 1e-14);
 }
 
+TEST(ElementBlock, NoElementIsInvertedUnderRigidMotionAndModerateStrain) {
+  const Box box = make_box(3, 2, 2, 1.0);
+  for (const auto formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
+    const ElementBlock block = make_element_block(formulation, steel, 0.05, 0, box.count,
+                                                  box.connectivity.data(), box.x_ref);
+    NodalVectors u(box.x_ref.size());
+    EXPECT_FALSE(find_inverted_element(block, box.x_ref, u).found);
+    // A rotation by 170 degrees about z and a 40 % compression along x: all corners stay positive.
+    const double c = std::cos(170.0 * M_PI / 180.0), s = std::sin(170.0 * M_PI / 180.0);
+    for (std::size_t n = 0; n < u.size(); ++n) {
+      const double x = 0.6 * box.x_ref.x[n], y = box.x_ref.y[n];
+      u.x[n] = c * x - s * y - box.x_ref.x[n];
+      u.y[n] = s * x + c * y - box.x_ref.y[n];
+    }
+    EXPECT_FALSE(find_inverted_element(block, box.x_ref, u).found);
+  }
+}
+
+TEST(ElementBlock, InvertedElementIsFoundAndNamedWithItsCorner) {
+  const Box box = make_box(3, 1, 1, 1.0);  // elements 0, 1, 2 along x; nodes i + 4 (j + 2 k)
+  const ElementBlock block = make_element_block(input::Formulation::hex8r, steel, 0.05, 7, box.count,
+                                                box.connectivity.data(), box.x_ref);
+  NodalVectors u(box.x_ref.size());
+  // Node (2, 0, 0), shared by elements 1 and 2, moves 1.5 h in -x: past its neighbour at x = 1.
+  u.x[2] = -1.5;
+  const InvertedElement inverted = find_inverted_element(block, box.x_ref, u);
+  ASSERT_TRUE(inverted.found);
+  EXPECT_EQ(inverted.element, 7u + 1u);  // the lowest global index: first_element 7 + local 1
+  // Corner 0 of element 1, node (1,0,0), is checked first and already sees its +xi edge reversed.
+  EXPECT_EQ(inverted.corner, 0);
+  EXPECT_LT(inverted.det_jacobian, 0.0);
+  // Only half way (0.5 h): element 1 is squashed to half its length, not inverted.
+  u.x[2] = -0.5;
+  EXPECT_FALSE(find_inverted_element(block, box.x_ref, u).found);
+  // Element 2 (local), on the other side of the node, is stretched, not inverted.
+  u.x[2] = -1.5;
+  EXPECT_FALSE(find_inverted_element(block, 2, 3, box.x_ref, u).found);
+  EXPECT_TRUE(find_inverted_element(block, 1, 2, box.x_ref, u).found);
+}
+
+TEST(ElementBlock, SafetyRadiusOfTheUnitCubeIsOneOverSixRootThree) {
+  const Box box = make_box(1, 1, 1, 2.0);  // det J = 8, ||J||_F^2 = 12 at every corner
+  const ElementBlock block = make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count,
+                                                box.connectivity.data(), box.x_ref);
+  const InvertedElement none = find_inverted_element(block, box.x_ref, NodalVectors(box.x_ref.size()));
+  ASSERT_FALSE(none.found);
+  EXPECT_NEAR(none.safety_radius, (8.0 / 12.0) / (2.0 * std::sqrt(3.0)), 1e-15);
+}
+
+TEST(ElementBlock, NoMotionWithinTheSafetyRadiusInvertsAnElement) {
+  // The bound the solver relies on to skip the inversion check: random motions of
+  // every node by less than the safety radius (from random distorted states) never
+  // invert an element, and motions some 6 times larger do.
+  const Box box = make_box(2, 2, 2, 1.0);
+  const ElementBlock block = make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count,
+                                                box.connectivity.data(), box.x_ref);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int inverted_beyond = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    NodalVectors u(box.x_ref.size());
+    for (std::size_t n = 0; n < u.size(); ++n) u.x[n] = 0.3 * unit(rng), u.y[n] = 0.3 * unit(rng), u.z[n] = 0.3 * unit(rng);
+    const InvertedElement start = find_inverted_element(block, box.x_ref, u);
+    if (start.found) continue;
+    ASSERT_GT(start.safety_radius, 0.0);
+    for (const double factor : {0.999, 6.0}) {
+      NodalVectors moved = u;
+      for (std::size_t n = 0; n < u.size(); ++n) {  // a random direction, length factor x radius
+        double d[3] = {unit(rng), unit(rng), unit(rng)};
+        const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        const double step = factor * start.safety_radius / length;
+        moved.x[n] += step * d[0], moved.y[n] += step * d[1], moved.z[n] += step * d[2];
+      }
+      const bool inverted = find_inverted_element(block, box.x_ref, moved).found;
+      if (factor < 1.0) {
+        ASSERT_FALSE(inverted) << "trial " << trial;
+      } else {
+        inverted_beyond += inverted;
+      }
+    }
+  }
+  EXPECT_GT(inverted_beyond, 0);  // the bound is not vacuous
+}
+
 TEST(ElementBlock, InvertedElementIsAnErrorNamingTheElement) {
   Box box = make_box(1, 1, 1, 1.0);
   std::swap(box.connectivity[0], box.connectivity[4]);  // node order turned upside down at one corner pair
