@@ -66,7 +66,10 @@ Json to_json(const RunSummary& s) {
   j["phase_seconds"] = std::move(phases);
   j["energy"] = std::move(energy);
   j["contact"] = std::move(contact);
-  j["guards"] = Json{{"inversion_passes", s.guard_checks.inversion_passes}};  // ours, after the spec's keys
+  Json guards;  // ours, after the spec's keys
+  guards["inversion_passes"] = s.guard_checks.inversion_passes;
+  guards["largest_energy_growth"] = number(s.guard_checks.largest_energy_growth);
+  j["guards"] = std::move(guards);
   return j;
 }
 

@@ -10,6 +10,7 @@
 #include "../support/chain.hpp"
 #include "../support/result_file.hpp"
 #include "../support/temp_dir.hpp"
+#include "common/errors.hpp"
 #include "input/deck_reader.hpp"
 #include "material/elastic.hpp"
 #include "solver/simulation.hpp"
@@ -45,7 +46,8 @@ struct DeckRun {
 // plate_impact_reference.yaml: test_plate_reference.cpp; the contact decks: test_contact.cpp.
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml", "wave_bar.yaml",     "shear_wave.yaml",
                                           "hourglass_block.yaml",        "plate_impact.yaml", "bar_impact.yaml",
-                                          "contact_patch.yaml",          "block_drop.yaml"};
+                                          "contact_patch.yaml",          "block_drop.yaml",
+                                          "unstable_plate.yaml",         "inverting_bar.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;
@@ -188,6 +190,50 @@ TEST(HourglassBlock, OnePointBrickConservesEnergyAndKeepsHourglassEnergySmall) {
   std::printf("hourglass / internal energy at the end: %.4f\n", ratio);
   EXPECT_GT(hourglass.back(), 0.0);  // the 3D field excites the hourglass modes
   EXPECT_LT(ratio, 0.01);  // measured 0.0065
+}
+
+// Runs a deck that must fail; returns the failure (its message, step and time).
+exdyn::RunFailure expect_failure(const std::string& file, const exdyn::testing::TempDir& directory,
+                                 const std::vector<exdyn::input::Override>& overrides = {}) {
+  const exdyn::input::Deck deck = exdyn::input::read_deck(deck_path(file), overrides);
+  exdyn::solver::RunControls controls;
+  controls.output_directory = directory.path().string();
+  try {
+    exdyn::solver::run_simulation(deck, controls);
+  } catch (const exdyn::RunFailure& failure) {
+    return failure;
+  }
+  ADD_FAILURE() << file << " ran to the end";
+  return exdyn::RunFailure("", -1, 0.0);
+}
+
+TEST(Decks, UnstablePlateIsStoppedByTheEnergyGuardAtStepTwo) {
+  for (const std::string form : {"hex8", "hex8r"}) {
+    exdyn::testing::TempDir directory{"exdyn_deck"};
+    const exdyn::RunFailure failure =
+        expect_failure("unstable_plate.yaml", directory, {exdyn::input::parse_override("parts[0].formulation=" + form)});
+    EXPECT_EQ(failure.step(), 2) << failure.what();
+    EXPECT_NE(std::string(failure.what()).find("the energy grew by"), std::string::npos) << failure.what();
+    EXPECT_NE(std::string(failure.what()).find("at step 2, time"), std::string::npos) << failure.what();
+    // The steps written: 0 and the guard's step 2, every value finite.
+    for (const long step : {0L, 2L}) {
+      const auto stress = read_dataset(directory.file("unstable_plate.h5"), step_path(step, "stress")).values;
+      EXPECT_TRUE(std::all_of(stress.begin(), stress.end(), [](double s) { return std::isfinite(s); }));
+    }
+    // Without the energy guard the inversion guard stops it at step 7, before any value overflows.
+    const exdyn::RunFailure later = expect_failure("unstable_plate.yaml", directory,
+                                                   {exdyn::input::parse_override("parts[0].formulation=" + form),
+                                                    exdyn::input::parse_override("guards.energy_growth=1e300")});
+    EXPECT_NE(std::string(later.what()).find("is inverted"), std::string::npos) << later.what();
+    EXPECT_EQ(later.step(), 7) << later.what();
+  }
+}
+
+TEST(Decks, InvertingBarNamesTheElementNextToTheWall) {
+  exdyn::testing::TempDir directory{"exdyn_deck"};
+  const exdyn::RunFailure failure = expect_failure("inverting_bar.yaml", directory);
+  EXPECT_NE(std::string(failure.what()).find("element 9 is inverted"), std::string::npos) << failure.what();
+  EXPECT_EQ(failure.step(), 1) << failure.what();
 }
 
 }  // namespace

@@ -1,0 +1,93 @@
+#!/usr/bin/python3
+"""The largest stable Courant number of the plate case, by bisection (docs/stability.md).
+
+    /usr/bin/python3 scripts/stability_courant.py [--exdyn PATH] [--mesh N] [--steps S]
+                                                  [--tolerance T] [--check]
+
+Runs input/plate_impact_reference.yaml on an N x 1 x N mesh for S steps at a trial
+Courant number c (time.end_time = S c h / c1) and calls c stable when the run
+completes: an unstable run is stopped by the energy guard (exit 1). Bisects on
+[0.5, 1.5] to the tolerance, for hex8 and hex8r, and prints a Markdown table with the
+theory (1.0 for the regular cube mesh: the lumped-mass chain's omega_max dt = 2 c) and,
+for Courant 1.5, the step at which the guard stopped the run. --check exits 1 unless
+each limit is within 0.01 of 1.0 and Courant 1.5 is caught within 300 steps.
+"""
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+C1 = math.sqrt((1.211538461538e11 + 2 * 8.076923076923e10) / 7800.0)  # m/s, steel of the deck
+D = 2.5e-3  # plate side, m
+
+
+def run(exdyn, out, form, courant, n, steps):
+    h = D / n
+    cmd = [exdyn, "run", os.path.join(ROOT, "input", "plate_impact_reference.yaml"), "--quiet",
+           "--output", out, "--set", "name=c",
+           "--set", f"parts[0].elements=[{n},1,{n}]",
+           "--set", f"parts[0].box={{min: [{-D}, 0, 0], max: [0, {h}, {D}]}}",
+           "--set", f"parts[0].formulation={form}",
+           "--set", f"time.courant={courant!r}",
+           "--set", f"time.end_time={steps * courant * h / C1!r}",
+           "--set", "output.every=1000000", "--set", "output.fields=[stress]"]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+    if proc.returncode not in (0, 1):
+        raise RuntimeError(f"exdyn exit {proc.returncode}: {proc.stdout}{proc.stderr}")
+    with open(os.path.join(out, "c.json")) as f:
+        s = json.load(f)
+    return proc.returncode == 0, s["steps"], s["message"]
+
+
+def bisect(exdyn, out, form, n, steps, tolerance):
+    stable, unstable = 0.5, 1.5
+    runs = 0
+    while unstable - stable > tolerance:
+        trial = 0.5 * (stable + unstable)
+        ok, _, _ = run(exdyn, out, form, trial, n, steps)
+        runs += 1
+        if ok:
+            stable = trial
+        else:
+            unstable = trial
+    return stable, unstable, runs
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--exdyn", default=os.path.join(ROOT, "build", "release", "src", "app", "exdyn"))
+    parser.add_argument("--mesh", type=int, default=25)
+    parser.add_argument("--steps", type=int, default=2000)
+    parser.add_argument("--tolerance", type=float, default=1e-3)
+    parser.add_argument("--check", action="store_true")
+    args = parser.parse_args()
+    failures = []
+    print(f"plate reference, {args.mesh} x 1 x {args.mesh} cubes, {args.steps} steps per trial, "
+          f"bisection on [0.5, 1.5] to {args.tolerance}\n")
+    print("| formulation | largest stable Courant (bisection) | first unstable | theory | runs | "
+          "Courant 1.5: stopped at step | message |")
+    print("|---|---|---|---|---|---|---|")
+    with tempfile.TemporaryDirectory(prefix="stability_courant_") as out:
+        for form in ("hex8", "hex8r"):
+            stable, unstable, runs = bisect(args.exdyn, out, form, args.mesh, args.steps, args.tolerance)
+            ok, step, message = run(args.exdyn, out, form, 1.5, args.mesh, args.steps)
+            print(f"| {form} | {stable:.4f} | {unstable:.4f} | 1.0 | {runs} | {step} | {message[:90]} |")
+            if abs(stable - 1.0) > 0.01:
+                failures.append(f"{form}: largest stable Courant {stable:.4f}, theory 1.0")
+            if ok or step > 300:
+                failures.append(f"{form}: Courant 1.5 not caught within 300 steps")
+    for f in failures:
+        print("FAIL " + f, file=sys.stderr)
+    if args.check:
+        print(f"{2 * 2 - len(failures)} passed, {len(failures)} failed")
+        return 1 if failures else 0
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
