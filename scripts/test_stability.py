@@ -10,7 +10,8 @@ Checks:
   (../shared/tools/paraview/check_xdmf.py, all three XDMF readers) whose last step is
   the step the guard fired at;
 - input/inverting_bar.yaml: exit 1 naming element 9;
-- a fixed penalty stiffness far above the stability bound: caught by the guards;
+- a fixed penalty stiffness above any stable bound: refused (exit 2) with the bound; one
+  between that optimistic bound and the real one: caught by the energy guard;
 - SIGTERM during a run: the run finishes its step, writes it, exits 1 with
   "interrupted by SIGTERM"; the result is complete up to that step;
 - SIGKILL at random moments (--kills, default 20): every time, the files left are a
@@ -118,13 +119,22 @@ def test_inverting(exdyn, work):
 
 def test_stiff_penalty(exdyn, work):
     out = os.path.join(work, "stiff")
-    for k in ("1e9", "1e12"):
+    for k in ("1e9", "1e12"):  # above the bound even for the most favourable contact: refused
         status, text = run(exdyn, "plate_impact.yaml", out, f"contact[0].penalty={{stiffness: {k}}}",
                            "output.every=100000", name="stiff")
-        check(f"plate_impact, fixed stiffness {k} N/m (automatic: 2.8e7): caught by a guard",
-              status == 1 and "at step" in text and summary(out, "stiff")["status"] == "failed", text)
+        check(f"plate_impact, fixed stiffness {k} N/m: refused (exit 2) with the bound",
+              status == 2 and "stability bound" in text and "k > 3.04e+08 N/m" in text
+              and not os.path.exists(os.path.join(out, "stiff.h5")), text)
+    for k in ("1e8", "3e8"):  # below that bound, above the real one (the master's mass counts): caught
+        status, text = run(exdyn, "plate_impact.yaml", out, f"contact[0].penalty={{stiffness: {k}}}",
+                           "output.every=100000", name="stiff")
+        check(f"plate_impact, fixed stiffness {k} N/m (automatic: 2.8e7): caught by the energy guard",
+              status == 1 and "the energy grew by" in text and "contact node pair" in text
+              and summary(out, "stiff")["status"] == "failed", text)
     status, text = run(exdyn, "plate_impact.yaml", out, "output.every=100000", name="auto")
-    check("plate_impact, automatic stiffness: runs to the end", status == 0, text)
+    s = summary(out, "auto")
+    check("plate_impact, automatic stiffness: runs to the end, energy bounded",
+          status == 0 and s["guards"]["largest_energy_growth"] < 0.01, text + json.dumps(s.get("guards")))
 
 
 # A run long enough to be killed at any moment: the reference plate at 50 x 50,

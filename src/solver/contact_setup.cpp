@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
+#include "common/errors.hpp"
 #include "contact/penalty.hpp"
 #include "material/elastic.hpp"
 
@@ -80,6 +82,27 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const st
   return g;
 }
 
+// A fixed penalty stiffness that no contact could carry stably is bad input: even
+// for the heaviest slave node of the pair, with the master side taken as rigid
+// (inverse mass 1/m_s, the most favourable case), k exceeds the bound of
+// penalty.hpp for this step, Courant number and damping.
+void refuse_unstable_stiffness(const input::Deck& deck, const Model& model, const ContactPair& pair,
+                               const input::ContactOptions& options, std::size_t index, double dt, double courant) {
+  double heaviest = 0.0;  // kg
+  for (const auto& pass : pair.passes)
+    for (const std::uint32_t node : pass.slave_nodes) heaviest = std::max(heaviest, model.mass[node]);
+  const double bound = contact::stable_stiffness_bound(dt, courant, options.penalty.damping, 1.0 / heaviest);
+  if (*options.penalty.stiffness <= bound) return;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "%.4g N/m is above the stability bound of this mesh and time step: no contact of pair '%s' can be "
+                "stable with k > %.4g N/m (dt = %.4g s, Courant %.3g, damping %.3g; docs/contact.md). Lower it, "
+                "use penalty: {scale: s} (the automatic rule), or lower time.courant",
+                *options.penalty.stiffness, pair.name.c_str(), bound, dt, courant, options.penalty.damping);
+  throw InputError(SourceLocation{deck.source_file, 0, 0}, "contact[" + std::to_string(index) + "].penalty.stiffness",
+                   text);
+}
+
 }  // namespace
 
 ContactModel build_contact(const input::Deck& deck, const Model& model, double dt, double critical_dt) {
@@ -102,6 +125,8 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
                                    contact::automatic_stiffness(g.modulus, g.area[i], s.normal_length[i]);
       pair.passes.push_back(std::move(s));
     }
+    if (options.penalty.stiffness)
+      refuse_unstable_stiffness(deck, model, pair, options, contact.pairs.size(), dt, dt / critical_dt);
     auto& settings = pair.settings;
     settings.project = contact::select_method(options.local_search.method);
     settings.projection.method = options.local_search.method;

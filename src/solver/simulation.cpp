@@ -395,8 +395,10 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
                         "the energy grew by %.3g %% of the largest energy seen (guards.energy_growth = %.3g %%): "
                         "an instability; ",
                         100.0 * growth / scale, 100.0 * deck.guards.energy_growth);
-          stop_run(detail + describe_fastest_node(state.velocity) + when() + "; time.courant is " +
-                   format_number(dt / critical_dt) + " of the stable step");
+          std::string advice = "; time.courant is " + format_number(dt / critical_dt) + " of the stable step";
+          if (!contact.pairs.empty())
+            advice += ", the stiffest contact node pair " + format_number(contact_statistics.max_pair_stiffness) + " N/m";
+          stop_run(detail + describe_fastest_node(state.velocity) + when() + advice);
         }
         if (contact_statistics.max_penetration_over_h > deck.guards.max_penetration) {
           char detail[200];
