@@ -12,6 +12,7 @@ Checks:
 - input/inverting_bar.yaml: exit 1 naming element 9;
 - a fixed penalty stiffness above any stable bound: refused (exit 2) with the bound; one
   between that optimistic bound and the real one: caught by the energy guard;
+- every local search failing (simplex, one iteration): counted, reported, no force;
 - SIGTERM during a run: the run finishes its step, writes it, exits 1 with
   "interrupted by SIGTERM"; the result is complete up to that step;
 - SIGKILL at random moments (--kills, default 20): every time, the files left are a
@@ -137,6 +138,22 @@ def test_stiff_penalty(exdyn, work):
           status == 0 and s["guards"]["largest_energy_growth"] < 0.01, text + json.dumps(s.get("guards")))
 
 
+def test_failed_projections(exdyn, work):
+    out = os.path.join(work, "failed_search")
+    # One simplex iteration never meets the stopping test: every projection fails.
+    status, text = run(exdyn, "plate_impact.yaml", out, "contact[0].local_search={method: simplex, max_iterations: 1}",
+                       "output.every=64", name="nosearch")
+    s = summary(out, "nosearch")
+    c = s["contact"]
+    check("failed local searches: counted in NAME.json and reported on stderr",
+          status == 0 and c["projections"] > 0 and c["not_converged"] == c["projections"]
+          and f"{c['projections']} of {c['projections']} local contact searches failed" in text, text + json.dumps(c))
+    with h5py.File(os.path.join(out, "nosearch.h5"), "r") as f:
+        forces = [float(np.abs(f[f"steps/{n}/contact_force"][...]).max()) for n in f["steps"]]
+    check("failed local searches: never a force (contact_force zero at every step written)",
+          max(forces) == 0.0, str(forces))
+
+
 # A run long enough to be killed at any moment: the reference plate at 50 x 50,
 # 4480 steps, a step written every 32 (about 1 s, 141 steps of 0.2 MB).
 KILL_SETS = ["parts[0].elements=[50,1,50]", "parts[0].box={min: [-2.5e-3, 0, 0], max: [0, 5.0e-5, 2.5e-3]}",
@@ -230,6 +247,7 @@ def main():
         test_unstable(args.exdyn, work)
         test_inverting(args.exdyn, work)
         test_stiff_penalty(args.exdyn, work)
+        test_failed_projections(args.exdyn, work)
         ref_out = os.path.join(work, "reference")
         p = start(args.exdyn, ref_out, "whole")
         text = p.communicate(timeout=600)[0]

@@ -79,6 +79,13 @@ int run_command(const RunArguments& arguments) {
   if (!arguments.quiet && isatty(STDERR_FILENO)) controls.on_progress = print_progress;
   try {
     const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
+    // A failed local search gives no contact force (docs/stability.md): say so, even with --quiet.
+    if (const long failed = summary.contact.not_converged + summary.contact.saddle_points; failed > 0)
+      std::fprintf(stderr,
+                   "exdyn: warning: %ld of %ld local contact searches failed (%ld not converged, %ld on a saddle or "
+                   "maximum) and gave no contact force; see contact in %s.json\n",
+                   failed, summary.contact.projections, summary.contact.not_converged, summary.contact.saddle_points,
+                   deck.name.c_str());
     if (!arguments.quiet)
       std::printf("%s: completed %ld steps of dt = %.6g s in %.3f s (%.3g element-cycles/s); results in %s/%s.xmf\n",
                   summary.name.c_str(), summary.steps, summary.dt, summary.wall_seconds,
