@@ -111,7 +111,8 @@ int main(int argc, char** argv) {
   run->add_option("--output", run_arguments.output, "Output directory (overrides output.directory)");
   run->add_option("--set", run_arguments.sets, "Override one deck value before validation: KEY=VALUE")
       ->allow_extra_args(false);
-  run->add_option("--threads", run_arguments.threads, "Threads (this version computes on one)")
+  run->add_option("--threads", run_arguments.threads,
+                  "Threads (default 0: every core); the results are the same bits for any number")
       ->check(CLI::NonNegativeNumber);
   run->add_flag("--quiet", run_arguments.quiet, "No progress line and no summary line");
 

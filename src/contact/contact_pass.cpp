@@ -99,6 +99,24 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
   // such a node is counted once, never twice and never zero times.
   {
     ScopedTimer timer(seconds.local_search);
+    // The projections are independent: on the threads, each into its own slot.
+    const auto candidates = static_cast<std::ptrdiff_t>(state.candidates.size());
+    state.results.resize(state.candidates.size());
+#pragma omp parallel for schedule(dynamic, 64)
+    for (std::ptrdiff_t k = 0; k < candidates; ++k) {
+      const auto c = static_cast<std::size_t>(k);
+      const CandidatePair pair = state.candidates[c];
+      const Segment segment = current_segment(surfaces.segments[pair.segment], x_ref, u);
+      const Vec3 point = current_position(x_ref, u, surfaces.slave_nodes[pair.point]);
+      Xi start{0.0, 0.0};
+      if (settings.initial_guess == InitialGuess::lsp ||
+          (settings.initial_guess == InitialGuess::previous && std::isnan(state.previous_xi[c][0])))
+        start = initial_guess_lsp(segment, point);
+      else if (settings.initial_guess == InitialGuess::previous)
+        start = state.previous_xi[c];
+      state.results[c] = settings.project(segment, point, start, settings.projection);
+    }
+    // The choice, in candidate order (the same on any number of threads).
     state.contacts.assign(n_slaves, ContactPassState::Contact{});
     double best_distance = 0.0;
     std::uint32_t current_point = std::numeric_limits<std::uint32_t>::max();
@@ -108,15 +126,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         current_point = pair.point;
         best_distance = std::numeric_limits<double>::infinity();
       }
-      const Segment segment = current_segment(surfaces.segments[pair.segment], x_ref, u);
-      const Vec3 point = current_position(x_ref, u, surfaces.slave_nodes[pair.point]);
-      Xi start{0.0, 0.0};
-      if (settings.initial_guess == InitialGuess::lsp ||
-          (settings.initial_guess == InitialGuess::previous && std::isnan(state.previous_xi[c][0])))
-        start = initial_guess_lsp(segment, point);
-      else if (settings.initial_guess == InitialGuess::previous)
-        start = state.previous_xi[c];
-      const ProjectionResult r = settings.project(segment, point, start, settings.projection);
+      const ProjectionResult& r = state.results[c];
       ++statistics.projections;
       statistics.iterations += r.iterations;
       statistics.max_iterations = std::max<long>(statistics.max_iterations, r.iterations);
@@ -136,7 +146,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         contact.segment = pair.segment;
         contact.xi = r.xi;
         contact.gap = r.gap;
-        contact.normal = outward_normal(segment, r.xi);
+        contact.normal = outward_normal(current_segment(surfaces.segments[pair.segment], x_ref, u), r.xi);
       }
     }
   }

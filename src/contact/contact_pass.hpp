@@ -60,6 +60,7 @@ struct ContactPassState {
   BucketWorkspace workspace;
   std::vector<CandidatePair> new_candidates;
   std::vector<Xi> new_previous_xi;
+  std::vector<ProjectionResult> results;  // the projection of each candidate pair, this step
   struct Contact {                        // the chosen projection of each slave node
     std::int64_t segment = -1;            // -1: none
     Xi xi{};

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "common/errors.hpp"
@@ -164,6 +165,29 @@ ElementEnergies element_pair_loop(const ElementBlock& block, std::uint32_t begin
                    std::to_string(det_jacobian) + "); check the node order (VTK hexahedron)");
 }
 
+// Chunks of consecutive elements, coloured greedily in chunk order: a chunk takes
+// the lowest colour that no earlier chunk sharing one of its nodes has (a bit mask
+// of colours per node; structured blocks need two or three colours).
+void build_schedule(ElementBlock& block, std::size_t node_count) {
+  const std::uint32_t chunks = (block.count + element_chunk - 1) / element_chunk;
+  block.chunk_begin.resize(chunks + 1);
+  for (std::uint32_t c = 0; c <= chunks; ++c) block.chunk_begin[c] = std::min(c * element_chunk, block.count);
+  std::vector<std::uint64_t> colours_at_node(node_count, 0);
+  for (std::uint32_t c = 0; c < chunks; ++c) {
+    const std::uint32_t* begin = block.connectivity + 8 * std::size_t(block.chunk_begin[c]);
+    const std::uint32_t* end = block.connectivity + 8 * std::size_t(block.chunk_begin[c + 1]);
+    std::uint64_t taken = 0;
+    for (const std::uint32_t* node = begin; node != end; ++node) taken |= colours_at_node[*node];
+    if (taken == ~std::uint64_t{0}) throw std::logic_error("element colouring: more than 64 colours");
+    int colour = 0;
+    while (taken & (std::uint64_t{1} << colour)) ++colour;
+    for (const std::uint32_t* node = begin; node != end; ++node) colours_at_node[*node] |= std::uint64_t{1} << colour;
+    if (block.colours.size() <= std::size_t(colour)) block.colours.resize(std::size_t(colour) + 1);
+    block.colours[std::size_t(colour)].push_back(c);
+  }
+  block.chunk_energies.assign(chunks, ElementEnergies{});
+}
+
 }  // namespace
 
 ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
@@ -223,6 +247,7 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
       for (std::size_t k = 0; k < stride; ++k) pair_data[2 * k + e % 2] = scratch[k];
     }
   }
+  build_schedule(block, x_ref.size());
   return block;
 }
 
@@ -274,7 +299,22 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
 
 ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVectors& u, NodalVectors& f_int,
                                     double* stress) {
-  return add_internal_forces(block, 0, block.count, u, f_int, stress);
+  EXDYN_ASSERT(block.chunk_energies.size() + 1 == block.chunk_begin.size());
+  for (const std::vector<std::uint32_t>& colour : block.colours) {
+    const auto chunks = static_cast<std::ptrdiff_t>(colour.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t k = 0; k < chunks; ++k) {
+      const std::uint32_t c = colour[static_cast<std::size_t>(k)];
+      block.chunk_energies[c] =
+          add_internal_forces(block, block.chunk_begin[c], block.chunk_begin[c + 1], u, f_int, stress);
+    }
+  }
+  ElementEnergies total;  // in chunk order, whatever the threads
+  for (const ElementEnergies& e : block.chunk_energies) {
+    total.strain += e.strain;
+    total.hourglass += e.hourglass;
+  }
+  return total;
 }
 
 InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t element_begin,

@@ -12,6 +12,14 @@
 
 namespace exdyn::element {
 
+struct ElementEnergies {
+  double strain = 0.0;     // sum of int sigma:eps/2 dV, J
+  double hourglass = 0.0;  // sum of hourglass spring energies (hex8r), J
+};
+
+// Elements per chunk of the parallel element loop (even: an element pair is never split).
+inline constexpr std::uint32_t element_chunk = 512;
+
 struct ElementBlock {
   input::Formulation formulation = input::Formulation::hex8;
   material::ElasticConstants material;
@@ -22,6 +30,13 @@ struct ElementBlock {
   // Reference-configuration data precomputed once per element (layout private
   // to the kernels: e.g. inverse Jacobians and weights at the Gauss points).
   std::vector<double> reference;
+  // The parallel schedule (docs/performance.md): the elements in chunks of
+  // element_chunk consecutive ones, grouped in colours whose chunks share no node,
+  // so that the chunks of a colour scatter their forces at once without a race and
+  // every node adds its elements' forces in the same order on any number of threads.
+  std::vector<std::uint32_t> chunk_begin;            // chunk c is [chunk_begin[c], chunk_begin[c + 1])
+  std::vector<std::vector<std::uint32_t>> colours;   // the chunks of each colour, ascending
+  mutable std::vector<ElementEnergies> chunk_energies;  // scratch: the energies of each chunk
 };
 
 // Builds a block and precomputes its reference data from the reference
@@ -31,15 +46,11 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
                                 std::uint32_t count, const std::uint32_t* connectivity,
                                 const NodalVectors& x_ref);
 
-struct ElementEnergies {
-  double strain = 0.0;     // sum of int sigma:eps/2 dV, J
-  double hourglass = 0.0;  // sum of hourglass spring energies (hex8r), J
-};
-
 // f_int += internal forces (N) of the block's elements for the displacement u
 // (small strain, reference configuration). Writes each element's volume-averaged
 // Cauchy stress (xx yy zz xy yz xz, Pa) to stress[6 * global_element ...] and
-// returns the block's energies.
+// returns the block's energies. Runs the colours one after the other and the chunks
+// of a colour on the threads; the result does not depend on the number of threads.
 ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVectors& u, NodalVectors& f_int,
                                     double* stress);
 

@@ -514,7 +514,8 @@ std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, co
 PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
                                 const std::vector<MaterialOptions>& materials) const {
   check_map(node, path,
-            {"name", "box", "elements", "material", "formulation", "hourglass", "initial_velocity"});
+            {"name", "box", "elements", "material", "formulation", "hourglass", "initial_velocity",
+             "perturbation"});
   PartOptions result;
   result.name = text(required(node, path, "name"), child_path(path, "name"), "a part name");
 
@@ -569,6 +570,25 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
 
   if (const YAML::Node velocity = optional(node, "initial_velocity"); velocity.IsDefined())
     result.initial_velocity = vector3(velocity, child_path(path, "initial_velocity"));
+
+  if (const YAML::Node perturbation = optional(node, "perturbation");
+      perturbation.IsDefined() && !perturbation.IsNull()) {
+    const std::string perturbation_path = child_path(path, "perturbation");
+    check_map(perturbation, perturbation_path, {"fraction", "seed"});
+    if (const YAML::Node fraction = optional(perturbation, "fraction"); fraction.IsDefined()) {
+      const std::string fraction_path = child_path(perturbation_path, "fraction");
+      const std::string fraction_range = "a number in [0, 0.5) (a fraction of the element length h)";
+      result.perturbation_fraction = number_where(fraction, fraction_path, fraction_range, non_negative);
+      // Two neighbours moving toward each other by fraction h each close a gap of h.
+      if (result.perturbation_fraction >= 0.5)
+        fail(fraction, fraction_path,
+             "expected " + fraction_range + ", got " + describe(fraction) +
+                 ": at 0.5 or more a node can reach or pass its neighbour and invert elements");
+    }
+    if (const YAML::Node seed = optional(perturbation, "seed"); seed.IsDefined())
+      result.perturbation_seed = static_cast<unsigned>(
+          integer_where(seed, child_path(perturbation_path, "seed"), "an integer >= 0", 0));
+  }
   return result;
 }
 
@@ -1053,7 +1073,9 @@ std::string to_yaml(const Deck& deck) {
         << "    material: " << yaml_text(part.material) << "\n"
         << "    formulation: " << name(part.formulation) << "\n"
         << "    hourglass: {coefficient: " << yaml_number(part.hourglass_coefficient) << "}\n"
-        << "    initial_velocity: " << yaml_vector(part.initial_velocity) << "\n";
+        << "    initial_velocity: " << yaml_vector(part.initial_velocity) << "\n"
+        << "    perturbation: {fraction: " << yaml_number(part.perturbation_fraction)
+        << ", seed: " << part.perturbation_seed << "}\n";
   }
 
   out << "boundary_conditions:" << (deck.boundary_conditions.empty() ? " []" : "") << "\n";

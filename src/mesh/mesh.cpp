@@ -1,5 +1,6 @@
 #include "mesh/mesh.hpp"
 
+#include <cstddef>
 #include <limits>
 #include <string>
 
@@ -9,10 +10,80 @@ namespace exdyn::mesh {
 
 namespace {
 
+// splitmix64 (Steele, Lea, Flood 2014): a bijective 64-bit mix, used as a
+// counter-based generator so a node's perturbation depends on its key alone.
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+// The random direction r of grid point ijk, |r| <= 1, uniform in the unit ball of
+// the components that move (moves[c]): drawn by rejection from the cube [-1, 1)^d,
+// each draw a function of (seed, part, attempt, component) and of the node's
+// indices along the axes with more than one element only, so that a part one
+// element thick (plane strain) gets the same r on both of its layers.
+std::array<double, 3> perturbation_direction(const input::PartOptions& options, int part_index,
+                                             const std::array<int, 3>& ijk, const std::array<bool, 3>& moves) {
+  std::uint64_t node_key = splitmix64(options.perturbation_seed);
+  node_key = splitmix64(node_key ^ static_cast<std::uint64_t>(part_index));
+  for (int axis = 0; axis < 3; ++axis)
+    if (options.elements[axis] > 1) node_key = splitmix64(node_key ^ static_cast<std::uint64_t>(ijk[axis]));
+  for (std::uint64_t attempt = 0;; ++attempt) {  // accepts with probability pi/4 (2 moving axes) or pi/6 (3)
+    std::array<double, 3> r{};
+    double length_squared = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      if (!moves[c]) continue;
+      const std::uint64_t key = splitmix64(splitmix64(node_key ^ attempt) ^ static_cast<std::uint64_t>(c + 1));
+      r[c] = 2.0 * (static_cast<double>(key >> 11) * 0x1.0p-53) - 1.0;  // 53 random bits, in [-1, 1)
+      length_squared += r[c] * r[c];
+    }
+    if (length_squared <= 1.0) return r;
+  }
+}
+
 // Node id of grid point (i, j, k) of a part.
 std::uint32_t node_id(const PartRange& part, int i, int j, int k) {
   const auto& n = part.elements;
   return part.first_node + static_cast<std::uint32_t>(i + (n[0] + 1) * (j + (n[1] + 1) * k));
+}
+
+// A perturbed part must keep every element valid: at each corner of each element,
+// det[e_x, e_y, e_z] > 0 with e the grid edges from the corner towards +x, +y, +z
+// (the trilinear map's Jacobian there, times 8; m^3). Moves of at most fraction h
+// keep a plane grid valid below fraction 1/(2 sqrt 2) = 0.354, but a 3D grid is
+// certain only below 1/(2 sqrt 3) = 0.289 (sigma_min(I + E) >= 1 - ||E||_F), so every
+// perturbed part is checked here, where the error can name the deck key.
+void check_perturbed_part(const Mesh& mesh, const input::Deck& deck, std::size_t part_index) {
+  const PartRange& part = mesh.parts[part_index];
+  const auto& n = part.elements;
+  const auto& x = mesh.x_ref;
+  auto edge = [&](std::uint32_t from, std::uint32_t to) -> std::array<double, 3> {
+    return {x.x[to] - x.x[from], x.y[to] - x.y[from], x.z[to] - x.z[from]};
+  };
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+        for (int corner = 0; corner < 8; ++corner) {
+          const int a = i + (corner & 1), b = j + ((corner >> 1) & 1), c = k + ((corner >> 2) & 1);
+          const auto ex = edge(node_id(part, i, b, c), node_id(part, i + 1, b, c));
+          const auto ey = edge(node_id(part, a, j, c), node_id(part, a, j + 1, c));
+          const auto ez = edge(node_id(part, a, b, k), node_id(part, a, b, k + 1));
+          const double det = ex[0] * (ey[1] * ez[2] - ey[2] * ez[1]) -
+                             ex[1] * (ey[0] * ez[2] - ey[2] * ez[0]) +
+                             ex[2] * (ey[0] * ez[1] - ey[1] * ez[0]);
+          if (det > 0.0) continue;
+          const std::uint32_t element =
+              part.first_element + static_cast<std::uint32_t>(i + n[0] * (j + n[1] * k));
+          throw InputError(
+              SourceLocation{deck.source_file, 0, 0},
+              "parts[" + std::to_string(part_index) + "].perturbation",
+              "the distortion inverts element " + std::to_string(element) + " (grid cell " +
+                  std::to_string(i) + ", " + std::to_string(j) + ", " + std::to_string(k) + " of part '" +
+                  deck.parts[part_index].name +
+                  "'): its corner Jacobian is not positive; use a smaller fraction or another seed");
+        }
 }
 
 void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
@@ -30,12 +101,30 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
     const double lo = options.box_min[axis], hi = options.box_max[axis];
     return index == n[axis] ? hi : lo + (hi - lo) * static_cast<double>(index) / static_cast<double>(n[axis]);
   };
+  // The optional distortion (parts[i].perturbation): x_c += fraction h_c r_c, with
+  // h_c = (max_c - min_c) / n_c the element length along c (length units) and r a
+  // random vector of length at most 1 (perturbation_direction) over the components
+  // along which the node is strictly inside the grid (0 < ijk[c] < n_c), so every
+  // face stays plane and in place. Each node so moves by at most fraction h: in a
+  // plane grid of squares no corner angle can then close before fraction = 1/(2 sqrt 2)
+  // (two neighbours each moved by fraction h turn an edge by at most that much).
+  const double fraction = options.perturbation_fraction;
   for (int k = 0; k <= n[2]; ++k)
     for (int j = 0; j <= n[1]; ++j)
       for (int i = 0; i <= n[0]; ++i) {
-        mesh.x_ref.x.push_back(coordinate(0, i));
-        mesh.x_ref.y.push_back(coordinate(1, j));
-        mesh.x_ref.z.push_back(coordinate(2, k));
+        const std::array<int, 3> ijk{i, j, k};
+        std::array<double, 3> x{coordinate(0, i), coordinate(1, j), coordinate(2, k)};
+        if (fraction > 0.0) {
+          const std::array<bool, 3> moves{0 < i && i < n[0], 0 < j && j < n[1], 0 < k && k < n[2]};
+          if (moves[0] || moves[1] || moves[2]) {
+            const std::array<double, 3> r = perturbation_direction(options, part_index, ijk, moves);
+            for (int c = 0; c < 3; ++c)
+              x[c] += fraction * (options.box_max[c] - options.box_min[c]) / static_cast<double>(n[c]) * r[c];
+          }
+        }
+        mesh.x_ref.x.push_back(x[0]);
+        mesh.x_ref.y.push_back(x[1]);
+        mesh.x_ref.z.push_back(x[2]);
       }
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
@@ -72,7 +161,10 @@ Mesh build_mesh(const input::Deck& deck) {
   mesh.x_ref.z.reserve(nodes);
   mesh.connectivity.reserve(8 * elements);
   mesh.element_part.reserve(elements);
-  for (std::size_t p = 0; p < deck.parts.size(); ++p) add_part(mesh, deck.parts[p], static_cast<int>(p));
+  for (std::size_t p = 0; p < deck.parts.size(); ++p) {
+    add_part(mesh, deck.parts[p], static_cast<int>(p));
+    if (deck.parts[p].perturbation_fraction > 0.0) check_perturbed_part(mesh, deck, p);
+  }
   return mesh;
 }
 

@@ -2,6 +2,9 @@
 // Each part is its own body: parts share no nodes. Within a part, node (i,j,k)
 // is first_node + i + (nx+1) (j + (ny+1) k) and element (i,j,k) is
 // first_element + i + nx (j + ny k). Elements use the VTK hexahedron order.
+// A part with a perturbation (parts[i].perturbation) has its grid points moved at
+// random inside the box, each by at most fraction h, faces kept plane
+// (mesh.cpp states the rule); its topology and numbering are those of the grid.
 #pragma once
 
 #include <array>
@@ -38,7 +41,8 @@ struct Face {
   std::vector<std::array<std::uint32_t, 4>> quads;
 };
 
-// Builds every part of the deck (checks the node count fits 32-bit indices).
+// Builds every part of the deck (checks the node count fits 32-bit indices, and that
+// a perturbed part has no element with a non-positive corner Jacobian).
 Mesh build_mesh(const input::Deck& deck);
 
 // The nodes and outward-oriented quadrilaterals of one face of a part.

@@ -11,6 +11,7 @@
 #include "solver/simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/parallel.hpp"
 #include "common/timer.hpp"
 #include "common/version.hpp"
 #include "output/result_writer.hpp"
@@ -42,6 +44,7 @@ struct State {
   std::vector<double> previous_gap;  // the gap of step n-1 (to step back after a non-finite step)
   std::vector<double> stress;   // 6 per element: xx yy zz xy yz xz, Pa
   double contact_energy = 0.0;  // work done against the contact forces, J
+  std::array<std::vector<double>, 3> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
 };
 
 struct Energies {
@@ -55,7 +58,10 @@ struct Energies {
 
 // f_int(u^n) and the stresses of every element; returns the strain and hourglass energies.
 element::ElementEnergies compute_internal_forces(const Model& model, State& state) {
-  state.internal_force.fill(0.0);
+  for_each_chunk(state.internal_force.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (int c = 0; c < 3; ++c) std::fill(state.internal_force.component(c).begin() + begin,
+                                          state.internal_force.component(c).begin() + end, 0.0);
+  });
   element::ElementEnergies total;
   for (const auto& block : model.blocks) {
     const element::ElementEnergies e =
@@ -94,22 +100,24 @@ void compute_contact_forces(const Model& model, ContactModel& contact, State& st
 // a = M^-1 (f_contact - f_int); the fixed components get a = 0 so that they keep v = 0.
 // Returns false when an acceleration is not finite: 0 x a stays 0 for every finite
 // a and becomes NaN for an infinite or NaN one, so the sum checks them all for the
-// price of one add per value.
+// price of one add per value (and its value does not depend on the order of the sum).
 bool compute_accelerations(const Model& model, State& state) {
-  const std::size_t n = model.mesh.node_count();
-  double non_finite = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    const double* f = state.internal_force.component(c).data();
-    const double* f_contact = state.contact_force.component(c).data();
-    double* a = state.acceleration.component(c).data();
-    const double* inverse_mass = model.inverse_mass.data();
-    for (std::size_t i = 0; i < n; ++i) {
-      a[i] = (f_contact[i] - f[i]) * inverse_mass[i];
-      non_finite += 0.0 * a[i];
+  for_each_chunk(model.mesh.node_count(), [&](std::size_t begin, std::size_t end, std::size_t k) {
+    double non_finite = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double* f = state.internal_force.component(c).data();
+      const double* f_contact = state.contact_force.component(c).data();
+      double* a = state.acceleration.component(c).data();
+      const double* inverse_mass = model.inverse_mass.data();
+      for (std::size_t i = begin; i < end; ++i) {
+        a[i] = (f_contact[i] - f[i]) * inverse_mass[i];
+        non_finite += 0.0 * a[i];
+      }
     }
-  }
+    state.partial[0][k] = non_finite;
+  });
   apply_fixed_components(model, state.acceleration);
-  return non_finite == 0.0;
+  return ordered_sum(state.partial[0]) == 0.0;
 }
 
 struct VelocityUpdate {
@@ -121,33 +129,50 @@ struct VelocityUpdate {
   double largest_component = 0;  // max |v^{n+1/2}| over nodes and components, m/s
 };
 
-// v^{n+1/2} = v^{n-1/2} + dt a^n.
+// v^{n+1/2} = v^{n-1/2} + dt a^n; the sums per chunk of nodes, added in chunk order.
 VelocityUpdate update_velocities(const Model& model, State& state, double dt) {
-  const std::size_t n = model.mesh.node_count();
-  double twice_kinetic = 0.0, largest = 0.0, m_a2 = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    double* v = state.velocity.component(c).data();
-    const double* a = state.acceleration.component(c).data();
-    const double* m = model.mass.data();
-    for (std::size_t i = 0; i < n; ++i) {
-      const double v_new = v[i] + dt * a[i];
-      twice_kinetic += m[i] * v[i] * v_new;
-      m_a2 += m[i] * a[i] * a[i];
-      largest = std::max(largest, std::abs(v_new));
-      v[i] = v_new;
+  for_each_chunk(model.mesh.node_count(), [&](std::size_t begin, std::size_t end, std::size_t k) {
+    double twice_kinetic = 0.0, largest = 0.0, m_a2 = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      double* v = state.velocity.component(c).data();
+      const double* a = state.acceleration.component(c).data();
+      const double* m = model.mass.data();
+      for (std::size_t i = begin; i < end; ++i) {
+        const double v_new = v[i] + dt * a[i];
+        twice_kinetic += m[i] * v[i] * v_new;
+        m_a2 += m[i] * a[i] * a[i];
+        largest = std::max(largest, std::abs(v_new));
+        v[i] = v_new;
+      }
     }
-  }
-  return {0.5 * twice_kinetic, 0.125 * m_a2, largest};
+    state.partial[0][k] = twice_kinetic;
+    state.partial[1][k] = m_a2;
+    state.partial[2][k] = largest;
+  });
+  return {0.5 * ordered_sum(state.partial[0]), 0.125 * ordered_sum(state.partial[1]),
+          *std::max_element(state.partial[2].begin(), state.partial[2].end())};
+}
+
+// v += scale dt a (v^{-1/2} = v^0 - dt/2 a^0 at the start; v^{n-1/2} = v^{n+1/2} - dt a^n to step back).
+void add_to_velocities(State& state, double scale_dt) {
+  for_each_chunk(state.velocity.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (int c = 0; c < 3; ++c) {
+      double* v = state.velocity.component(c).data();
+      const double* a = state.acceleration.component(c).data();
+      for (std::size_t i = begin; i < end; ++i) v[i] += scale_dt * a[i];
+    }
+  });
 }
 
 // u^{n+1} = u^n + dt v^{n+1/2}.
 void update_displacements(State& state, double dt) {
-  for (int c = 0; c < 3; ++c) {
-    double* u = state.displacement.component(c).data();
-    const double* v = state.velocity.component(c).data();
-    const std::size_t n = state.displacement.size();
-    for (std::size_t i = 0; i < n; ++i) u[i] += dt * v[i];
-  }
+  for_each_chunk(state.displacement.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (int c = 0; c < 3; ++c) {
+      double* u = state.displacement.component(c).data();
+      const double* v = state.velocity.component(c).data();
+      for (std::size_t i = begin; i < end; ++i) u[i] += dt * v[i];
+    }
+  });
 }
 
 // The node with the largest |v|_1 (m/s): where an instability grows fastest.
@@ -258,7 +283,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   output::RunSummary summary;
   summary.name = deck.name;
   summary.exdyn_version = exdyn::version;
-  summary.threads = 1;
+  summary.threads = set_threads(controls.threads);
   summary.end_time = deck.time.end_time;
 
   const Model model = build_model(deck);
@@ -287,6 +312,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   state.previous_gap.assign(node_count, 0.0);
   state.stress.assign(6 * model.mesh.element_count(), 0.0);
   state.velocity = initial_velocity(deck, model);
+  for (auto& p : state.partial) p.assign(chunk_count(node_count), 0.0);
   StepWriter step_writer(writer, model);
 
   output::PhaseSeconds& phase = summary.phase_seconds;
@@ -353,13 +379,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       {
         ScopedTimer timer(phase.time_integration);
         if (!compute_accelerations(model, state)) step_back_and_stop(describe_non_finite(state) + when());
-        if (state.step == 0) {  // v^{-1/2} = v^0 - dt/2 a^0
-          for (int c = 0; c < 3; ++c) {
-            auto& v = state.velocity.component(c);
-            const auto& a = state.acceleration.component(c);
-            for (std::size_t i = 0; i < node_count; ++i) v[i] -= 0.5 * dt * a[i];
-          }
-        }
+        if (state.step == 0) add_to_velocities(state, -0.5 * dt);  // v^{-1/2} = v^0 - dt/2 a^0
         const VelocityUpdate update = update_velocities(model, state, dt);
         energy.kinetic = update.kinetic;
         mean_energy = energy.total() + dt * dt * update.mass_acceleration_squared;
@@ -368,11 +388,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       const double total = energy.total();
       if (!std::isfinite(total)) {
         const std::string message = describe_non_finite(state) + when();
-        for (int c = 0; c < 3; ++c) {  // v^{n-1/2} = v^{n+1/2} - dt a^n (a^n is finite)
-          auto& v = state.velocity.component(c);
-          const auto& a = state.acceleration.component(c);
-          for (std::size_t i = 0; i < node_count; ++i) v[i] -= dt * a[i];
-        }
+        add_to_velocities(state, -dt);  // v^{n-1/2} = v^{n+1/2} - dt a^n (a^n is finite)
         step_back_and_stop(message);
       }
       if (state.step == 0) initial_total = total, initial_mean_energy = mean_energy;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <set>
+#include <string>
+#include <utility>
 
 #include "common/errors.hpp"
 #include "deck_files.hpp"
@@ -64,6 +66,10 @@ const BadDeck bad_decks[] = {
     {"cell_size_word.yaml", "contact[0].search.cell_size", 21,
      "expected a number > 0 or auto, got automatic"},
     {"two_pass_word.yaml", "contact[0].two_pass", 20, "expected true or false, got maybe"},
+    {"perturbation_fraction_half.yaml", "parts[0].perturbation.fraction", 10,
+     "expected a number in [0, 0.5) (a fraction of the element length h), got 0.5: at 0.5 or more a node can "
+     "reach or pass its neighbour"},
+    {"perturbation_seed_negative.yaml", "parts[0].perturbation.seed", 12, "expected an integer >= 0, got -1"},
 };
 
 class BadDeckTest : public ::testing::TestWithParam<BadDeck> {};
@@ -134,6 +140,27 @@ TEST(BadDecks, QuotedNumberIsAStringNotANumber) {
     EXPECT_EQ(error.key_path(), "time.end_time");
     EXPECT_NE(std::string(error.what()).find("got the quoted string \"1.0e-4\""), std::string::npos)
         << error.what();
+  }
+}
+
+TEST(BadDecks, PerturbationValuesOutOfRangeAreRejectedNamingTheKey) {
+  const std::string text = testing::read_text(testing::test_deck_path("decks/minimal.yaml"));
+  const std::pair<const char*, const char*> cases[] = {
+      {"{fraction: -0.1}", "parts[0].perturbation.fraction"},
+      {"{fraction: 0.7, seed: 1}", "parts[0].perturbation.fraction"},
+      {"{fraction: .nan}", "parts[0].perturbation.fraction"},
+      {"{fraction: 0.1, seed: 1.5}", "parts[0].perturbation.seed"},
+      {"{fraction: 0.1, seed: 3000000000}", "parts[0].perturbation.seed"},
+      {"{fractoin: 0.1}", "parts[0].perturbation.fractoin"},
+      {"0.1", "parts[0].perturbation"},
+  };
+  for (const auto& [value, key_path] : cases) {
+    try {
+      parse_deck(text, "inline.yaml", {parse_override(std::string("parts[0].perturbation=") + value)});
+      ADD_FAILURE() << "no error for " << value;
+    } catch (const InputError& error) {
+      EXPECT_EQ(error.key_path(), key_path) << error.what();
+    }
   }
 }
 

@@ -27,8 +27,8 @@ TEST(ToYaml, MinimalDeckRoundTripsWithEveryDefaultWritten) {
   const std::string text = to_yaml(deck);
   for (const char* line :
        {"formulation: hex8\n", "hourglass: {coefficient: 0.05}\n", "initial_velocity: [0, 0, 0]\n",
-        "boundary_conditions: []\n", "contact: []\n", "courant: 0.9\n", "directory: results\n",
-        "every: 100\n",
+        "perturbation: {fraction: 0, seed: 1}\n", "boundary_conditions: []\n", "contact: []\n",
+        "courant: 0.9\n", "directory: results\n", "every: 100\n",
         "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap]\n",
         "history_every: 1\n"})
     EXPECT_TRUE(contains(text, line)) << line << " missing from\n" << text;
@@ -54,6 +54,9 @@ TEST(ToYaml, DeckWithEveryOptionChangedRoundTrips) {
   deck.parts[1].formulation = Formulation::hex8r;
   deck.parts[1].hourglass_coefficient = 0.1;
   deck.parts[0].name = "true";  // would read as a boolean unquoted
+  deck.parts[0].perturbation_fraction = 0.3;
+  deck.parts[0].perturbation_seed = 12345;
+  deck.parts[1].perturbation_fraction = 0.499;  // seed left at its default
   deck.contact[0].two_pass = false;
   deck.contact[0].penalty.stiffness = 3.0e12;
   deck.contact[0].penalty.damping = 0.0;
@@ -77,6 +80,36 @@ TEST(ToYaml, DeckWithEveryOptionChangedRoundTrips) {
   EXPECT_TRUE(contains(text, "dt: 5.1909e-10\n")) << text;
   EXPECT_FALSE(contains(text, "courant")) << text;
   EXPECT_TRUE(contains(text, "penalty: {stiffness: 3e+12, damping: 0}\n")) << text;
+  EXPECT_TRUE(contains(text, "perturbation: {fraction: 0.3, seed: 12345}\n")) << text;
+  EXPECT_TRUE(contains(text, "perturbation: {fraction: 0.499, seed: 1}\n")) << text;
+}
+
+TEST(ToYaml, PerturbationIsReadAndRoundTrips) {
+  const std::string text = read_text(test_deck_path("decks/minimal.yaml"));
+  const Deck plain = parse_deck(text, "inline.yaml");
+  EXPECT_EQ(plain.parts[0].perturbation_fraction, 0.0);  // absent: the regular grid
+  EXPECT_EQ(plain.parts[0].perturbation_seed, 1u);
+  // In the file, block style, seed defaulted.
+  std::string with_key = text;
+  with_key.replace(with_key.find("    material: steel\n"), 20,
+                   "    material: steel\n    perturbation:\n      fraction: 0.2\n");
+  const Deck in_file = parse_deck(with_key, "inline.yaml");
+  EXPECT_EQ(in_file.parts[0].perturbation_fraction, 0.2);
+  EXPECT_EQ(in_file.parts[0].perturbation_seed, 1u);
+  EXPECT_EQ(round_trip(in_file), in_file);
+  // From --set, as the stability study gives it; an empty map keeps the defaults.
+  const Deck overridden =
+      parse_deck(text, "inline.yaml", {parse_override("parts[0].perturbation={fraction: 0.3, seed: 7}")});
+  EXPECT_EQ(overridden.parts[0].perturbation_fraction, 0.3);
+  EXPECT_EQ(overridden.parts[0].perturbation_seed, 7u);
+  EXPECT_TRUE(contains(to_yaml(overridden), "    perturbation: {fraction: 0.3, seed: 7}\n"))
+      << to_yaml(overridden);
+  EXPECT_EQ(round_trip(overridden), overridden);
+  EXPECT_EQ(parse_deck(text, "inline.yaml", {parse_override("parts[0].perturbation={}")}), plain);
+  const Deck zero_seed =
+      parse_deck(text, "inline.yaml", {parse_override("parts[0].perturbation={fraction: 0.1, seed: 0}")});
+  EXPECT_EQ(zero_seed.parts[0].perturbation_seed, 0u);
+  EXPECT_EQ(round_trip(zero_seed), zero_seed);
 }
 
 TEST(ToYaml, EmptyFieldListRoundTrips) {

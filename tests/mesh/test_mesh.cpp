@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
+#include <string>
 
+#include "common/errors.hpp"
 #include "mesh/mesh.hpp"
 
 namespace {
@@ -97,6 +101,276 @@ TEST(Mesh, EveryFaceQuadNormalPointsOutOfThePart) {
       const double plane = point(mesh, face.nodes[0])[axis];
       for (auto node : face.nodes) EXPECT_EQ(point(mesh, node)[axis], plane);
     }
+}
+
+// --- parts[i].perturbation: interior grid points moved at random by at most fraction h.
+//
+// det J at a corner is det(I + E) in units of h, each column of E the difference of
+// two nodes' moves, so |E column| <= 2 fraction: sigma_min(I + E) >= 1 - 2 sqrt(3)
+// fraction keeps a 3D element valid below 1/(2 sqrt 3); in a plane part (one element
+// thick) the corner's two in-plane edges keep a positive cross product below
+// 1/(2 sqrt 2). Above that a draw can invert an element, and build_mesh refuses it.
+constexpr double plane_bound = 0.35355339059327373, solid_bound = 0.28867513459481287;
+
+// The plate of the plate impact case coarsened, one element thick in y (plane strain),
+// and a block with interior nodes along every axis.
+exdyn::input::Deck perturbed_deck(double plate_fraction, double block_fraction, unsigned seed = 1) {
+  exdyn::input::Deck deck;
+  exdyn::input::PartOptions plate;
+  plate.name = "plate";
+  plate.box_min = {-2.5e-3, 0, 0};
+  plate.box_max = {0, 2.5e-5, 2.5e-3};
+  plate.elements = {40, 1, 40};
+  plate.perturbation_fraction = plate_fraction;
+  plate.perturbation_seed = seed;
+  exdyn::input::PartOptions block = plate;
+  block.name = "block";
+  block.box_min = {0, 0, 0};
+  block.box_max = {1.0, 2.0, 0.5};
+  block.elements = {6, 8, 5};
+  block.perturbation_fraction = block_fraction;
+  deck.parts = {plate, block};
+  return deck;
+}
+
+// The largest fractions with a guarantee.
+exdyn::input::Deck valid_deck(unsigned seed = 1) {
+  return perturbed_deck(plane_bound * 0.999, solid_bound * 0.999, seed);
+}
+
+std::array<int, 3> grid_point(const exdyn::mesh::PartRange& part, std::uint32_t node) {
+  const auto& n = part.elements;
+  const int local = static_cast<int>(node - part.first_node);
+  return {local % (n[0] + 1), (local / (n[0] + 1)) % (n[1] + 1), local / ((n[0] + 1) * (n[1] + 1))};
+}
+
+// det J of the trilinear map x(xi) of element e at the local point xi in [-1, 1]^3.
+double det_jacobian(const exdyn::mesh::Mesh& mesh, std::size_t e, const std::array<double, 3>& xi) {
+  static constexpr double sign[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                        {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  double J[3][3] = {};  // J[c][a] = dx_c / dxi_a
+  for (int a = 0; a < 8; ++a) {
+    const auto x = point(mesh, mesh.connectivity[8 * e + static_cast<std::size_t>(a)]);
+    for (int d = 0; d < 3; ++d) {
+      double dN = sign[a][d] / 8.0;
+      for (int other = 0; other < 3; ++other)
+        if (other != d) dN *= 1.0 + sign[a][other] * xi[static_cast<std::size_t>(other)];
+      for (int c = 0; c < 3; ++c) J[c][d] += dN * x[static_cast<std::size_t>(c)];
+    }
+  }
+  return J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+         J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+}
+
+// The smallest det J over the 8 corners and the 2x2x2 Gauss points of every element,
+// as a fraction of the undistorted element's (h_x h_y h_z / 8).
+double smallest_relative_jacobian(const exdyn::input::Deck& deck, const exdyn::mesh::Mesh& mesh) {
+  const double g = 1.0 / std::sqrt(3.0);
+  double smallest = std::numeric_limits<double>::infinity();
+  for (std::size_t e = 0; e < mesh.element_count(); ++e) {
+    const auto part = static_cast<std::size_t>(mesh.element_part[e]);
+    double regular = 1.0;
+    for (std::size_t c = 0; c < 3; ++c)
+      regular *=
+          (deck.parts[part].box_max[c] - deck.parts[part].box_min[c]) / mesh.parts[part].elements[c] / 2;
+    for (const double s : {1.0, g})
+      for (int corner = 0; corner < 8; ++corner) {
+        const std::array<double, 3> xi{corner & 1 ? s : -s, corner & 2 ? s : -s, corner & 4 ? s : -s};
+        smallest = std::min(smallest, det_jacobian(mesh, e, xi) / regular);
+      }
+  }
+  return smallest;
+}
+
+TEST(PerturbedMesh, FractionZeroIsTheRegularGridWhateverTheSeed) {
+  const auto deck = perturbed_deck(0.0, 0.0, 1);
+  const auto a = exdyn::mesh::build_mesh(deck), b = exdyn::mesh::build_mesh(perturbed_deck(0.0, 0.0, 7));
+  const auto regular = exdyn::mesh::build_mesh(two_part_deck());  // no perturbation key at all
+  EXPECT_EQ(a.x_ref.x, b.x_ref.x);
+  EXPECT_EQ(a.x_ref.y, b.x_ref.y);
+  EXPECT_EQ(a.x_ref.z, b.x_ref.z);
+  EXPECT_NEAR(smallest_relative_jacobian(deck, a), 1.0, 1e-12);
+  EXPECT_EQ(regular.x_ref.x.size(), 4u * 3 * 2 + 3u * 4 * 5);
+}
+
+TEST(PerturbedMesh, FacesStayPlaneAndTheBoxUnchanged) {
+  const auto deck = valid_deck();
+  const auto mesh = exdyn::mesh::build_mesh(deck);
+  const auto regular = exdyn::mesh::build_mesh(perturbed_deck(0.0, 0.0));
+  for (int part = 0; part < 2; ++part) {
+    const auto& options = deck.parts[static_cast<std::size_t>(part)];
+    for (int side = 0; side < 6; ++side) {
+      const auto axis = static_cast<std::size_t>(side / 2);
+      const double plane = side % 2 == 0 ? options.box_min[axis] : options.box_max[axis];
+      const auto face = exdyn::mesh::face_of(mesh, part, static_cast<BoxSide>(side));
+      for (auto node : face.nodes) EXPECT_EQ(point(mesh, node)[axis], plane);
+    }
+    // Every node stays inside the box, and the eight corners do not move.
+    const auto& range = mesh.parts[static_cast<std::size_t>(part)];
+    for (std::uint32_t node = range.first_node; node < range.first_node + range.node_count; ++node) {
+      const auto x = point(mesh, node);
+      const auto ijk = grid_point(range, node);
+      bool corner = true;
+      for (std::size_t c = 0; c < 3; ++c) {
+        EXPECT_GE(x[c], options.box_min[c]);
+        EXPECT_LE(x[c], options.box_max[c]);
+        corner = corner && (ijk[c] == 0 || ijk[c] == range.elements[c]);
+      }
+      if (corner) {
+        EXPECT_EQ(x, point(regular, node)) << "node " << node;
+      }
+    }
+  }
+}
+
+TEST(PerturbedMesh, NoNodeMovesMoreThanFractionHAndInteriorNodesMove) {
+  // The block and plate at their bounds, and a bar at 0.49 (one interior axis: it cannot invert).
+  exdyn::input::Deck deck = valid_deck();
+  exdyn::input::PartOptions bar = deck.parts[1];
+  bar.name = "bar";
+  bar.elements = {60, 1, 1};
+  bar.perturbation_fraction = 0.49;
+  deck.parts.push_back(bar);
+  const auto mesh = exdyn::mesh::build_mesh(deck);
+  exdyn::input::Deck regular_deck = deck;
+  for (auto& part : regular_deck.parts) part.perturbation_fraction = 0.0;
+  const auto regular = exdyn::mesh::build_mesh(regular_deck);
+  for (std::size_t part = 0; part < deck.parts.size(); ++part) {
+    const auto& range = mesh.parts[part];
+    const double fraction = deck.parts[part].perturbation_fraction;
+    std::array<double, 3> largest{};
+    double longest = 0.0;  // |move| / (fraction h), each component in units of its h
+    for (std::uint32_t node = range.first_node; node < range.first_node + range.node_count; ++node) {
+      const auto ijk = grid_point(range, node);
+      double length_squared = 0.0;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double h = (deck.parts[part].box_max[c] - deck.parts[part].box_min[c]) / range.elements[c];
+        const double moved = std::abs(point(mesh, node)[c] - point(regular, node)[c]) / (fraction * h);
+        length_squared += moved * moved;
+        if (ijk[c] == 0 || ijk[c] == range.elements[c]) {
+          EXPECT_EQ(moved, 0.0);
+        }
+        largest[c] = std::max(largest[c], moved);
+      }
+      EXPECT_LE(length_squared, 1.0 + 1e-12) << "node " << node;
+      longest = std::max(longest, std::sqrt(length_squared));
+    }
+    // r uniform in the unit ball: among the tens of interior points some come close to
+    // its surface, and to the bound along each moving axis.
+    EXPECT_GT(longest, 0.95) << "part " << part;
+    for (std::size_t c = 0; c < 3; ++c)
+      if (range.elements[c] > 1) {
+        EXPECT_GT(largest[c], 0.8) << "part " << part << " component " << c;
+      }
+  }
+}
+
+TEST(PerturbedMesh, IsReproducibleAndChangesWithTheSeedAndThePart) {
+  const auto a = exdyn::mesh::build_mesh(valid_deck(1));
+  const auto b = exdyn::mesh::build_mesh(valid_deck(1));
+  const auto c = exdyn::mesh::build_mesh(valid_deck(2));
+  EXPECT_EQ(a.x_ref.x, b.x_ref.x);
+  EXPECT_EQ(a.x_ref.y, b.x_ref.y);
+  EXPECT_EQ(a.x_ref.z, b.x_ref.z);
+  std::size_t differ = 0;
+  for (std::size_t node = 0; node < a.node_count(); ++node) differ += a.x_ref.x[node] != c.x_ref.x[node];
+  EXPECT_GT(differ, a.node_count() / 2);
+  // The part index enters the key: two equal parts with the same seed differ.
+  exdyn::input::Deck twins = valid_deck();
+  twins.parts[1] = twins.parts[0];
+  twins.parts[1].name = "twin";
+  const auto mesh = exdyn::mesh::build_mesh(twins);
+  const std::uint32_t count = mesh.parts[0].node_count;
+  std::size_t same = 0;
+  for (std::uint32_t node = 0; node < count; ++node) same += mesh.x_ref.x[node] == mesh.x_ref.x[count + node];
+  EXPECT_LT(same, count / 2);
+}
+
+TEST(PerturbedMesh, RuleIsFixedBitForBit) {
+  // A counter-based hash of integers: the same coordinates on every platform and
+  // standard library. h = 1 and fraction 1/4: x = 1 + r_x / 4, z = 2 + r_z / 4 with
+  // r = (-0.3197, 0.7286), |r| = 0.80 <= 1.
+  exdyn::input::Deck deck;
+  exdyn::input::PartOptions part;
+  part.name = "p";
+  part.box_min = {0, 0, 0};
+  part.box_max = {4, 1, 4};
+  part.elements = {4, 1, 4};
+  part.perturbation_fraction = 0.25;
+  part.perturbation_seed = 1;
+  deck.parts = {part};
+  const auto mesh = exdyn::mesh::build_mesh(deck);
+  const std::uint32_t node = 1 + 5 * (0 + 2 * 2);  // grid point (1, 0, 2)
+  EXPECT_EQ(mesh.x_ref.x[node], 0x1.d712b63768532p-1) << std::hexfloat << mesh.x_ref.x[node];
+  EXPECT_EQ(mesh.x_ref.z[node], 0x1.1751073e1114p+1) << std::hexfloat << mesh.x_ref.z[node];
+}
+
+TEST(PerturbedMesh, OneElementThickPartStaysPlane) {
+  const auto deck = valid_deck();
+  const auto mesh = exdyn::mesh::build_mesh(deck);
+  const auto& plate = mesh.parts[0];
+  const auto& options = deck.parts[0];
+  ASSERT_EQ(plate.elements[1], 1);
+  const auto& n = plate.elements;
+  std::size_t moved = 0;
+  for (int k = 0; k <= n[2]; ++k)
+    for (int i = 0; i <= n[0]; ++i) {
+      const std::uint32_t front = plate.first_node + static_cast<std::uint32_t>(i + (n[0] + 1) * (0 + 2 * k));
+      const std::uint32_t back = plate.first_node + static_cast<std::uint32_t>(i + (n[0] + 1) * (1 + 2 * k));
+      EXPECT_EQ(mesh.x_ref.x[front], mesh.x_ref.x[back]) << i << ", " << k;
+      EXPECT_EQ(mesh.x_ref.z[front], mesh.x_ref.z[back]) << i << ", " << k;
+      EXPECT_EQ(mesh.x_ref.y[front], options.box_min[1]);
+      EXPECT_EQ(mesh.x_ref.y[back], options.box_max[1]);
+      const double x_grid = options.box_min[0] + (options.box_max[0] - options.box_min[0]) * i / n[0];
+      moved += std::abs(mesh.x_ref.x[front] - x_grid) > 1e-3 * options.perturbation_fraction * 2.5e-3 / n[0];
+    }
+  EXPECT_GT(moved, std::size_t((n[0] - 1) * (n[2] + 1) * 9 / 10));
+}
+
+TEST(PerturbedMesh, EveryElementKeepsAPositiveJacobianBelowTheGuaranteedBound) {
+  // Corners and Gauss points, plane plate at 0.3532, block at 0.2884, eight seeds.
+  for (unsigned seed = 1; seed <= 8; ++seed) {
+    const auto deck = valid_deck(seed);
+    const double smallest = smallest_relative_jacobian(deck, exdyn::mesh::build_mesh(deck));
+    EXPECT_GT(smallest, 0.0) << "seed " << seed;
+    EXPECT_LT(smallest, 0.8) << "seed " << seed;  // it is distorted
+  }
+}
+
+TEST(PerturbedMesh, PlateImpactMeshesOfTheStudy) {
+  // 100 x 1 x 100 plates, plate_a seed 1 and plate_b seed 2 (docs/stability.md,
+  // "Distorted meshes"): valid at the study's largest fraction 0.3 (below the plane
+  // bound); at 0.45 a corner of plate_a inverts and the mesh is refused.
+  exdyn::input::Deck deck = perturbed_deck(0.3, 0.3);
+  deck.parts[0].elements = deck.parts[1].elements = {100, 1, 100};
+  deck.parts[1].box_min = {0, 0, 0};
+  deck.parts[1].box_max = {2.5e-3, 2.5e-5, 2.5e-3};
+  deck.parts[1].perturbation_seed = 2;
+  const double smallest = smallest_relative_jacobian(deck, exdyn::mesh::build_mesh(deck));
+  EXPECT_GT(smallest, 0.1);  // measured 0.195 (corners and Gauss points, relative to the cube's)
+  EXPECT_LT(smallest, 0.3);
+  deck.parts[0].perturbation_fraction = deck.parts[1].perturbation_fraction = 0.45;
+  deck.source_file = "deck.yaml";
+  try {
+    exdyn::mesh::build_mesh(deck);
+    FAIL() << "no error";
+  } catch (const exdyn::InputError& error) {
+    EXPECT_EQ(error.key_path(), "parts[0].perturbation");
+    EXPECT_EQ(error.location().file, "deck.yaml");
+    EXPECT_NE(std::string(error.what()).find("inverts element"), std::string::npos) << error.what();
+  }
+}
+
+TEST(PerturbedMesh, AnInvertingDistortionOfASolidIsAnInputErrorNamingTheKey) {
+  // At 0.45, well above the solid bound, a corner of the block's 1920 inverts.
+  try {
+    exdyn::mesh::build_mesh(perturbed_deck(0.0, 0.45));
+    FAIL() << "no error";
+  } catch (const exdyn::InputError& error) {
+    EXPECT_EQ(error.key_path(), "parts[1].perturbation");
+    EXPECT_NE(std::string(error.what()).find("of part 'block'"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace
