@@ -1,0 +1,118 @@
+// Results do not depend on the number of threads (docs/performance.md, "Threads"):
+// the plate impact run on 1, 2 and 3 threads writes the same bits in every dataset
+// of NAME.h5, and the same energies and contact counts in NAME.json.
+#include <hdf5.h>
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "../support/result_file.hpp"
+#include "../support/temp_dir.hpp"
+#include "input/deck_reader.hpp"
+#include "solver/simulation.hpp"
+
+namespace {
+
+using exdyn::testing::read_dataset;
+
+// Every dataset of a file, by path ("/steps/000064/stress", ...), in name order.
+std::vector<std::string> dataset_paths(const std::string& file) {
+  std::vector<std::string> paths;
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_GE(f, 0) << file;
+  if (f < 0) return paths;
+  struct Visit {
+    hid_t file;
+    std::vector<std::string>* paths;
+  } visit{f, &paths};
+  H5Lvisit(
+      f, H5_INDEX_NAME, H5_ITER_INC,
+      [](hid_t group, const char* name, const H5L_info_t*, void* data) -> herr_t {
+        const hid_t object = H5Oopen(group, name, H5P_DEFAULT);
+        if (object >= 0) {
+          if (H5Iget_type(object) == H5I_DATASET) static_cast<Visit*>(data)->paths->push_back(std::string("/") + name);
+          H5Oclose(object);
+        }
+        return 0;
+      },
+      &visit);
+  H5Fclose(f);
+  return paths;
+}
+
+struct ThreadedRun {
+  exdyn::testing::TempDir directory{"exdyn_threads"};
+  exdyn::output::RunSummary summary;
+  std::string h5;
+};
+
+void run(ThreadedRun& result, const std::vector<std::string>& overrides, int threads) {
+  std::vector<exdyn::input::Override> parsed;
+  for (const auto& o : overrides) parsed.push_back(exdyn::input::parse_override(o));
+  const exdyn::input::Deck deck =
+      exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/plate_impact.yaml", parsed);
+  exdyn::solver::RunControls controls;
+  controls.output_directory = result.directory.path().string();
+  controls.threads = threads;
+  result.summary = exdyn::solver::run_simulation(deck, controls);
+  result.h5 = result.directory.file(deck.name + ".h5");
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+void expect_same_results_on_1_2_3_threads(const std::vector<std::string>& overrides) {
+  ThreadedRun one, two, three;
+  run(one, overrides, 1);
+  run(two, overrides, 2);
+  run(three, overrides, 3);
+  EXPECT_EQ(one.summary.threads, 1);
+  EXPECT_EQ(two.summary.threads, 2);
+  EXPECT_EQ(three.summary.threads, 3);
+  const std::vector<std::string> paths = dataset_paths(one.h5);
+  ASSERT_GT(paths.size(), 50u);  // mesh, time, 7 history rows, 16 steps x 7 fields
+  EXPECT_EQ(dataset_paths(two.h5), paths);
+  EXPECT_EQ(dataset_paths(three.h5), paths);
+  for (const auto& path : paths) {
+    const auto reference = read_dataset(one.h5, path).values;
+    EXPECT_TRUE(same_bits(read_dataset(two.h5, path).values, reference)) << path << ", 2 threads";
+    EXPECT_TRUE(same_bits(read_dataset(three.h5, path).values, reference)) << path << ", 3 threads";
+  }
+  for (const ThreadedRun* other : {&two, &three}) {
+    EXPECT_EQ(std::memcmp(&other->summary.energy, &one.summary.energy, sizeof one.summary.energy), 0);
+    EXPECT_EQ(other->summary.contact.projections, one.summary.contact.projections);
+    EXPECT_EQ(other->summary.contact.mean_iterations, one.summary.contact.mean_iterations);
+    EXPECT_EQ(other->summary.contact.max_penetration_over_h, one.summary.contact.max_penetration_over_h);
+  }
+}
+
+TEST(Threads, PlateImpactIsTheSameBitsOnOneTwoAndThreeThreads) {
+  // hex8 on the regular grid (the paired constant-Jacobian kernels), BFGS, two passes.
+  expect_same_results_on_1_2_3_threads({"output.every=16", "time.end_time=1.2e-7"});
+}
+
+TEST(Threads, DistortedHex8rPlateImpactIsTheSameBitsOnOneTwoAndThreeThreads) {
+  // hex8r on distorted plates (the general kernels), Newton from the previous point.
+  expect_same_results_on_1_2_3_threads(
+      {"output.every=16", "time.end_time=1.2e-7", "parts[0].formulation=hex8r", "parts[1].formulation=hex8r",
+       "parts[0].perturbation={fraction: 0.2, seed: 1}", "parts[1].perturbation={fraction: 0.2, seed: 2}",
+       "contact[0].local_search.method=newton", "contact[0].local_search.initial_guess=previous"});
+}
+
+TEST(Threads, DistortedHex8IsTheSameBitsOnOneAndTwoThreads) {
+  // The general hex8 kernel (unpaired elements).
+  ThreadedRun one, two;
+  const std::vector<std::string> overrides{"parts[0].perturbation={fraction: 0.2, seed: 3}",
+                                           "parts[1].perturbation={fraction: 0.2, seed: 4}",
+                                           "time.end_time=1.0e-7", "output.every=50"};
+  run(one, overrides, 1);
+  run(two, overrides, 2);
+  for (const auto& path : dataset_paths(one.h5))
+    EXPECT_TRUE(same_bits(read_dataset(two.h5, path).values, read_dataset(one.h5, path).values)) << path;
+}
+
+}  // namespace
