@@ -4,7 +4,8 @@
 #   scripts/bench.sh            the decks below + the kernel benchmarks
 #   scripts/bench.sh --quick    small sizes only
 # Prints element-cycles per second (elements x steps / wall seconds of the time
-# loop) for hex8 and hex8r and the share of each phase of the step.
+# loop) for hex8 and hex8r on 1 and 2 threads, the speed-up, and the share of each
+# phase of the step; then the kernel benchmarks.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
@@ -16,23 +17,29 @@ trap 'rm -rf "$out"' EXIT
 quick=0; [ "${1:-}" = "--quick" ] && quick=1
 
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores; $(date -u +%Y-%m-%dT%H:%MZ)"
-echo "exdyn $($exdyn --version | cut -d' ' -f2), threads: 1"
-printf '%-34s %-6s %10s %7s %12s  %s\n' case form elements steps "Mcycles/s" \
+echo "exdyn $($exdyn --version | cut -d' ' -f2); load average at the start: $(cut -d' ' -f1-3 /proc/loadavg)"
+printf '%-34s %-6s %3s %10s %7s %12s %8s  %s\n' case form thr elements steps "Mcycles/s" speedup \
   "phase shares (element forces / integration / output / contact: global + local + forces)"
 
-run_case() {  # label formulation deck overrides...
+run_case() {  # label formulation deck overrides... (each at 1 thread, then 2)
   local label=$1 form=$2 deck=$3; shift 3
   local name="bench_$$"
-  "$exdyn" run "$deck" --quiet --output "$out" --set name=$name --set "parts[0].formulation=$form" "$@"
-  /usr/bin/python3 - "$out/$name.json" "$label" "$form" <<'PY'
+  for threads in 1 2; do
+    "$exdyn" run "$deck" --quiet --threads $threads --output "$out" --set name=${name}_$threads \
+      --set "parts[0].formulation=$form" "$@"
+  done
+  /usr/bin/python3 - "$out/${name}_1.json" "$out/${name}_2.json" "$label" "$form" <<'PY'
 import json, sys
-s = json.load(open(sys.argv[1]))
-p = s["phase_seconds"]; total = sum(p.values()) or 1.0
-share = lambda k: 100.0 * p[k] / total
-print(f"{sys.argv[2]:<34} {sys.argv[3]:<6} {s['mesh']['elements']:>10} {s['steps']:>7} "
-      f"{s['element_cycles_per_second'] / 1e6:>12.2f}  "
-      f"{share('element_forces'):.0f} % / {share('time_integration'):.0f} % / {share('output'):.0f} % / "
-      f"{share('contact_global_search'):.1f} + {share('contact_local_search'):.1f} + {share('contact_forces'):.1f} %")
+one = json.load(open(sys.argv[1]))
+for path in sys.argv[1:3]:
+    s = json.load(open(path))
+    p = s["phase_seconds"]; total = sum(p.values()) or 1.0
+    share = lambda k: 100.0 * p.get(k, 0.0) / total
+    speedup = s["element_cycles_per_second"] / one["element_cycles_per_second"]
+    print(f"{sys.argv[3]:<34} {sys.argv[4]:<6} {s['threads']:>3} {s['mesh']['elements']:>10} {s['steps']:>7} "
+          f"{s['element_cycles_per_second'] / 1e6:>12.2f} {speedup:>8.2f}  "
+          f"{share('element_forces'):.0f} % / {share('time_integration'):.0f} % / {share('output'):.0f} % / "
+          f"{share('contact_global_search'):.1f} + {share('contact_local_search'):.1f} + {share('contact_forces'):.1f} %")
 PY
 }
 
@@ -43,7 +50,13 @@ for form in hex8 hex8r; do
     run_case "plate 400x400x1, 400 steps" $form input/plate_impact_reference.yaml \
       --set "parts[0].elements=[400,1,400]" --set "parts[0].box={min: [-2.5e-3, 0, 0], max: [0, 6.25e-6, 2.5e-3]}" \
       --set time.end_time=1.3e-7 --set output.every=100000
-    run_case "block 100x100x100, 20 steps" $form input/hourglass_block.yaml \
+    run_case "block 22x22x22 (10^4), 200 steps" $form input/hourglass_block.yaml \
+      --set "parts[0].elements=[22,22,22]" --set time.end_time=1.3e-5 --set output.every=100000 \
+      --set "output.fields=[stress]"
+    run_case "block 46x46x46 (10^5), 60 steps" $form input/hourglass_block.yaml \
+      --set "parts[0].elements=[46,46,46]" --set time.end_time=1.9e-6 --set output.every=100000 \
+      --set "output.fields=[stress]"
+    run_case "block 100x100x100 (10^6), 20 steps" $form input/hourglass_block.yaml \
       --set "parts[0].elements=[100,100,100]" --set time.end_time=3.0e-7 --set output.every=100000 \
       --set "output.fields=[stress]"
   fi
