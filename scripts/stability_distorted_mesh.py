@@ -2,7 +2,7 @@
 """Stability on distorted meshes (docs/stability.md, "Distorted meshes"): runs the plate
 impact (input/plate_impact.yaml, two plates, contact) and its one-plate reference
 (input/plate_impact_reference.yaml) with the interior nodes of each plate moved at random
-by up to a fraction of h per component (parts[i].perturbation), for each element
+by at most a fraction of h (parts[i].perturbation), for each element
 formulation, and prints a Markdown table of how the result degrades.
 
     /usr/bin/python3 scripts/stability_distorted_mesh.py [--exdyn build/release/src/app/exdyn]
