@@ -47,7 +47,7 @@ std::size_t stride_of(ReferenceLayout layout) {
 }
 
 ElementVectors gather(const NodalVectors& v, const std::uint32_t* nodes) {
-  ElementVectors local;
+  ElementVectors local{ElementVectors::Uninitialized{}};  // every entry written below
   const double* x = v.x.data();
   const double* y = v.y.data();
   const double* z = v.z.data();
@@ -83,7 +83,7 @@ ElementEnergies element_loop(const ElementBlock& block, std::uint32_t begin, std
   for (std::uint32_t e = begin; e < end; ++e) {
     const std::uint32_t* nodes = block.connectivity + 8 * static_cast<std::size_t>(e);
     const ElementVectors u_local = gather(u, nodes);
-    ElementVectors f_local;
+    ElementVectors f_local{ElementVectors::Uninitialized{}};  // the kernel writes every entry
     material::SymTensor element_stress;
     const ElementEnergies energies = kernel(reference + stride * e, u_local, f_local, element_stress);
     scatter_add(f_local, nodes, f_int);
@@ -99,7 +99,7 @@ ElementEnergies element_loop(const ElementBlock& block, std::uint32_t begin, std
 
 BasicElementVectors<Pack2> gather_pair(const NodalVectors& v, const std::uint32_t* nodes0,
                                        const std::uint32_t* nodes1) {
-  BasicElementVectors<Pack2> local;
+  BasicElementVectors<Pack2> local{BasicElementVectors<Pack2>::Uninitialized{}};  // every entry written below
   const double* x = v.x.data();
   const double* y = v.y.data();
   const double* z = v.z.data();
@@ -141,7 +141,7 @@ ElementEnergies element_pair_loop(const ElementBlock& block, std::uint32_t begin
                                      block.connectivity + 8 * static_cast<std::size_t>(element[1])};
     if (element[1] >= block.count) nodes[1] = nodes[0];  // the zero-padded partner of an odd last element
     const BasicElementVectors<Pack2> u_local = gather_pair(u, nodes[0], nodes[1]);
-    BasicElementVectors<Pack2> f_local;
+    BasicElementVectors<Pack2> f_local{BasicElementVectors<Pack2>::Uninitialized{}};  // the kernel writes every entry
     std::array<Pack2, 6> element_stress;
     const std::array<Pack2, 2> energies =
         kernel(reference + 2 * stride * pair, u_local, f_local, element_stress);
