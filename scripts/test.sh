@@ -15,4 +15,5 @@ if [ "${EXDYN_SKIP_ASAN:-0}" != "1" ]; then
   scripts/build.sh asan
   (cd build/asan && ctest --output-on-failure -j "$(nproc)")
 fi
+scripts/fuzz.sh 60
 echo "test.sh: all tests passed"

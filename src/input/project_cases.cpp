@@ -40,7 +40,7 @@ class CasesReader {
     if (!root || root.IsNull()) fail(root, "cases", "the file is empty: expected a map with the key `cases`");
     if (!root.IsMap()) fail(root, "", "expected a map with the key `cases`, got " + kind(root));
     for (const auto& entry : root) {
-      const std::string key = entry.first.as<std::string>();
+      const std::string key = key_name(entry.first, "");
       if (key != "cases") fail(entry.first, key, "unknown key (expected `cases`)");
     }
     const YAML::Node cases = root["cases"];
@@ -68,6 +68,12 @@ class CasesReader {
     }
   }
 
+  // A map key must be a scalar: `? [a]: 1` or `? {a: 1}: 2` makes a list or map the key.
+  std::string key_name(const YAML::Node& key, const std::string& path) const {
+    if (!key.IsScalar()) fail(key, path, "expected a key name, got " + kind(key));
+    return key.Scalar();
+  }
+
   ProjectCase read_case(const YAML::Node& node, std::size_t index) const {
     const std::string path = "cases[" + std::to_string(index) + "]";
     if (!node.IsMap())
@@ -75,7 +81,7 @@ class CasesReader {
            "expected a map with keys id, segment, nodes, point, initial_guess; got " + kind(node));
     static const std::array<std::string_view, 5> keys{"id", "segment", "nodes", "point", "initial_guess"};
     for (const auto& entry : node) {
-      const std::string key = entry.first.as<std::string>();
+      const std::string key = key_name(entry.first, path);
       if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
         fail(entry.first, path + "." + key,
              "unknown key" + suggestion(key, keys) + " (expected id, segment, nodes, point, initial_guess)");

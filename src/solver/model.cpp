@@ -6,10 +6,12 @@
 
 #include "common/errors.hpp"
 #include "material/elastic.hpp"
+#include "solver/memory_estimate.hpp"
 
 namespace exdyn::solver {
 
 Model build_model(const input::Deck& deck) {
+  check_mesh_size(deck);  // before anything of the mesh's size is allocated
   Model model;
   model.mesh = mesh::build_mesh(deck);
   const std::size_t node_count = model.mesh.node_count();

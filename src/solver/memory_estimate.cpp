@@ -1,0 +1,155 @@
+#include "solver/memory_estimate.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "common/errors.hpp"
+#include "common/nodal_vectors.hpp"
+#include "element/hex8.hpp"
+#include "element/hex8r.hpp"
+
+namespace exdyn::solver {
+
+// The counts of memory_estimate.hpp, from the types they come from.
+static_assert(sizeof(double) == 8 && sizeof(std::uint32_t) == 4 && sizeof(std::int32_t) == 4);
+static_assert(bytes_per_node == (3 + 2 + 6 * 3 + 2 + 3 + 3) * sizeof(double));
+static_assert(bytes_per_element_besides_reference == 8 * sizeof(std::uint32_t) + sizeof(std::int32_t) +
+                                                         (6 + 1) * sizeof(double) + 8 * sizeof(std::int64_t));
+
+std::uint64_t bytes_per_element(const input::PartOptions& part) {
+  // The layouts element_block.cpp chooses: a regular box is made of parallelepipeds.
+  const bool hex8 = part.formulation == input::Formulation::hex8;
+  const int reference_doubles = part.perturbation_fraction > 0.0
+                                    ? (hex8 ? element::hex8::reference_size : element::hex8r::reference_size)
+                                    : std::max(element::hex8::parallelepiped_reference_size,
+                                               element::hex8r::parallelepiped_reference_size);
+  return bytes_per_element_besides_reference + 8 * static_cast<std::uint64_t>(reference_doubles);
+}
+
+namespace {
+
+constexpr std::uint64_t saturated = std::numeric_limits<std::uint64_t>::max();
+constexpr std::uint64_t max_nodes = std::numeric_limits<std::uint32_t>::max();    // 32-bit node ids
+constexpr std::uint64_t max_elements = std::numeric_limits<std::int32_t>::max();  // mesh::build_mesh's limit
+
+// a * b and a + b, UINT64_MAX when the result does not fit.
+std::uint64_t product(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t result = 0;
+  return __builtin_mul_overflow(a, b, &result) ? saturated : result;
+}
+std::uint64_t sum(std::uint64_t a, std::uint64_t b) {
+  std::uint64_t result = 0;
+  return __builtin_add_overflow(a, b, &result) ? saturated : result;
+}
+
+// A part's element counts; the deck reader gives 1 <= n <= INT_MAX, a negative n
+// (a deck not from the reader) counts as 0.
+std::array<int, 3> element_counts(const input::PartOptions& part) {
+  std::array<int, 3> n = part.elements;
+  for (int& value : n) value = std::max(value, 0);
+  return n;
+}
+
+// n[0] * n[1] * n[2] with n[k] + offset (offset 1: grid points), exact or saturated.
+std::uint64_t grid_count(const std::array<int, 3>& n, int offset) {
+  std::uint64_t count = 1;
+  for (const int value : n)
+    count = product(count, static_cast<std::uint64_t>(value) + static_cast<std::uint64_t>(offset));
+  return count;
+}
+double grid_count_real(const std::array<int, 3>& n, int offset) {
+  return (double(n[0]) + offset) * (double(n[1]) + offset) * (double(n[2]) + offset);
+}
+
+// "123456" when exact, "about 1e+15" when it saturated 64 bits.
+std::string format_count(std::uint64_t count, double real) {
+  if (count != saturated) return std::to_string(count);
+  char text[32];
+  std::snprintf(text, sizeof text, "about %.3g", real);
+  return text;
+}
+
+// "1.5 GiB", "437 PiB"
+std::string format_bytes(double bytes) {
+  static constexpr const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  std::size_t unit = 0;
+  while (unit + 1 < std::size(units) && bytes >= 1024.0) bytes /= 1024.0, ++unit;
+  char text[48];
+  std::snprintf(text, sizeof text, "%.3g %s", bytes, units[unit]);
+  return text;
+}
+
+}  // namespace
+
+MemoryEstimate estimate_memory(const input::Deck& deck) {
+  MemoryEstimate estimate;
+  for (const input::PartOptions& part : deck.parts) {
+    const std::array<int, 3> n = element_counts(part);
+    estimate.nodes = sum(estimate.nodes, grid_count(n, 1));
+    estimate.elements = sum(estimate.elements, grid_count(n, 0));
+    estimate.bytes += grid_count_real(n, 1) * double(bytes_per_node) +
+                      grid_count_real(n, 0) * double(bytes_per_element(part));
+  }
+  return estimate;
+}
+
+std::optional<std::uint64_t> available_memory(const std::string& meminfo_path) {
+  std::ifstream file(meminfo_path);
+  std::string line;
+  while (std::getline(file, line)) {
+    // "MemAvailable:   12345678 kB"
+    std::istringstream fields(line);
+    std::string key, unit;
+    std::uint64_t value = 0;
+    if (!(fields >> key) || key != "MemAvailable:") continue;
+    if (!(fields >> value >> unit) || unit != "kB") return std::nullopt;
+    return product(value, 1024);
+  }
+  return std::nullopt;
+}
+
+void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> available_bytes) {
+  const MemoryEstimate estimate = estimate_memory(deck);
+  const bool too_many_nodes = estimate.nodes > max_nodes;
+  const bool too_many_elements = estimate.elements > max_elements;
+  const bool too_large = available_bytes && estimate.bytes > double(*available_bytes);
+  if (!too_many_nodes && !too_many_elements && !too_large) return;
+
+  double nodes_real = 0.0, elements_real = 0.0;
+  std::uint64_t least = saturated, most = 0;  // bytes per element over the parts
+  std::string parts;
+  for (std::size_t p = 0; p < deck.parts.size(); ++p) {
+    const input::PartOptions& part = deck.parts[p];
+    const std::array<int, 3> n = element_counts(part);
+    nodes_real += grid_count_real(n, 1);
+    elements_real += grid_count_real(n, 0);
+    least = std::min(least, bytes_per_element(part));
+    most = std::max(most, bytes_per_element(part));
+    parts += (p == 0 ? "" : ", ") + std::string("parts[") + std::to_string(p) + "] '" + part.name + "' " +
+             std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " + std::to_string(n[2]) + " = " +
+             format_count(grid_count(n, 0), grid_count_real(n, 0)) + " elements";
+  }
+  std::string message = "the mesh is too large: " + parts + "; in all " +
+                        format_count(estimate.elements, elements_real) + " elements and " +
+                        format_count(estimate.nodes, nodes_real) + " nodes";
+  if (too_many_nodes || too_many_elements)
+    message += ", more than the " + std::to_string(max_nodes) + " nodes and " + std::to_string(max_elements) +
+               " elements that the 32-bit indices of the mesh can number";
+  message += "; the run would need about " + format_bytes(estimate.bytes) + " of memory (" +
+             std::to_string(bytes_per_node) + " B per node, " +
+             (least == most ? "" : std::to_string(least) + " to ") + std::to_string(most) +
+             " B per element) and " +
+             (available_bytes ? format_bytes(double(*available_bytes)) + " are available (MemAvailable)"
+                              : std::string("the available memory is unknown"));
+  throw InputError(SourceLocation{deck.source_file, 0, 0}, "parts", message);
+}
+
+void check_mesh_size(const input::Deck& deck) { check_mesh_size(deck, available_memory()); }
+
+}  // namespace exdyn::solver

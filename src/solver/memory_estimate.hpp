@@ -1,0 +1,60 @@
+// The memory a run of a deck needs, estimated from its node and element counts
+// before anything of that size is allocated (docs/input.md, "Mesh size"), so that
+// `elements: [100000, 100000, 100000]` is refused as bad input instead of
+// failing somewhere inside the allocator.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "input/options.hpp"
+
+namespace exdyn::solver {
+
+// Bytes a run holds per node and per element: the arrays of the mesh, the model,
+// the time loop's state and the result writer, slightly conservative (the
+// writer's temporary 64-bit connectivity is counted as if it lived on).
+// memory_estimate.cpp checks the counts against the types they come from.
+//   per node, 31 doubles: reference coordinates 3 (mesh), mass and 1/mass 2 (model);
+//     u, v, a, f_int, f_contact and the previous f_contact 18, gap and previous gap
+//     2 (time loop); v at the step 3 (step writer); the (N, 3) staging buffer 3 (HDF5 writer)
+//   per element, 156 B besides the element block's reference data: 8 node ids 32 B
+//     and the part index 4 B (mesh); stress 6 doubles and von Mises 1 (time loop,
+//     step writer); the int64 connectivity written to HDF5 64 B
+//   reference data per element (element_block.cpp): the parallelepiped kernels'
+//     at most 11 doubles for a regular box; a distorted part (perturbation) runs the
+//     general kernels, 81 doubles (hex8) or 36 (hex8r)
+// Not counted: arrays of the contact faces and fixed faces (they grow with the
+// surface, not the volume) and the program itself.
+inline constexpr std::uint64_t bytes_per_node = 31 * 8;
+inline constexpr std::uint64_t bytes_per_element_besides_reference = 32 + 4 + 7 * 8 + 64;
+
+// Bytes per element of one part: 244 for a regular box, 804 (hex8) or 444 (hex8r) distorted.
+std::uint64_t bytes_per_element(const input::PartOptions& part);
+
+struct MemoryEstimate {
+  // Totals over the parts; UINT64_MAX when a count does not fit 64 bits.
+  std::uint64_t nodes = 0;
+  std::uint64_t elements = 0;
+  // Sum over the parts of nodes * bytes_per_node + elements * bytes_per_element,
+  // in a double so that the counts of an absurd deck (up to 2^93) do not overflow.
+  double bytes = 0.0;
+};
+
+MemoryEstimate estimate_memory(const input::Deck& deck);
+
+// MemAvailable of a /proc/meminfo file, in bytes; empty when the file cannot be
+// read or has no such line.
+std::optional<std::uint64_t> available_memory(const std::string& meminfo_path = "/proc/meminfo");
+
+// Throws InputError naming every part's element counts, the estimate and the
+// memory available when the mesh has more nodes than 32-bit node indices can
+// number (4294967295) or more elements than 2147483647, or when the estimate
+// exceeds `available_bytes` (no memory check when it is empty).
+void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> available_bytes);
+
+// The same with the machine's MemAvailable (/proc/meminfo): build_model's first step.
+void check_mesh_size(const input::Deck& deck);
+
+}  // namespace exdyn::solver
