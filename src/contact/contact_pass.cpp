@@ -25,8 +25,11 @@ Segment current_segment(const Quad& quad, const NodalVectors& x_ref, const Nodal
 // The largest distance (m) any node of the pass has moved since the last build.
 double largest_motion_since_build(const ContactSurfaces& surfaces, const ContactPassState& state,
                                   const NodalVectors& x_ref, const NodalVectors& u) {
-  double largest_squared = 0.0;
-  for (std::size_t i = 0; i < surfaces.moving_nodes.size(); ++i) {
+  double largest_squared = 0.0;  // a max: the same on any number of threads
+  const auto count = static_cast<std::ptrdiff_t>(surfaces.moving_nodes.size());
+#pragma omp parallel for schedule(static) reduction(max : largest_squared) if (count >= 4096)
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(k);
     const Vec3 x = current_position(x_ref, u, surfaces.moving_nodes[i]);
     const Vec3 d = x - Vec3{state.moving_at_build.x[i], state.moving_at_build.y[i], state.moving_at_build.z[i]};
     largest_squared = std::max(largest_squared, dot(d, d));
@@ -152,15 +155,21 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
   }
 
   // Penalty forces: F = max(0, -k g - c (v_s - v_m).n) along n on the slave node,
-  // -N_i F n on the segment's nodes (momentum is conserved exactly).
+  // -N_i F n on the segment's nodes (momentum is conserved exactly). F and the pair's
+  // k of every slave node on the threads (large surfaces only: on a few hundred nodes
+  // starting threads costs more than the work); then the scatter, in slave order,
+  // alone, since segments share nodes: the same sums on any number of threads.
   {
     ScopedTimer timer(seconds.forces);
-    for (std::size_t p = 0; p < n_slaves; ++p) {
+    state.force_magnitude.assign(n_slaves, 0.0);
+    state.pair_stiffness.assign(n_slaves, 0.0);
+    const auto slaves = static_cast<std::ptrdiff_t>(n_slaves);
+#pragma omp parallel for schedule(static) if (slaves >= 4096)
+    for (std::ptrdiff_t q = 0; q < slaves; ++q) {
+      const auto p = static_cast<std::size_t>(q);
       const auto& contact = state.contacts[p];
+      if (contact.segment < 0 || contact.gap >= 0.0) continue;
       const std::uint32_t slave = surfaces.slave_nodes[p];
-      if (contact.segment < 0) continue;
-      gap[slave] = std::min(gap[slave], contact.gap);
-      if (contact.gap >= 0.0) continue;
       const Quad& quad = surfaces.segments[static_cast<std::size_t>(contact.segment)];
       const std::array<double, 8> N = shape_functions(SegmentType::quad4, contact.xi);
       Vec3 master_velocity{};
@@ -179,10 +188,22 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
                       settings.stiffness_scale * stable_stiffness_bound(settings.dt, settings.courant,
                                                                         settings.damping_ratio, inverse_mass)});
       }
-      statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, k);
+      state.pair_stiffness[p] = k;
       k /= settings.pass_count;
       const double c = damping_coefficient(settings.damping_ratio, k, mass[slave], 1.0 / master_inverse_mass);
-      const double F = normal_force(k, c, contact.gap, normal_velocity);
+      state.force_magnitude[p] = normal_force(k, c, contact.gap, normal_velocity);
+    }
+    for (std::size_t p = 0; p < n_slaves; ++p) {
+      const auto& contact = state.contacts[p];
+      const std::uint32_t slave = surfaces.slave_nodes[p];
+      if (contact.segment < 0) continue;
+      gap[slave] = std::min(gap[slave], contact.gap);
+      if (contact.gap >= 0.0) continue;
+      const Quad& quad = surfaces.segments[static_cast<std::size_t>(contact.segment)];
+      const std::array<double, 8> N = shape_functions(SegmentType::quad4, contact.xi);
+      const Vec3 n = contact.normal;
+      const double F = state.force_magnitude[p];
+      statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
       force.x[slave] += F * n.x;
       force.y[slave] += F * n.y;
       force.z[slave] += F * n.z;

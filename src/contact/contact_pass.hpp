@@ -61,6 +61,8 @@ struct ContactPassState {
   std::vector<CandidatePair> new_candidates;
   std::vector<Xi> new_previous_xi;
   std::vector<ProjectionResult> results;  // the projection of each candidate pair, this step
+  std::vector<double> force_magnitude;    // F of each slave node's contact, N (0: none)
+  std::vector<double> pair_stiffness;     // k of each slave node's pair before the pass split, N/m
   struct Contact {                        // the chosen projection of each slave node
     std::int64_t segment = -1;            // -1: none
     Xi xi{};
