@@ -153,24 +153,14 @@ VelocityUpdate update_velocities(const Model& model, State& state, double dt) {
           *std::max_element(state.partial[2].begin(), state.partial[2].end())};
 }
 
-// v += scale dt a (v^{-1/2} = v^0 - dt/2 a^0 at the start; v^{n-1/2} = v^{n+1/2} - dt a^n to step back).
-void add_to_velocities(State& state, double scale_dt) {
-  for_each_chunk(state.velocity.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+// y += scale x, componentwise over the nodes: u^{n+1} = u^n + dt v^{n+1/2};
+// v^{-1/2} = v^0 - dt/2 a^0 at the start; v^{n-1/2} = v^{n+1/2} - dt a^n to step back.
+void add_scaled(NodalVectors& y, double scale, const NodalVectors& x) {
+  for_each_chunk(y.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
     for (int c = 0; c < 3; ++c) {
-      double* v = state.velocity.component(c).data();
-      const double* a = state.acceleration.component(c).data();
-      for (std::size_t i = begin; i < end; ++i) v[i] += scale_dt * a[i];
-    }
-  });
-}
-
-// u^{n+1} = u^n + dt v^{n+1/2}.
-void update_displacements(State& state, double dt) {
-  for_each_chunk(state.displacement.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (int c = 0; c < 3; ++c) {
-      double* u = state.displacement.component(c).data();
-      const double* v = state.velocity.component(c).data();
-      for (std::size_t i = begin; i < end; ++i) u[i] += dt * v[i];
+      double* out = y.component(c).data();
+      const double* in = x.component(c).data();
+      for (std::size_t i = begin; i < end; ++i) out[i] += scale * in[i];
     }
   });
 }
@@ -352,7 +342,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   // step's contact forces and gaps, and stop there.
   const auto step_back_and_stop = [&](const std::string& message) {
     if (state.step == 0) throw RunFailure(message, state.step, state.time);
-    update_displacements(state, -dt);
+    add_scaled(state.displacement, -dt, state.velocity);  // u^{n-1} = u^n - dt v^{n-1/2}
     compute_internal_forces(model, state);
     std::swap(state.contact_force, state.previous_contact_force);
     std::swap(state.gap, state.previous_gap);
@@ -379,7 +369,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       {
         ScopedTimer timer(phase.time_integration);
         if (!compute_accelerations(model, state)) step_back_and_stop(describe_non_finite(state) + when());
-        if (state.step == 0) add_to_velocities(state, -0.5 * dt);  // v^{-1/2} = v^0 - dt/2 a^0
+        if (state.step == 0) add_scaled(state.velocity, -0.5 * dt, state.acceleration);  // v^{-1/2} = v^0 - dt/2 a^0
         const VelocityUpdate update = update_velocities(model, state, dt);
         energy.kinetic = update.kinetic;
         mean_energy = energy.total() + dt * dt * update.mass_acceleration_squared;
@@ -388,7 +378,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       const double total = energy.total();
       if (!std::isfinite(total)) {
         const std::string message = describe_non_finite(state) + when();
-        add_to_velocities(state, -dt);  // v^{n-1/2} = v^{n+1/2} - dt a^n (a^n is finite)
+        add_scaled(state.velocity, -dt, state.acceleration);  // v^{n-1/2} = v^{n+1/2} - dt a^n (a^n is finite)
         step_back_and_stop(message);
       }
       if (state.step == 0) initial_total = total, initial_mean_energy = mean_energy;
@@ -465,7 +455,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
                  "; the results up to this step are written");
       {
         ScopedTimer timer(phase.time_integration);
-        update_displacements(state, dt);
+        add_scaled(state.displacement, dt, state.velocity);  // u^{n+1} = u^n + dt v^{n+1/2}
       }
     }
   } catch (const RunFailure& failure) {
