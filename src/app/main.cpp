@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
   run->add_option("--threads", run_arguments.threads,
                   "Threads (default 0: every core); the results are the same bits for any number")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 4096));
   run->add_flag("--quiet", run_arguments.quiet, "No progress line and no summary line");
 
   std::string check_deck;
