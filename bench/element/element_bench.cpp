@@ -118,9 +118,12 @@ void hex8r_distorted(benchmark::State& state) { run(state, Formulation::hex8r, t
 // Arguments: n (boxes of n^3 elements: 1.06e4, 9.7e4, 1e6) and the threads (1, 2).
 // Rates are per wall-clock second (UseRealTime), the only fair measure once the
 // loop runs on several threads; on a shared machine they include waiting for a core.
-#define EXDYN_ELEMENT_BENCHMARK(name)                                                                         \
-  BENCHMARK(name)->ArgsProduct({{22, 46, 100}, {1, 2}})->ArgNames({"n", "threads"})->UseRealTime()->Unit( \
-      benchmark::kMillisecond)
+#define EXDYN_ELEMENT_BENCHMARK(name)        \
+  BENCHMARK(name)                            \
+      ->ArgsProduct({{22, 46, 100}, {1, 2}}) \
+      ->ArgNames({"n", "threads"})           \
+      ->UseRealTime()                        \
+      ->Unit(benchmark::kMillisecond)
 EXDYN_ELEMENT_BENCHMARK(hex8_box);
 EXDYN_ELEMENT_BENCHMARK(hex8_distorted);
 EXDYN_ELEMENT_BENCHMARK(hex8r_box);

@@ -42,8 +42,8 @@ std::string format_duration(double seconds) {
 void print_progress(const exdyn::solver::Progress& p) {
   const double fraction = p.total_steps > 0 ? double(p.step) / double(p.total_steps) : 1.0;
   const double eta = fraction > 0.0 ? p.wall_seconds * (1.0 - fraction) / fraction : 0.0;
-  std::fprintf(stderr, "\rstep %ld/%ld  t = %.6e s  dt = %.4e s  %5.1f %%  ETA %s   ", p.step, p.total_steps, p.time,
-               p.dt, 100.0 * fraction, format_duration(eta).c_str());
+  std::fprintf(stderr, "\rstep %ld/%ld  t = %.6e s  dt = %.4e s  %5.1f %%  ETA %s   ", p.step, p.total_steps,
+               p.time, p.dt, 100.0 * fraction, format_duration(eta).c_str());
   if (p.step == p.total_steps) std::fputc('\n', stderr);
   std::fflush(stderr);
 }
@@ -81,16 +81,18 @@ int run_command(const RunArguments& arguments) {
     const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
     // A failed local search gives no contact force (docs/stability.md): say so, even with --quiet.
     if (const long failed = summary.contact.not_converged + summary.contact.saddle_points; failed > 0)
-      std::fprintf(stderr,
-                   "exdyn: warning: %ld of %ld local contact searches failed (%ld not converged, %ld on a saddle or "
-                   "maximum) and gave no contact force; see contact in %s.json\n",
-                   failed, summary.contact.projections, summary.contact.not_converged, summary.contact.saddle_points,
-                   deck.name.c_str());
+      std::fprintf(
+          stderr,
+          "exdyn: warning: %ld of %ld local contact searches failed (%ld not converged, %ld on a saddle or "
+          "maximum) and gave no contact force; see contact in %s.json\n",
+          failed, summary.contact.projections, summary.contact.not_converged, summary.contact.saddle_points,
+          deck.name.c_str());
     if (!arguments.quiet)
-      std::printf("%s: completed %ld steps of dt = %.6g s in %.3f s (%.3g element-cycles/s); results in %s/%s.xmf\n",
-                  summary.name.c_str(), summary.steps, summary.dt, summary.wall_seconds,
-                  summary.element_cycles_per_second,
-                  (arguments.output.empty() ? deck.output.directory : arguments.output).c_str(), deck.name.c_str());
+      std::printf(
+          "%s: completed %ld steps of dt = %.6g s in %.3f s (%.3g element-cycles/s); results in %s/%s.xmf\n",
+          summary.name.c_str(), summary.steps, summary.dt, summary.wall_seconds,
+          summary.element_cycles_per_second,
+          (arguments.output.empty() ? deck.output.directory : arguments.output).c_str(), deck.name.c_str());
   } catch (const exdyn::RunFailure&) {
     if (controls.on_progress) std::fputc('\n', stderr);
     throw;
@@ -124,7 +126,8 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
 
   exdyn::app::ProjectCommandOptions project_options;
-  CLI::App* project = app.add_subcommand("project", "Run the local contact search on stand-alone cases (CSV)");
+  CLI::App* project =
+      app.add_subcommand("project", "Run the local contact search on stand-alone cases (CSV)");
   project->add_option("cases", project_options.cases_file, "The cases file (YAML)")->required();
   project->add_option("--method", project_options.methods, "M[,M...] or all")->capture_default_str();
   project->add_option("--initial-guess", project_options.initial_guess, "lsp, center, corners, all or a,b")
@@ -133,8 +136,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   project->add_option("--max-iterations", project_options.max_iterations, "Iteration limit")
       ->capture_default_str();
-  project->add_option("--timing-seconds", project_options.timing_seconds,
-                      "Least total time spent timing each projection (0: time one run)")
+  project
+      ->add_option("--timing-seconds", project_options.timing_seconds,
+                   "Least total time spent timing each projection (0: time one run)")
       ->capture_default_str();
 
   try {

@@ -42,7 +42,9 @@ inline int set_threads(int requested) {
 // small enough to balance two threads on the smallest decks.
 inline constexpr std::size_t node_chunk = 2048;
 
-inline std::size_t chunk_count(std::size_t n, std::size_t chunk = node_chunk) { return (n + chunk - 1) / chunk; }
+inline std::size_t chunk_count(std::size_t n, std::size_t chunk = node_chunk) {
+  return (n + chunk - 1) / chunk;
+}
 
 // Calls body(begin, end, k) for the chunks k of [0, n) on the threads. body must
 // write only to what chunk k owns (e.g. the nodes begin..end-1, partial[k]).

@@ -31,7 +31,8 @@ double largest_motion_since_build(const ContactSurfaces& surfaces, const Contact
   for (std::ptrdiff_t k = 0; k < count; ++k) {
     const auto i = static_cast<std::size_t>(k);
     const Vec3 x = current_position(x_ref, u, surfaces.moving_nodes[i]);
-    const Vec3 d = x - Vec3{state.moving_at_build.x[i], state.moving_at_build.y[i], state.moving_at_build.z[i]};
+    const Vec3 d =
+        x - Vec3{state.moving_at_build.x[i], state.moving_at_build.y[i], state.moving_at_build.z[i]};
     largest_squared = std::max(largest_squared, dot(d, d));
   }
   return std::sqrt(largest_squared);
@@ -39,8 +40,8 @@ double largest_motion_since_build(const ContactSurfaces& surfaces, const Contact
 
 // Global search: new candidates from the bucket grid; a pair that was a
 // candidate before keeps its point from the last step (both lists are sorted).
-void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettings& settings, ContactPassState& state,
-                        const NodalVectors& x_ref, const NodalVectors& u) {
+void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                        ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u) {
   const std::size_t n_slaves = surfaces.slave_nodes.size();
   state.slave_points.resize(n_slaves);
   for (std::size_t p = 0; p < n_slaves; ++p) {
@@ -51,13 +52,15 @@ void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettin
   }
   segment_boxes(
       [&](std::uint32_t node) {
-        return std::array<double, 3>{x_ref.x[node] + u.x[node], x_ref.y[node] + u.y[node], x_ref.z[node] + u.z[node]};
+        return std::array<double, 3>{x_ref.x[node] + u.x[node], x_ref.y[node] + u.y[node],
+                                     x_ref.z[node] + u.z[node]};
       },
       surfaces.segments, settings.search_distance + settings.margin, state.boxes);
   bucket_search(state.slave_points, state.boxes, settings.cell_size, state.workspace, state.new_candidates);
 
   // Carry the previous points over (merge of two sorted lists).
-  state.new_previous_xi.assign(state.new_candidates.size(), Xi{std::numeric_limits<double>::quiet_NaN(), 0.0});
+  state.new_previous_xi.assign(state.new_candidates.size(),
+                               Xi{std::numeric_limits<double>::quiet_NaN(), 0.0});
   std::size_t old = 0;
   auto before = [](const CandidatePair& a, const CandidatePair& b) {
     return a.point < b.point || (a.point == b.point && a.segment < b.segment);
@@ -83,10 +86,10 @@ void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettin
 
 }  // namespace
 
-void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings, ContactPassState& state,
-                      const NodalVectors& x_ref, const NodalVectors& u, const NodalVectors& v,
-                      const std::vector<double>& mass, NodalVectors& force, std::vector<double>& gap,
-                      ContactStatistics& statistics, ContactPhaseSeconds& seconds) {
+void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                      ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u,
+                      const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,
+                      std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds) {
   const std::size_t n_slaves = surfaces.slave_nodes.size();
   {
     ScopedTimer timer(seconds.global_search);
@@ -184,9 +187,10 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       double k = surfaces.stiffness[p];  // the node pair's stiffness
       if (settings.automatic_stiffness) {
         const double inverse_mass = slave_inverse_mass + master_inverse_mass;
-        k = std::min({k, settings.stiffness_scale * accurate_stiffness_bound(settings.dt, inverse_mass),
-                      settings.stiffness_scale * stable_stiffness_bound(settings.dt, settings.courant,
-                                                                        settings.damping_ratio, inverse_mass)});
+        k = std::min(
+            {k, settings.stiffness_scale * accurate_stiffness_bound(settings.dt, inverse_mass),
+             settings.stiffness_scale * stable_stiffness_bound(settings.dt, settings.courant,
+                                                               settings.damping_ratio, inverse_mass)});
       }
       state.pair_stiffness[p] = k;
       k /= settings.pass_count;
@@ -212,7 +216,8 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         force.y[quad[i]] -= N[i] * F * n.y;
         force.z[quad[i]] -= N[i] * F * n.z;
       }
-      if (const double depth = -contact.gap / surfaces.normal_length[p]; depth > statistics.max_penetration_over_h) {
+      if (const double depth = -contact.gap / surfaces.normal_length[p];
+          depth > statistics.max_penetration_over_h) {
         statistics.max_penetration_over_h = depth;
         statistics.deepest_node = slave;
       }

@@ -25,26 +25,26 @@ struct ContactSurfaces {
   // Penalty stiffness of each slave node before the frequency caps, N/m:
   // scale kappa M A / L (automatic rule) or the deck's fixed stiffness.
   std::vector<double> stiffness;
-  std::vector<double> normal_length;       // element length normal to the slave face (penetration / h), m
-  std::vector<Quad> segments;              // master quadrilaterals, outward oriented
-  std::vector<std::uint32_t> moving_nodes; // slave and master nodes (for the rebuild test), unique
+  std::vector<double> normal_length;        // element length normal to the slave face (penetration / h), m
+  std::vector<Quad> segments;               // master quadrilaterals, outward oriented
+  std::vector<std::uint32_t> moving_nodes;  // slave and master nodes (for the rebuild test), unique
 };
 
 struct ContactPassSettings {
-  ProjectFn project = nullptr;          // chosen once from the deck's method
+  ProjectFn project = nullptr;  // chosen once from the deck's method
   ProjectionSettings projection;
   InitialGuess initial_guess = InitialGuess::lsp;
-  double damping_ratio = 0.0;           // zeta, fraction of critical
+  double damping_ratio = 0.0;  // zeta, fraction of critical
   // Automatic stiffness: at each contact k = scale min(kappa M A / L, the
   // frequency caps of penalty.hpp for the actual 1/m_s + sum N_i^2 / m_i).
   bool automatic_stiffness = true;
   double stiffness_scale = 1.0;
-  double dt = 0.0;                      // the step in force, s
-  double courant = 0.0;                 // dt / the mesh's critical step
-  int pass_count = 1;                   // two passes put two springs on a node pair: each carries 1 / pass_count
-  double search_distance = 0.0;         // largest gap that is searched for, m
-  double margin = 0.0;                  // extra capture: rebuild once a node has moved margin / 2, m
-  double cell_size = 0.0;               // bucket cell edge, m (<= 0: automatic)
+  double dt = 0.0;               // the step in force, s
+  double courant = 0.0;          // dt / the mesh's critical step
+  int pass_count = 1;            // two passes put two springs on a node pair: each carries 1 / pass_count
+  double search_distance = 0.0;  // largest gap that is searched for, m
+  double margin = 0.0;           // extra capture: rebuild once a node has moved margin / 2, m
+  double cell_size = 0.0;        // bucket cell edge, m (<= 0: automatic)
 };
 
 // What the pass keeps from step to step.
@@ -74,10 +74,10 @@ struct ContactPassState {
 
 struct ContactStatistics {
   long projections = 0;
-  long iterations = 0;       // sum over projections
+  long iterations = 0;  // sum over projections
   long max_iterations = 0;
-  long not_converged = 0;    // stopping test not met (no force from them)
-  long saddle_points = 0;    // converged to a saddle or a maximum (no force from them)
+  long not_converged = 0;  // stopping test not met (no force from them)
+  long saddle_points = 0;  // converged to a saddle or a maximum (no force from them)
   double max_penetration_over_h = 0.0;
   std::uint32_t deepest_node = 0;   // the slave node of that largest penetration
   double max_pair_stiffness = 0.0;  // largest k of a node pair used (all passes), N/m
@@ -93,9 +93,9 @@ struct ContactPhaseSeconds {
 // (m/s, the latest half-step velocities). Adds the contact forces to `force` (N),
 // writes the gap of each slave node to gap[node] where it is smaller than what is
 // there (callers start from +infinity and zero what stays so).
-void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings, ContactPassState& state,
-                      const NodalVectors& x_ref, const NodalVectors& u, const NodalVectors& v,
-                      const std::vector<double>& mass, NodalVectors& force, std::vector<double>& gap,
-                      ContactStatistics& statistics, ContactPhaseSeconds& seconds);
+void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                      ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u,
+                      const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,
+                      std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds);
 
 }  // namespace exdyn::contact

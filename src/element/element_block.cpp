@@ -141,7 +141,8 @@ ElementEnergies element_pair_loop(const ElementBlock& block, std::uint32_t begin
                                      block.connectivity + 8 * static_cast<std::size_t>(element[1])};
     if (element[1] >= block.count) nodes[1] = nodes[0];  // the zero-padded partner of an odd last element
     const BasicElementVectors<Pack2> u_local = gather_pair(u, nodes[0], nodes[1]);
-    BasicElementVectors<Pack2> f_local{BasicElementVectors<Pack2>::Uninitialized{}};  // the kernel writes every entry
+    BasicElementVectors<Pack2> f_local{
+        BasicElementVectors<Pack2>::Uninitialized{}};  // the kernel writes every entry
     std::array<Pack2, 6> element_stress;
     const std::array<Pack2, 2> energies =
         kernel(reference + 2 * stride * pair, u_local, f_local, element_stress);
@@ -181,7 +182,8 @@ void build_schedule(ElementBlock& block, std::size_t node_count) {
     if (taken == ~std::uint64_t{0}) throw std::logic_error("element colouring: more than 64 colours");
     int colour = 0;
     while (taken & (std::uint64_t{1} << colour)) ++colour;
-    for (const std::uint32_t* node = begin; node != end; ++node) colours_at_node[*node] |= std::uint64_t{1} << colour;
+    for (const std::uint32_t* node = begin; node != end; ++node)
+      colours_at_node[*node] |= std::uint64_t{1} << colour;
     if (block.colours.size() <= std::size_t(colour)) block.colours.resize(std::size_t(colour) + 1);
     block.colours[std::size_t(colour)].push_back(c);
   }
@@ -318,7 +320,8 @@ ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVector
 }
 
 InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t element_begin,
-                                      std::uint32_t element_end, const NodalVectors& x_ref, const NodalVectors& u) {
+                                      std::uint32_t element_end, const NodalVectors& x_ref,
+                                      const NodalVectors& u) {
   EXDYN_ASSERT(element_begin <= element_end && element_end <= block.count);
   // Neighbours of each corner along xi, eta, zeta, and the sign that orients the
   // edge towards +xi, +eta, +zeta (VTK order: 0-3 at zeta = -1, 4-7 at zeta = +1).
@@ -341,7 +344,8 @@ InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t e
       const double det =
           orientation[a] * (ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx));
       if (!(det > 0.0)) return {true, block.first_element + e, a, det, 0.0};
-      const double frobenius2 = ax * ax + ay * ay + az * az + bx * bx + by * by + bz * bz + cx * cx + cy * cy + cz * cz;
+      const double frobenius2 =
+          ax * ax + ay * ay + az * az + bx * bx + by * by + bz * bz + cx * cx + cy * cy + cz * cz;
       smallest_ratio = std::min(smallest_ratio, det / frobenius2);
     }
   }
@@ -350,7 +354,8 @@ InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t e
   return none;
 }
 
-InvertedElement find_inverted_element(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
+InvertedElement find_inverted_element(const ElementBlock& block, const NodalVectors& x_ref,
+                                      const NodalVectors& u) {
   return find_inverted_element(block, 0, block.count, x_ref, u);
 }
 

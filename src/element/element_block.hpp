@@ -23,9 +23,9 @@ inline constexpr std::uint32_t element_chunk = 512;
 struct ElementBlock {
   input::Formulation formulation = input::Formulation::hex8;
   material::ElasticConstants material;
-  double hourglass_coefficient = 0.0;  // hex8r only
-  std::uint32_t first_element = 0;     // global index of the block's first element
-  std::uint32_t count = 0;             // number of elements
+  double hourglass_coefficient = 0.0;           // hex8r only
+  std::uint32_t first_element = 0;              // global index of the block's first element
+  std::uint32_t count = 0;                      // number of elements
   const std::uint32_t* connectivity = nullptr;  // 8 node ids per element (VTK order), `count` elements
   // Reference-configuration data precomputed once per element (layout private
   // to the kernels: e.g. inverse Jacobians and weights at the Gauss points).
@@ -34,8 +34,8 @@ struct ElementBlock {
   // element_chunk consecutive ones, grouped in colours whose chunks share no node,
   // so that the chunks of a colour scatter their forces at once without a race and
   // every node adds its elements' forces in the same order on any number of threads.
-  std::vector<std::uint32_t> chunk_begin;            // chunk c is [chunk_begin[c], chunk_begin[c + 1])
-  std::vector<std::vector<std::uint32_t>> colours;   // the chunks of each colour, ascending
+  std::vector<std::uint32_t> chunk_begin;               // chunk c is [chunk_begin[c], chunk_begin[c + 1])
+  std::vector<std::vector<std::uint32_t>> colours;      // the chunks of each colour, ascending
   mutable std::vector<ElementEnergies> chunk_energies;  // scratch: the energies of each chunk
 };
 
@@ -90,8 +90,10 @@ struct InvertedElement {
 // while that stays below sigma_min(J) >= det J / ||J||_F^2 (as sigma_1 sigma_2 <=
 // ||J||_F^2); hence delta < min over corners of det J / (2 sqrt(3) ||J||_F^2).
 InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t element_begin,
-                                      std::uint32_t element_end, const NodalVectors& x_ref, const NodalVectors& u);
-InvertedElement find_inverted_element(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u);
+                                      std::uint32_t element_end, const NodalVectors& x_ref,
+                                      const NodalVectors& u);
+InvertedElement find_inverted_element(const ElementBlock& block, const NodalVectors& x_ref,
+                                      const NodalVectors& u);
 
 // True when every element of the block is a parallelepiped, so that the block
 // runs the constant-Jacobian kernels (hex8::parallelepiped_internal_forces,

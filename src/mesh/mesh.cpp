@@ -25,7 +25,8 @@ std::uint64_t splitmix64(std::uint64_t x) {
 // indices along the axes with more than one element only, so that a part one
 // element thick (plane strain) gets the same r on both of its layers.
 std::array<double, 3> perturbation_direction(const input::PartOptions& options, int part_index,
-                                             const std::array<int, 3>& ijk, const std::array<bool, 3>& moves) {
+                                             const std::array<int, 3>& ijk,
+                                             const std::array<bool, 3>& moves) {
   std::uint64_t node_key = splitmix64(options.perturbation_seed);
   node_key = splitmix64(node_key ^ static_cast<std::uint64_t>(part_index));
   for (int axis = 0; axis < 3; ++axis)
@@ -35,7 +36,8 @@ std::array<double, 3> perturbation_direction(const input::PartOptions& options, 
     double length_squared = 0.0;
     for (int c = 0; c < 3; ++c) {
       if (!moves[c]) continue;
-      const std::uint64_t key = splitmix64(splitmix64(node_key ^ attempt) ^ static_cast<std::uint64_t>(c + 1));
+      const std::uint64_t key =
+          splitmix64(splitmix64(node_key ^ attempt) ^ static_cast<std::uint64_t>(c + 1));
       r[c] = 2.0 * (static_cast<double>(key >> 11) * 0x1.0p-53) - 1.0;  // 53 random bits, in [-1, 1)
       length_squared += r[c] * r[c];
     }
@@ -130,11 +132,14 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
         // VTK hexahedron: the face k counter-clockwise, then the face k+1.
-        const std::array<std::uint32_t, 8> element{
-            node_id(part, i, j, k),         node_id(part, i + 1, j, k),
-            node_id(part, i + 1, j + 1, k), node_id(part, i, j + 1, k),
-            node_id(part, i, j, k + 1),     node_id(part, i + 1, j, k + 1),
-            node_id(part, i + 1, j + 1, k + 1), node_id(part, i, j + 1, k + 1)};
+        const std::array<std::uint32_t, 8> element{node_id(part, i, j, k),
+                                                   node_id(part, i + 1, j, k),
+                                                   node_id(part, i + 1, j + 1, k),
+                                                   node_id(part, i, j + 1, k),
+                                                   node_id(part, i, j, k + 1),
+                                                   node_id(part, i + 1, j, k + 1),
+                                                   node_id(part, i + 1, j + 1, k + 1),
+                                                   node_id(part, i, j + 1, k + 1)};
         mesh.connectivity.insert(mesh.connectivity.end(), element.begin(), element.end());
         mesh.element_part.push_back(part_index);
       }
@@ -151,7 +156,8 @@ Mesh build_mesh(const input::Deck& deck) {
     elements += std::uint64_t(n[0]) * std::uint64_t(n[1]) * std::uint64_t(n[2]);
   }
   // 32-bit node ids (connectivity) and element ids.
-  if (nodes > std::numeric_limits<std::uint32_t>::max() || elements > std::numeric_limits<std::int32_t>::max())
+  if (nodes > std::numeric_limits<std::uint32_t>::max() ||
+      elements > std::numeric_limits<std::int32_t>::max())
     throw InputError(SourceLocation{deck.source_file, 0, 0}, "parts",
                      "the mesh has " + std::to_string(nodes) + " nodes and " + std::to_string(elements) +
                          " elements; at most 4294967295 nodes and 2147483647 elements are supported");
@@ -175,12 +181,24 @@ Face face_of(const Mesh& mesh, int part_index, input::BoxSide side) {
   // ordered so that e_p x e_q is the outward normal.
   int axis = 0, p = 0, q = 0, fixed = 0;
   switch (side) {
-    case input::BoxSide::xmin: axis = 0, p = 2, q = 1, fixed = 0; break;
-    case input::BoxSide::xmax: axis = 0, p = 1, q = 2, fixed = n[0]; break;
-    case input::BoxSide::ymin: axis = 1, p = 0, q = 2, fixed = 0; break;
-    case input::BoxSide::ymax: axis = 1, p = 2, q = 0, fixed = n[1]; break;
-    case input::BoxSide::zmin: axis = 2, p = 1, q = 0, fixed = 0; break;
-    case input::BoxSide::zmax: axis = 2, p = 0, q = 1, fixed = n[2]; break;
+    case input::BoxSide::xmin:
+      axis = 0, p = 2, q = 1, fixed = 0;
+      break;
+    case input::BoxSide::xmax:
+      axis = 0, p = 1, q = 2, fixed = n[0];
+      break;
+    case input::BoxSide::ymin:
+      axis = 1, p = 0, q = 2, fixed = 0;
+      break;
+    case input::BoxSide::ymax:
+      axis = 1, p = 2, q = 0, fixed = n[1];
+      break;
+    case input::BoxSide::zmin:
+      axis = 2, p = 1, q = 0, fixed = 0;
+      break;
+    case input::BoxSide::zmax:
+      axis = 2, p = 0, q = 1, fixed = n[2];
+      break;
   }
   auto node_at = [&](int a, int b) {
     std::array<int, 3> ijk{};

@@ -34,7 +34,7 @@ struct ContactSummary {
 
 // The run-time guards (docs/stability.md); an addition to the spec's keys.
 struct GuardSummary {
-  long inversion_passes = 0;  // steps at which every element was checked for inversion
+  long inversion_passes = 0;           // steps at which every element was checked for inversion
   double largest_energy_growth = 0.0;  // largest growth of the guard's energy / the largest energy seen
 };
 

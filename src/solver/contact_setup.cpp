@@ -20,7 +20,8 @@ double normal_element_length(const input::PartOptions& part, input::BoxSide side
 }
 
 double dilatational_modulus(const input::Deck& deck, int part) {
-  const auto& m = deck.materials[static_cast<std::size_t>(deck.parts[static_cast<std::size_t>(part)].material_index)];
+  const auto& m =
+      deck.materials[static_cast<std::size_t>(deck.parts[static_cast<std::size_t>(part)].material_index)];
   return material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density).dilatational_modulus();
 }
 
@@ -33,19 +34,21 @@ double quad_area(const NodalVectors& x, const contact::Quad& q) {
 
 struct PassGeometry {
   contact::ContactSurfaces surfaces;
-  std::vector<double> area;  // tributary area of each slave node, m^2
-  double modulus = std::numeric_limits<double>::infinity();  // smallest M of the parts involved, Pa
+  std::vector<double> area;                                          // tributary area of each slave node, m^2
+  double modulus = std::numeric_limits<double>::infinity();          // smallest M of the parts involved, Pa
   double smallest_length = std::numeric_limits<double>::infinity();  // m
 };
 
-PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const std::vector<input::FaceRef>& slave,
+PassGeometry pass_geometry(const input::Deck& deck, const Model& model,
+                           const std::vector<input::FaceRef>& slave,
                            const std::vector<input::FaceRef>& master) {
   PassGeometry g;
   auto& s = g.surfaces;
   std::vector<mesh::Face> slave_faces;
   for (const auto& f : slave) {
     slave_faces.push_back(mesh::face_of(model.mesh, f.part, f.side));
-    s.slave_nodes.insert(s.slave_nodes.end(), slave_faces.back().nodes.begin(), slave_faces.back().nodes.end());
+    s.slave_nodes.insert(s.slave_nodes.end(), slave_faces.back().nodes.begin(),
+                         slave_faces.back().nodes.end());
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
   }
   std::sort(s.slave_nodes.begin(), s.slave_nodes.end());
@@ -57,7 +60,8 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const st
   g.area.assign(s.slave_nodes.size(), 0.0);
   s.normal_length.assign(s.slave_nodes.size(), std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < slave.size(); ++i) {
-    const double length = normal_element_length(deck.parts[static_cast<std::size_t>(slave[i].part)], slave[i].side);
+    const double length =
+        normal_element_length(deck.parts[static_cast<std::size_t>(slave[i].part)], slave[i].side);
     g.smallest_length = std::min(g.smallest_length, length);
     for (const auto& quad : slave_faces[i].quads) {
       const double quarter = 0.25 * quad_area(model.mesh.x_ref, quad);
@@ -72,8 +76,8 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const st
     const mesh::Face face = mesh::face_of(model.mesh, f.part, f.side);
     s.segments.insert(s.segments.end(), face.quads.begin(), face.quads.end());
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
-    g.smallest_length =
-        std::min(g.smallest_length, normal_element_length(deck.parts[static_cast<std::size_t>(f.part)], f.side));
+    g.smallest_length = std::min(g.smallest_length,
+                                 normal_element_length(deck.parts[static_cast<std::size_t>(f.part)], f.side));
   }
   s.moving_nodes = s.slave_nodes;
   for (const auto& quad : s.segments) s.moving_nodes.insert(s.moving_nodes.end(), quad.begin(), quad.end());
@@ -87,20 +91,22 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const st
 // (inverse mass 1/m_s, the most favourable case), k exceeds the bound of
 // penalty.hpp for this step, Courant number and damping.
 void refuse_unstable_stiffness(const input::Deck& deck, const Model& model, const ContactPair& pair,
-                               const input::ContactOptions& options, std::size_t index, double dt, double courant) {
+                               const input::ContactOptions& options, std::size_t index, double dt,
+                               double courant) {
   double heaviest = 0.0;  // kg
   for (const auto& pass : pair.passes)
     for (const std::uint32_t node : pass.slave_nodes) heaviest = std::max(heaviest, model.mass[node]);
   const double bound = contact::stable_stiffness_bound(dt, courant, options.penalty.damping, 1.0 / heaviest);
   if (*options.penalty.stiffness <= bound) return;
   char text[400];
-  std::snprintf(text, sizeof text,
-                "%.4g N/m is above the stability bound of this mesh and time step: no contact of pair '%s' can be "
-                "stable with k > %.4g N/m (dt = %.4g s, Courant %.3g, damping %.3g; docs/contact.md). Lower it, "
-                "use penalty: {scale: s} (the automatic rule), or lower time.courant",
-                *options.penalty.stiffness, pair.name.c_str(), bound, dt, courant, options.penalty.damping);
-  throw InputError(SourceLocation{deck.source_file, 0, 0}, "contact[" + std::to_string(index) + "].penalty.stiffness",
-                   text);
+  std::snprintf(
+      text, sizeof text,
+      "%.4g N/m is above the stability bound of this mesh and time step: no contact of pair '%s' can be "
+      "stable with k > %.4g N/m (dt = %.4g s, Courant %.3g, damping %.3g; docs/contact.md). Lower it, "
+      "use penalty: {scale: s} (the automatic rule), or lower time.courant",
+      *options.penalty.stiffness, pair.name.c_str(), bound, dt, courant, options.penalty.damping);
+  throw InputError(SourceLocation{deck.source_file, 0, 0},
+                   "contact[" + std::to_string(index) + "].penalty.stiffness", text);
 }
 
 }  // namespace

@@ -35,7 +35,8 @@ Model build_model(const input::Deck& deck) {
     for (const auto& face_ref : bc.faces) {
       const mesh::Face face = mesh::face_of(model.mesh, face_ref.part, face_ref.side);
       for (int c = 0; c < 3; ++c)
-        if (bc.fix[c]) model.fixed_nodes[c].insert(model.fixed_nodes[c].end(), face.nodes.begin(), face.nodes.end());
+        if (bc.fix[c])
+          model.fixed_nodes[c].insert(model.fixed_nodes[c].end(), face.nodes.begin(), face.nodes.end());
     }
   for (auto& nodes : model.fixed_nodes) {
     std::sort(nodes.begin(), nodes.end());
@@ -67,7 +68,8 @@ void apply_fixed_components(const Model& model, NodalVectors& field) {
 
 double critical_time_step(const Model& model) {
   double dt = std::numeric_limits<double>::infinity();
-  for (const auto& block : model.blocks) dt = std::min(dt, element::critical_time_step(block, model.mesh.x_ref));
+  for (const auto& block : model.blocks)
+    dt = std::min(dt, element::critical_time_step(block, model.mesh.x_ref));
   return dt;
 }
 
@@ -78,8 +80,8 @@ TimeStepping time_stepping(const input::TimeOptions& time, double critical_dt) {
   // that integer (end_time = 448 dt must give 448 steps, not 449).
   const double ratio = time.end_time / result.dt;
   const double nearest = std::round(ratio);
-  result.steps = static_cast<long>(std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio) ? nearest
-                                                                                               : std::ceil(ratio));
+  result.steps = static_cast<long>(
+      std::abs(ratio - nearest) <= 1e-9 * std::max(1.0, ratio) ? nearest : std::ceil(ratio));
   result.steps = std::max(result.steps, 1L);
   return result;
 }

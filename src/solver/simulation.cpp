@@ -34,16 +34,16 @@ namespace {
 struct State {
   long step = 0;
   double time = 0.0;
-  NodalVectors displacement;    // u^n, m
-  NodalVectors velocity;        // v^{n-1/2}, then v^{n+1/2} after update_velocities, m/s
-  NodalVectors acceleration;    // a^n, m/s^2
-  NodalVectors internal_force;  // f_int(u^n), N
-  NodalVectors contact_force;   // f_contact(x^n), N
-  NodalVectors previous_contact_force;  // f_contact(x^{n-1}), N (for the contact work)
-  std::vector<double> gap;      // signed normal gap of each slave node, m (0: no candidate)
-  std::vector<double> previous_gap;  // the gap of step n-1 (to step back after a non-finite step)
-  std::vector<double> stress;   // 6 per element: xx yy zz xy yz xz, Pa
-  double contact_energy = 0.0;  // work done against the contact forces, J
+  NodalVectors displacement;                   // u^n, m
+  NodalVectors velocity;                       // v^{n-1/2}, then v^{n+1/2} after update_velocities, m/s
+  NodalVectors acceleration;                   // a^n, m/s^2
+  NodalVectors internal_force;                 // f_int(u^n), N
+  NodalVectors contact_force;                  // f_contact(x^n), N
+  NodalVectors previous_contact_force;         // f_contact(x^{n-1}), N (for the contact work)
+  std::vector<double> gap;                     // signed normal gap of each slave node, m (0: no candidate)
+  std::vector<double> previous_gap;            // the gap of step n-1 (to step back after a non-finite step)
+  std::vector<double> stress;                  // 6 per element: xx yy zz xy yz xz, Pa
+  double contact_energy = 0.0;                 // work done against the contact forces, J
   std::array<std::vector<double>, 3> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
 };
 
@@ -59,8 +59,9 @@ struct Energies {
 // f_int(u^n) and the stresses of every element; returns the strain and hourglass energies.
 element::ElementEnergies compute_internal_forces(const Model& model, State& state) {
   for_each_chunk(state.internal_force.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (int c = 0; c < 3; ++c) std::fill(state.internal_force.component(c).begin() + begin,
-                                          state.internal_force.component(c).begin() + end, 0.0);
+    for (int c = 0; c < 3; ++c)
+      std::fill(state.internal_force.component(c).begin() + begin,
+                state.internal_force.component(c).begin() + end, 0.0);
   });
   element::ElementEnergies total;
   for (const auto& block : model.blocks) {
@@ -78,15 +79,16 @@ element::ElementEnergies compute_internal_forces(const Model& model, State& stat
 void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt,
                             contact::ContactStatistics& statistics, contact::ContactPhaseSeconds& seconds) {
   std::swap(state.contact_force, state.previous_contact_force);
-  for (std::uint32_t node : contact.nodes) state.previous_gap[node] = state.gap[node];
   for (std::uint32_t node : contact.nodes) {
     state.contact_force.x[node] = state.contact_force.y[node] = state.contact_force.z[node] = 0.0;
+    state.previous_gap[node] = state.gap[node];
     state.gap[node] = std::numeric_limits<double>::infinity();
   }
   for (auto& pair : contact.pairs)
     for (std::size_t p = 0; p < pair.passes.size(); ++p)
-      contact::run_contact_pass(pair.passes[p], pair.settings, pair.states[p], model.mesh.x_ref, state.displacement,
-                                state.velocity, model.mass, state.contact_force, state.gap, statistics, seconds);
+      contact::run_contact_pass(pair.passes[p], pair.settings, pair.states[p], model.mesh.x_ref,
+                                state.displacement, state.velocity, model.mass, state.contact_force,
+                                state.gap, statistics, seconds);
   double power = 0.0;  // (f_c^{n-1} + f_c^n).v^{n-1/2}, W x 2
   for (std::uint32_t node : contact.nodes) {
     if (state.gap[node] == std::numeric_limits<double>::infinity()) state.gap[node] = 0.0;  // no candidate
@@ -121,7 +123,7 @@ bool compute_accelerations(const Model& model, State& state) {
 }
 
 struct VelocityUpdate {
-  double kinetic = 0.0;          // K^n = 1/2 sum m v^{n-1/2}.v^{n+1/2}, J
+  double kinetic = 0.0;  // K^n = 1/2 sum m v^{n-1/2}.v^{n+1/2}, J
   // 1/8 sum m |a^n|^2, J/s^2: dt^2 times it turns K^n into 1/2 sum m |v^n|^2 with
   // v^n = (v^{n-1/2} + v^{n+1/2}) / 2, which is never negative (K^n can be: in an
   // unstable run K^n + U^n stays constant while both grow without bound).
@@ -181,8 +183,9 @@ std::string describe_fastest_node(const NodalVectors& velocity) {
 // Names the first node with a non-finite acceleration, velocity or displacement,
 // else the first element with a non-finite stress, else the fastest node.
 std::string describe_non_finite(const State& state) {
-  const std::pair<const char*, const NodalVectors*> fields[] = {
-      {"acceleration", &state.acceleration}, {"velocity", &state.velocity}, {"displacement", &state.displacement}};
+  const std::pair<const char*, const NodalVectors*> fields[] = {{"acceleration", &state.acceleration},
+                                                                {"velocity", &state.velocity},
+                                                                {"displacement", &state.displacement}};
   for (const auto& [label, field] : fields)
     for (int c = 0; c < 3; ++c) {
       const auto& values = field->component(c);
@@ -193,8 +196,8 @@ std::string describe_non_finite(const State& state) {
     }
   for (std::size_t k = 0; k < state.stress.size(); ++k)
     if (!std::isfinite(state.stress[k]))
-      return "non-finite stress in element " + std::to_string(k / 6) + " (component " + std::to_string(k % 6) +
-             " of xx yy zz xy yz xz)";
+      return "non-finite stress in element " + std::to_string(k / 6) + " (component " +
+             std::to_string(k % 6) + " of xx yy zz xy yz xz)";
   return "non-finite energy (" + describe_fastest_node(state.velocity) + ")";
 }
 
@@ -249,13 +252,13 @@ class StepWriter {
   std::vector<double> von_mises_;
 };
 
-void summarise_contact(const contact::ContactStatistics& statistics, const contact::ContactPhaseSeconds& seconds,
-                       output::RunSummary& summary) {
+void summarise_contact(const contact::ContactStatistics& statistics,
+                       const contact::ContactPhaseSeconds& seconds, output::RunSummary& summary) {
   auto& c = summary.contact;
   c.projections = statistics.projections;
-  c.mean_iterations = statistics.projections > 0
-                          ? static_cast<double>(statistics.iterations) / static_cast<double>(statistics.projections)
-                          : 0.0;
+  c.mean_iterations = statistics.projections > 0 ? static_cast<double>(statistics.iterations) /
+                                                       static_cast<double>(statistics.projections)
+                                                 : 0.0;
   c.max_iterations = statistics.max_iterations;
   c.not_converged = statistics.not_converged;
   c.saddle_points = statistics.saddle_points;
@@ -285,10 +288,12 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   summary.elements = static_cast<long>(model.mesh.element_count());
   summary.dt = dt;
 
-  const std::string directory = controls.output_directory.empty() ? deck.output.directory : controls.output_directory;
-  output::ResultWriter writer(directory, deck.name,
-                              output::MeshView{&model.mesh.x_ref, &model.mesh.connectivity, &model.mesh.element_part},
-                              deck.output.fields);
+  const std::string directory =
+      controls.output_directory.empty() ? deck.output.directory : controls.output_directory;
+  output::ResultWriter writer(
+      directory, deck.name,
+      output::MeshView{&model.mesh.x_ref, &model.mesh.connectivity, &model.mesh.element_part},
+      deck.output.fields);
   const std::string summary_path = (std::filesystem::path(directory) / (deck.name + ".json")).string();
 
   State state;
@@ -320,11 +325,14 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   // The energy guard watches E_mean^n = 1/2 sum m |v^n|^2 + U^n + H^n + contact - work:
   // bounded in a stable run, exponential in an unstable one (docs/stability.md).
   double initial_mean_energy = 0.0, largest_mean_energy = 0.0, mean_energy = 0.0;
-  double moved_since_check = std::numeric_limits<double>::infinity(), safety_radius = 0.0, largest_speed = 0.0;
+  double moved_since_check = std::numeric_limits<double>::infinity(), safety_radius = 0.0,
+         largest_speed = 0.0;
   Energies energy;
 
   // "..., at step n, time t s"
-  const auto when = [&] { return " at step " + std::to_string(state.step) + ", time " + format_time(state.time); };
+  const auto when = [&] {
+    return " at step " + std::to_string(state.step) + ", time " + format_time(state.time);
+  };
   // Writes the current step (if it is not written yet) as the final output step and
   // stops the run: the catch below writes the summary with status "failed".
   const auto stop_run = [&](const std::string& message) {
@@ -369,7 +377,8 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       {
         ScopedTimer timer(phase.time_integration);
         if (!compute_accelerations(model, state)) step_back_and_stop(describe_non_finite(state) + when());
-        if (state.step == 0) add_scaled(state.velocity, -0.5 * dt, state.acceleration);  // v^{-1/2} = v^0 - dt/2 a^0
+        if (state.step == 0)
+          add_scaled(state.velocity, -0.5 * dt, state.acceleration);  // v^{-1/2} = v^0 - dt/2 a^0
         const VelocityUpdate update = update_velocities(model, state, dt);
         energy.kinetic = update.kinetic;
         mean_energy = energy.total() + dt * dt * update.mass_acceleration_squared;
@@ -378,12 +387,14 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       const double total = energy.total();
       if (!std::isfinite(total)) {
         const std::string message = describe_non_finite(state) + when();
-        add_scaled(state.velocity, -dt, state.acceleration);  // v^{n-1/2} = v^{n+1/2} - dt a^n (a^n is finite)
+        add_scaled(state.velocity, -dt,
+                   state.acceleration);  // v^{n-1/2} = v^{n+1/2} - dt a^n (a^n is finite)
         step_back_and_stop(message);
       }
       if (state.step == 0) initial_total = total, initial_mean_energy = mean_energy;
       largest_mean_energy = std::max(largest_mean_energy, std::abs(mean_energy));
-      largest_energy = std::max({largest_energy, std::abs(total), energy.kinetic, energy.internal + energy.hourglass});
+      largest_energy =
+          std::max({largest_energy, std::abs(total), energy.kinetic, energy.internal + energy.hourglass});
       if (largest_energy > 0.0)
         max_energy_error = std::max(max_energy_error, std::abs(total - initial_total) / largest_energy);
       summary.energy = {initial_total, total, max_energy_error};
@@ -397,13 +408,15 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
             std::max(summary.guard_checks.largest_energy_growth, scale > 0.0 ? growth / scale : 0.0);
         if (growth > deck.guards.energy_growth * scale) {
           char detail[200];
-          std::snprintf(detail, sizeof detail,
-                        "the energy grew by %.3g %% of the largest energy seen (guards.energy_growth = %.3g %%): "
-                        "an instability; ",
-                        100.0 * growth / scale, 100.0 * deck.guards.energy_growth);
+          std::snprintf(
+              detail, sizeof detail,
+              "the energy grew by %.3g %% of the largest energy seen (guards.energy_growth = %.3g %%): "
+              "an instability; ",
+              100.0 * growth / scale, 100.0 * deck.guards.energy_growth);
           std::string advice = "; time.courant is " + format_number(dt / critical_dt) + " of the stable step";
           if (!contact.pairs.empty())
-            advice += ", the stiffest contact node pair " + format_number(contact_statistics.max_pair_stiffness) + " N/m";
+            advice += ", the stiffest contact node pair " +
+                      format_number(contact_statistics.max_pair_stiffness) + " N/m";
           stop_run(detail + describe_fastest_node(state.velocity) + when() + advice);
         }
         if (contact_statistics.max_penetration_over_h > deck.guards.max_penetration) {
@@ -451,8 +464,8 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       }
       if (last) break;
       if (controls.stop_signal != nullptr && *controls.stop_signal != 0)
-        stop_run(std::string("interrupted by ") + (*controls.stop_signal == SIGINT ? "SIGINT" : "SIGTERM") + when() +
-                 "; the results up to this step are written");
+        stop_run(std::string("interrupted by ") + (*controls.stop_signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                 when() + "; the results up to this step are written");
       {
         ScopedTimer timer(phase.time_integration);
         add_scaled(state.displacement, dt, state.velocity);  // u^{n+1} = u^n + dt v^{n+1/2}
@@ -472,8 +485,9 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   summary.steps = stepping.steps;
   summary.wall_seconds = total_watch.seconds();
   summary.element_cycles_per_second =
-      loop_seconds > 0.0 ? static_cast<double>(summary.elements) * static_cast<double>(stepping.steps) / loop_seconds
-                         : 0.0;
+      loop_seconds > 0.0
+          ? static_cast<double>(summary.elements) * static_cast<double>(stepping.steps) / loop_seconds
+          : 0.0;
   output::write_summary(summary_path, summary);
   return summary;
 }

@@ -324,8 +324,8 @@ TEST(ElementBlock, CriticalTimeStepUsesTheSmallestElement) {
 TEST(ElementBlock, NoElementIsInvertedUnderRigidMotionAndModerateStrain) {
   const Box box = make_box(3, 2, 2, 1.0);
   for (const auto formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
-    const ElementBlock block = make_element_block(formulation, steel, 0.05, 0, box.count,
-                                                  box.connectivity.data(), box.x_ref);
+    const ElementBlock block =
+        make_element_block(formulation, steel, 0.05, 0, box.count, box.connectivity.data(), box.x_ref);
     NodalVectors u(box.x_ref.size());
     EXPECT_FALSE(find_inverted_element(block, box.x_ref, u).found);
     // A rotation by 170 degrees about z and a 40 % compression along x: all corners stay positive.
@@ -382,7 +382,8 @@ TEST(ElementBlock, NoMotionWithinTheSafetyRadiusInvertsAnElement) {
   int inverted_beyond = 0;
   for (int trial = 0; trial < 2000; ++trial) {
     NodalVectors u(box.x_ref.size());
-    for (std::size_t n = 0; n < u.size(); ++n) u.x[n] = 0.3 * unit(rng), u.y[n] = 0.3 * unit(rng), u.z[n] = 0.3 * unit(rng);
+    for (std::size_t n = 0; n < u.size(); ++n)
+      u.x[n] = 0.3 * unit(rng), u.y[n] = 0.3 * unit(rng), u.z[n] = 0.3 * unit(rng);
     const InvertedElement start = find_inverted_element(block, box.x_ref, u);
     if (start.found) continue;
     ASSERT_GT(start.safety_radius, 0.0);

@@ -66,7 +66,8 @@ TEST(Mesh, ElementsFollowVtkHexahedronOrder) {
   for (std::size_t e = 0; e < mesh.element_count(); ++e) {
     const std::uint32_t* n = &mesh.connectivity[8 * e];
     const auto x0 = point(mesh, n[0]);
-    const auto e1 = minus(point(mesh, n[1]), x0), e3 = minus(point(mesh, n[3]), x0), e4 = minus(point(mesh, n[4]), x0);
+    const auto e1 = minus(point(mesh, n[1]), x0), e3 = minus(point(mesh, n[3]), x0),
+               e4 = minus(point(mesh, n[4]), x0);
     const auto c = cross(e1, e3);
     EXPECT_GT(c[0] * e4[0] + c[1] * e4[1] + c[2] * e4[2], 0.0) << "element " << e;
     // node 2 is opposite node 0 on the bottom face, node 6 opposite node 0 in the brick
@@ -80,11 +81,11 @@ TEST(Mesh, ElementsFollowVtkHexahedronOrder) {
 TEST(Mesh, EveryFaceQuadNormalPointsOutOfThePart) {
   const auto mesh = exdyn::mesh::build_mesh(two_part_deck());
   const std::array<std::pair<BoxSide, std::array<double, 3>>, 6> sides{{{BoxSide::xmin, {-1, 0, 0}},
-                                                                         {BoxSide::xmax, {1, 0, 0}},
-                                                                         {BoxSide::ymin, {0, -1, 0}},
-                                                                         {BoxSide::ymax, {0, 1, 0}},
-                                                                         {BoxSide::zmin, {0, 0, -1}},
-                                                                         {BoxSide::zmax, {0, 0, 1}}}};
+                                                                        {BoxSide::xmax, {1, 0, 0}},
+                                                                        {BoxSide::ymin, {0, -1, 0}},
+                                                                        {BoxSide::ymax, {0, 1, 0}},
+                                                                        {BoxSide::zmin, {0, 0, -1}},
+                                                                        {BoxSide::zmax, {0, 0, 1}}}};
   for (int part = 0; part < 2; ++part)
     for (const auto& [side, outward] : sides) {
       const auto face = exdyn::mesh::face_of(mesh, part, side);
@@ -94,8 +95,10 @@ TEST(Mesh, EveryFaceQuadNormalPointsOutOfThePart) {
       EXPECT_EQ(face.nodes.size(), std::size_t((n[a] + 1) * (n[b] + 1)));
       EXPECT_EQ(face.quads.size(), std::size_t(n[a] * n[b]));
       for (const auto& q : face.quads) {
-        const auto normal = cross(minus(point(mesh, q[1]), point(mesh, q[0])), minus(point(mesh, q[3]), point(mesh, q[0])));
-        const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+        const auto normal =
+            cross(minus(point(mesh, q[1]), point(mesh, q[0])), minus(point(mesh, q[3]), point(mesh, q[0])));
+        const double length =
+            std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(normal[c] / length, outward[c], 1e-14);
       }
       const double plane = point(mesh, face.nodes[0])[axis];

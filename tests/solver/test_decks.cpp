@@ -44,10 +44,10 @@ struct DeckRun {
 
 // The decks this file checks; a new deck in input/ must be added here with a check.
 // plate_impact_reference.yaml: test_plate_reference.cpp; the contact decks: test_contact.cpp.
-const std::set<std::string> checked_decks{"plate_impact_reference.yaml", "wave_bar.yaml",     "shear_wave.yaml",
-                                          "hourglass_block.yaml",        "plate_impact.yaml", "bar_impact.yaml",
-                                          "contact_patch.yaml",          "block_drop.yaml",
-                                          "unstable_plate.yaml",         "inverting_bar.yaml"};
+const std::set<std::string> checked_decks{
+    "plate_impact_reference.yaml", "wave_bar.yaml",     "shear_wave.yaml",    "hourglass_block.yaml",
+    "plate_impact.yaml",           "bar_impact.yaml",   "contact_patch.yaml", "block_drop.yaml",
+    "unstable_plate.yaml",         "inverting_bar.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;
@@ -91,17 +91,19 @@ TEST(WaveBar, UniaxialStrainWaveEqualsTheChainAndTheExactPlateau) {
   // Behind the front the chain rings about the exact plateau -rho c1 v0
   // (-469.57 MPa): the mean over the half of the loaded length next to the
   // wall is within 0.19 % of it (measured), the wall element within 0.21 %.
-  const double front_elements = run.material.dilatational_wave_speed() * static_cast<double>(run.summary.steps) *
-                                run.summary.dt / 2.0e-4;
+  const double front_elements = run.material.dilatational_wave_speed() *
+                                static_cast<double>(run.summary.steps) * run.summary.dt / 2.0e-4;
   const int behind = static_cast<int>(front_elements / 2);
   double mean = 0.0;
   for (int e = n - behind; e < n; ++e) mean += stress[6 * e] / behind;
-  std::printf("wave_bar: mean of %d elements behind the front %.4f %%, wall element %.4f %% from -rho c1 v0\n", behind,
-              100 * (mean / -plateau - 1), 100 * (stress[6 * (n - 1)] / -plateau - 1));
+  std::printf(
+      "wave_bar: mean of %d elements behind the front %.4f %%, wall element %.4f %% from -rho c1 v0\n",
+      behind, 100 * (mean / -plateau - 1), 100 * (stress[6 * (n - 1)] / -plateau - 1));
   EXPECT_NEAR(mean, -plateau, 0.003 * plateau);
   EXPECT_NEAR(stress[6 * (n - 1)], -plateau, 0.003 * plateau);
   // The front (half plateau) is within one element of c1 t from the wall.
-  const double front = run.material.dilatational_wave_speed() * static_cast<double>(run.summary.steps) * run.summary.dt;
+  const double front =
+      run.material.dilatational_wave_speed() * static_cast<double>(run.summary.steps) * run.summary.dt;
   int crossing = n - 1;
   while (crossing > 0 && stress[6 * (crossing - 1)] < -0.5 * plateau) --crossing;
   const double front_fe = (n - crossing) * 2.0e-4;
@@ -133,7 +135,8 @@ TEST(ShearWave, OnlyTheXyColumnCarriesStressAndItEqualsTheShearChain) {
   chain_options.dt = run.summary.dt;
   chain_options.steps = run.summary.steps;
   const auto chain = exdyn::testing::chain_stress(chain_options);
-  for (int e = 0; e < n; ++e) EXPECT_NEAR(stress[6 * e + 3], -chain[n - 1 - e], 1e-9 * plateau) << "element " << e;
+  for (int e = 0; e < n; ++e)
+    EXPECT_NEAR(stress[6 * e + 3], -chain[n - 1 - e], 1e-9 * plateau) << "element " << e;
   // Behind the front sigma_xy = rho c2 v0 = 25.10 MPa: the chain's mean over the
   // half of the loaded length next to the clamp is within 0.10 % (measured), the
   // clamped element within 0.30 %.
@@ -141,8 +144,9 @@ TEST(ShearWave, OnlyTheXyColumnCarriesStressAndItEqualsTheShearChain) {
   const int behind = static_cast<int>(front_elements / 2);
   double mean = 0.0;
   for (int e = 0; e < behind; ++e) mean += stress[6 * e + 3] / behind;
-  std::printf("shear_wave: mean of %d elements behind the front %.4f %%, clamped element %.4f %% from rho c2 v0\n",
-              behind, 100 * (mean / plateau - 1), 100 * (stress[3] / plateau - 1));
+  std::printf(
+      "shear_wave: mean of %d elements behind the front %.4f %%, clamped element %.4f %% from rho c2 v0\n",
+      behind, 100 * (mean / plateau - 1), 100 * (stress[3] / plateau - 1));
   EXPECT_NEAR(mean, plateau, 0.003 * plateau);
   EXPECT_NEAR(stress[3], plateau, 0.004 * plateau);
 }
@@ -155,9 +159,7 @@ TEST(ShearWave, EachShearPlaneLandsInItsOwnColumn) {
     int column;
   };
   const std::vector<Case> cases{
-      {{{"parts[0].initial_velocity", "[0, 0, 1.0]"},
-        {"boundary_conditions[1].fix", "[x, y]"}},
-       5},
+      {{{"parts[0].initial_velocity", "[0, 0, 1.0]"}, {"boundary_conditions[1].fix", "[x, y]"}}, 5},
       {{{"parts[0].box", "{min: [0, 0, 0], max: [2.0e-4, 8.0e-3, 2.0e-4]}"},
         {"parts[0].elements", "[1, 40, 1]"},
         {"parts[0].initial_velocity", "[0, 0, 1.0]"},
@@ -171,8 +173,8 @@ TEST(ShearWave, EachShearPlaneLandsInItsOwnColumn) {
     double in_column = 0.0, elsewhere = 0.0;
     for (std::size_t e = 0; e < stress.size() / 6; ++e)
       for (int k = 0; k < 6; ++k)
-        (k == c.column ? in_column : elsewhere) = std::max(k == c.column ? in_column : elsewhere,
-                                                           std::abs(stress[6 * e + std::size_t(k)]));
+        (k == c.column ? in_column : elsewhere) =
+            std::max(k == c.column ? in_column : elsewhere, std::abs(stress[6 * e + std::size_t(k)]));
     EXPECT_GT(in_column, 1e6) << "column " << c.column;
     EXPECT_LE(elsewhere, 1e-12 * in_column) << "column " << c.column;
   }
@@ -189,7 +191,7 @@ TEST(HourglassBlock, OnePointBrickConservesEnergyAndKeepsHourglassEnergySmall) {
   const double ratio = hourglass.back() / internal.back();
   std::printf("hourglass / internal energy at the end: %.4f\n", ratio);
   EXPECT_GT(hourglass.back(), 0.0);  // the 3D field excites the hourglass modes
-  EXPECT_LT(ratio, 0.01);  // measured 0.0065
+  EXPECT_LT(ratio, 0.01);            // measured 0.0065
 }
 
 // Runs a deck that must fail; returns the failure (its message, step and time).
@@ -210,8 +212,8 @@ exdyn::RunFailure expect_failure(const std::string& file, const exdyn::testing::
 TEST(Decks, UnstablePlateIsStoppedByTheEnergyGuardAtStepTwo) {
   for (const std::string form : {"hex8", "hex8r"}) {
     exdyn::testing::TempDir directory{"exdyn_deck"};
-    const exdyn::RunFailure failure =
-        expect_failure("unstable_plate.yaml", directory, {exdyn::input::parse_override("parts[0].formulation=" + form)});
+    const exdyn::RunFailure failure = expect_failure(
+        "unstable_plate.yaml", directory, {exdyn::input::parse_override("parts[0].formulation=" + form)});
     EXPECT_EQ(failure.step(), 2) << failure.what();
     EXPECT_NE(std::string(failure.what()).find("the energy grew by"), std::string::npos) << failure.what();
     EXPECT_NE(std::string(failure.what()).find("at step 2, time"), std::string::npos) << failure.what();
@@ -221,9 +223,10 @@ TEST(Decks, UnstablePlateIsStoppedByTheEnergyGuardAtStepTwo) {
       EXPECT_TRUE(std::all_of(stress.begin(), stress.end(), [](double s) { return std::isfinite(s); }));
     }
     // Without the energy guard the inversion guard stops it at step 7, before any value overflows.
-    const exdyn::RunFailure later = expect_failure("unstable_plate.yaml", directory,
-                                                   {exdyn::input::parse_override("parts[0].formulation=" + form),
-                                                    exdyn::input::parse_override("guards.energy_growth=1e300")});
+    const exdyn::RunFailure later =
+        expect_failure("unstable_plate.yaml", directory,
+                       {exdyn::input::parse_override("parts[0].formulation=" + form),
+                        exdyn::input::parse_override("guards.energy_growth=1e300")});
     EXPECT_NE(std::string(later.what()).find("is inverted"), std::string::npos) << later.what();
     EXPECT_EQ(later.step(), 7) << later.what();
   }

@@ -1,9 +1,8 @@
 // Results do not depend on the number of threads (docs/performance.md, "Threads"):
 // the plate impact run on 1, 2 and 3 threads writes the same bits in every dataset
 // of NAME.h5, and the same energies and contact counts in NAME.json.
-#include <hdf5.h>
-
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
 #include <cstring>
 #include <string>
@@ -33,7 +32,8 @@ std::vector<std::string> dataset_paths(const std::string& file) {
       [](hid_t group, const char* name, const H5L_info_t*, void* data) -> herr_t {
         const hid_t object = H5Oopen(group, name, H5P_DEFAULT);
         if (object >= 0) {
-          if (H5Iget_type(object) == H5I_DATASET) static_cast<Visit*>(data)->paths->push_back(std::string("/") + name);
+          if (H5Iget_type(object) == H5I_DATASET)
+            static_cast<Visit*>(data)->paths->push_back(std::string("/") + name);
           H5Oclose(object);
         }
         return 0;
@@ -53,7 +53,8 @@ void run(ThreadedRun& result, const std::vector<std::string>& overrides, int thr
          const std::string& deck_file = "plate_impact.yaml") {
   std::vector<exdyn::input::Override> parsed;
   for (const auto& o : overrides) parsed.push_back(exdyn::input::parse_override(o));
-  const exdyn::input::Deck deck = exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/" + deck_file, parsed);
+  const exdyn::input::Deck deck =
+      exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/" + deck_file, parsed);
   exdyn::solver::RunControls controls;
   controls.output_directory = result.directory.path().string();
   controls.threads = threads;
@@ -62,7 +63,8 @@ void run(ThreadedRun& result, const std::vector<std::string>& overrides, int thr
 }
 
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
 void expect_same_results_on_1_2_3_threads(const std::vector<std::string>& overrides) {
@@ -123,7 +125,7 @@ TEST(Threads, LargeContactFacesAreTheSameBitsOnOneAndTwoThreads) {
   const std::vector<std::string> overrides{
       "parts[0].elements=[80,80,2]", "parts[0].box={min: [0, 0, -2.5e-5], max: [1.0e-3, 1.0e-3, 0]}",
       "parts[1].elements=[64,64,2]", "parts[1].box={min: [0, 0, 0], max: [1.0e-3, 1.0e-3, 3.125e-5]}",
-      "time.end_time=2.0e-8", "output.every=4"};
+      "time.end_time=2.0e-8",        "output.every=4"};
   run(one, overrides, 1, "contact_patch.yaml");
   run(two, overrides, 2, "contact_patch.yaml");
   ASSERT_GT(one.summary.contact.projections, 10000);
