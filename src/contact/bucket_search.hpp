@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "common/nodal_vectors.hpp"
+#include "contact/segment.hpp"
 
 namespace exdyn::contact {
 
@@ -56,6 +57,25 @@ void segment_boxes(PositionFn position, const std::vector<std::array<std::uint32
       box.hi[c] += capture;
     }
     boxes[s] = box;
+  }
+}
+
+// Bounding box of each segment of 4 or 8 nodes including its bulge (segment_box),
+// inflated by `capture` (m). position(node) gives a node's current coordinates.
+template <class PositionFn>
+void segment_boxes(PositionFn position, const std::vector<SegmentNodes>& segments, double capture,
+                   std::vector<Box>& boxes) {
+  boxes.resize(segments.size());
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    Segment segment;
+    segment.type = segments[s].type;
+    for (int i = 0; i < node_count(segment.type); ++i) {
+      const std::array<double, 3> x = position(segments[s].nodes[static_cast<std::size_t>(i)]);
+      segment.nodes[static_cast<std::size_t>(i)] = {x[0], x[1], x[2]};
+    }
+    const SegmentBox box = segment_box(segment);
+    boxes[s] = Box{{box.lo.x - capture, box.lo.y - capture, box.lo.z - capture},
+                   {box.hi.x + capture, box.hi.y + capture, box.hi.z + capture}};
   }
 }
 

@@ -15,11 +15,37 @@ Vec3 current_position(const NodalVectors& x_ref, const NodalVectors& u, std::uin
   return {x_ref.x[node] + u.x[node], x_ref.y[node] + u.y[node], x_ref.z[node] + u.z[node]};
 }
 
-Segment current_segment(const Quad& quad, const NodalVectors& x_ref, const NodalVectors& u) {
+Segment current_segment(const SegmentNodes& ids, const NodalVectors& x_ref, const NodalVectors& u) {
   Segment segment;
-  segment.type = SegmentType::quad4;
-  for (int i = 0; i < 4; ++i) segment.nodes[i] = current_position(x_ref, u, quad[i]);
+  segment.type = ids.type;
+  for (int i = 0; i < node_count(ids.type); ++i)
+    segment.nodes[std::size_t(i)] = current_position(x_ref, u, ids.nodes[std::size_t(i)]);
   return segment;
+}
+
+// The current position of every slave point: a slave node's, or a Gauss point's
+// y(xi) = sum N_I(xi) y_I on its slave segment.
+void update_slave_points(const ContactSurfaces& surfaces, ContactPassState& state, const NodalVectors& x_ref,
+                         const NodalVectors& u) {
+  const std::size_t n_points = surfaces.point_count();
+  state.slave_points.x.resize(n_points);
+  state.slave_points.y.resize(n_points);
+  state.slave_points.z.resize(n_points);
+  for (std::size_t p = 0; p < n_points; ++p) {
+    Vec3 x{};
+    if (!surfaces.quadrature) {
+      x = current_position(x_ref, u, surfaces.slave_nodes[p]);
+    } else {
+      const QuadraturePoint& q = surfaces.quadrature_points[p];
+      const SegmentNodes& ids = surfaces.slave_segments[q.segment];
+      const std::array<double, 8> N = shape_functions(ids.type, q.xi);
+      for (int i = 0; i < node_count(ids.type); ++i)
+        x = x + N[std::size_t(i)] * current_position(x_ref, u, ids.nodes[std::size_t(i)]);
+    }
+    state.slave_points.x[p] = x.x;
+    state.slave_points.y[p] = x.y;
+    state.slave_points.z[p] = x.z;
+  }
 }
 
 // The largest distance (m) any node of the pass has moved since the last build.
@@ -40,16 +66,10 @@ double largest_motion_since_build(const ContactSurfaces& surfaces, const Contact
 
 // Global search: new candidates from the bucket grid; a pair that was a
 // candidate before keeps its point from the last step (both lists are sorted).
+// A quadrature point lies on its slave segment, so the motion of the slave nodes
+// bounds its motion too.
 void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
                         ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u) {
-  const std::size_t n_slaves = surfaces.slave_nodes.size();
-  state.slave_points.resize(n_slaves);
-  for (std::size_t p = 0; p < n_slaves; ++p) {
-    const Vec3 x = current_position(x_ref, u, surfaces.slave_nodes[p]);
-    state.slave_points.x[p] = x.x;
-    state.slave_points.y[p] = x.y;
-    state.slave_points.z[p] = x.z;
-  }
   segment_boxes(
       [&](std::uint32_t node) {
         return std::array<double, 3>{x_ref.x[node] + u.x[node], x_ref.y[node] + u.y[node],
@@ -84,25 +104,49 @@ void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettin
   ++state.rebuilds;
 }
 
+// The nodes a slave point's force goes to and their weights: the slave node with
+// weight 1, or a Gauss point's segment nodes with N_I(xi).
+struct SlaveSide {
+  int count = 1;
+  std::array<std::uint32_t, 8> nodes{};
+  std::array<double, 8> weights{};
+};
+
+SlaveSide slave_side(const ContactSurfaces& surfaces, std::size_t p) {
+  SlaveSide side;
+  if (!surfaces.quadrature) {
+    side.nodes[0] = surfaces.slave_nodes[p];
+    side.weights[0] = 1.0;
+    return side;
+  }
+  const QuadraturePoint& q = surfaces.quadrature_points[p];
+  const SegmentNodes& ids = surfaces.slave_segments[q.segment];
+  side.count = node_count(ids.type);
+  side.nodes = ids.nodes;
+  side.weights = shape_functions(ids.type, q.xi);
+  return side;
+}
+
 }  // namespace
 
 void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
                       ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u,
                       const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,
                       std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds) {
-  const std::size_t n_slaves = surfaces.slave_nodes.size();
+  const std::size_t n_points = surfaces.point_count();
   {
     ScopedTimer timer(seconds.global_search);
+    update_slave_points(surfaces, state, x_ref, u);
     // A pair within search_distance now was within search_distance + margin at the
     // build as long as no node has moved more than margin / 2 since.
     if (!state.built || largest_motion_since_build(surfaces, state, x_ref, u) > 0.5 * settings.margin)
       rebuild_candidates(surfaces, settings, state, x_ref, u);
   }
 
-  // Local search: project every candidate; each slave node keeps the closest
-  // projection that converged to a minimum inside its segment. Ties (a node on
+  // Local search: project every candidate; each slave point keeps the closest
+  // projection that converged to a minimum inside its segment. Ties (a point on
   // an edge or a corner shared by segments) go to the lowest segment index, so
-  // such a node is counted once, never twice and never zero times.
+  // such a point is counted once, never twice and never zero times.
   {
     ScopedTimer timer(seconds.local_search);
     // The projections are independent: on the threads, each into its own slot.
@@ -113,7 +157,8 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       const auto c = static_cast<std::size_t>(k);
       const CandidatePair pair = state.candidates[c];
       const Segment segment = current_segment(surfaces.segments[pair.segment], x_ref, u);
-      const Vec3 point = current_position(x_ref, u, surfaces.slave_nodes[pair.point]);
+      const Vec3 point{state.slave_points.x[pair.point], state.slave_points.y[pair.point],
+                       state.slave_points.z[pair.point]};
       Xi start{0.0, 0.0};
       if (settings.initial_guess == InitialGuess::lsp ||
           (settings.initial_guess == InitialGuess::previous && std::isnan(state.previous_xi[c][0])))
@@ -123,7 +168,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       state.results[c] = settings.project(segment, point, start, settings.projection);
     }
     // The choice, in candidate order (the same on any number of threads).
-    state.contacts.assign(n_slaves, ContactPassState::Contact{});
+    state.contacts.assign(n_points, ContactPassState::Contact{});
     double best_distance = 0.0;
     std::uint32_t current_point = std::numeric_limits<std::uint32_t>::max();
     for (std::size_t c = 0; c < state.candidates.size(); ++c) {
@@ -157,35 +202,44 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     }
   }
 
-  // Penalty forces: F = max(0, -k g - c (v_s - v_m).n) along n on the slave node,
-  // -N_i F n on the segment's nodes (momentum is conserved exactly). F and the pair's
-  // k of every slave node on the threads (large surfaces only: on a few hundred nodes
-  // starting threads costs more than the work); then the scatter, in slave order,
-  // alone, since segments share nodes: the same sums on any number of threads.
+  // Penalty forces: F = max(0, -k g - c (v_s - v_m).n) along n on the slave point,
+  // -N_i F n on the segment's nodes (momentum is conserved exactly); a Gauss point's
+  // F goes to its segment's nodes as N_I F n. F and the pair's k of every slave point
+  // on the threads (large surfaces only: on a few hundred points starting threads
+  // costs more than the work); then the scatter, in slave order, alone, since
+  // segments share nodes: the same sums on any number of threads.
   {
     ScopedTimer timer(seconds.forces);
-    state.force_magnitude.assign(n_slaves, 0.0);
-    state.pair_stiffness.assign(n_slaves, 0.0);
-    const auto slaves = static_cast<std::ptrdiff_t>(n_slaves);
-#pragma omp parallel for schedule(static) if (slaves >= 4096)
-    for (std::ptrdiff_t q = 0; q < slaves; ++q) {
+    state.force_magnitude.assign(n_points, 0.0);
+    state.pair_stiffness.assign(n_points, 0.0);
+    const auto points = static_cast<std::ptrdiff_t>(n_points);
+#pragma omp parallel for schedule(static) if (points >= 4096)
+    for (std::ptrdiff_t q = 0; q < points; ++q) {
       const auto p = static_cast<std::size_t>(q);
       const auto& contact = state.contacts[p];
       if (contact.segment < 0 || contact.gap >= 0.0) continue;
-      const std::uint32_t slave = surfaces.slave_nodes[p];
-      const Quad& quad = surfaces.segments[static_cast<std::size_t>(contact.segment)];
-      const std::array<double, 8> N = shape_functions(SegmentType::quad4, contact.xi);
+      const SegmentNodes& master = surfaces.segments[static_cast<std::size_t>(contact.segment)];
+      const std::array<double, 8> N = shape_functions(master.type, contact.xi);
       Vec3 master_velocity{};
       double master_inverse_mass = 0.0;  // sum N_i^2 / m_i: the master point's 1 / mass
-      for (int i = 0; i < 4; ++i) {
-        master_velocity = master_velocity + N[i] * Vec3{v.x[quad[i]], v.y[quad[i]], v.z[quad[i]]};
-        master_inverse_mass += N[i] * N[i] / mass[quad[i]];
+      for (int i = 0; i < node_count(master.type); ++i) {
+        const std::uint32_t node = master.nodes[std::size_t(i)];
+        master_velocity = master_velocity + N[std::size_t(i)] * Vec3{v.x[node], v.y[node], v.z[node]};
+        master_inverse_mass += N[std::size_t(i)] * N[std::size_t(i)] / mass[node];
+      }
+      const SlaveSide slave = slave_side(surfaces, p);
+      Vec3 slave_velocity{};
+      double slave_inverse_mass = 0.0;  // the slave point's 1 / mass, likewise
+      for (int i = 0; i < slave.count; ++i) {
+        const std::uint32_t node = slave.nodes[std::size_t(i)];
+        const double w = slave.weights[std::size_t(i)];
+        slave_velocity = slave_velocity + w * Vec3{v.x[node], v.y[node], v.z[node]};
+        slave_inverse_mass += w * w / mass[node];
       }
       const Vec3 n = contact.normal;
-      const double normal_velocity = dot(Vec3{v.x[slave], v.y[slave], v.z[slave]} - master_velocity, n);
-      const double slave_inverse_mass = 1.0 / mass[slave];
-      double k = surfaces.stiffness[p];  // the node pair's stiffness
-      if (settings.automatic_stiffness) {
+      const double normal_velocity = dot(slave_velocity - master_velocity, n);
+      double k = surfaces.stiffness[p];  // the point pair's stiffness
+      if (settings.automatic_stiffness && !surfaces.quadrature) {
         const double inverse_mass = slave_inverse_mass + master_inverse_mass;
         k = std::min(
             {k, settings.stiffness_scale * accurate_stiffness_bound(settings.dt, inverse_mass),
@@ -194,32 +248,44 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       }
       state.pair_stiffness[p] = k;
       k /= settings.pass_count;
-      const double c = damping_coefficient(settings.damping_ratio, k, mass[slave], 1.0 / master_inverse_mass);
+      const double slave_mass = surfaces.quadrature ? 1.0 / slave_inverse_mass : mass[slave.nodes[0]];
+      const double c = damping_coefficient(settings.damping_ratio, k, slave_mass, 1.0 / master_inverse_mass);
       state.force_magnitude[p] = normal_force(k, c, contact.gap, normal_velocity);
     }
-    for (std::size_t p = 0; p < n_slaves; ++p) {
+    state.slave_force = Vec3{};
+    state.max_penetration = 0.0;
+    for (std::size_t p = 0; p < n_points; ++p) {
       const auto& contact = state.contacts[p];
-      const std::uint32_t slave = surfaces.slave_nodes[p];
       if (contact.segment < 0) continue;
-      gap[slave] = std::min(gap[slave], contact.gap);
-      if (contact.gap >= 0.0) continue;
-      const Quad& quad = surfaces.segments[static_cast<std::size_t>(contact.segment)];
-      const std::array<double, 8> N = shape_functions(SegmentType::quad4, contact.xi);
-      const Vec3 n = contact.normal;
-      const double F = state.force_magnitude[p];
-      statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
-      force.x[slave] += F * n.x;
-      force.y[slave] += F * n.y;
-      force.z[slave] += F * n.z;
-      for (int i = 0; i < 4; ++i) {
-        force.x[quad[i]] -= N[i] * F * n.x;
-        force.y[quad[i]] -= N[i] * F * n.y;
-        force.z[quad[i]] -= N[i] * F * n.z;
+      const SlaveSide slave = slave_side(surfaces, p);
+      for (int i = 0; i < slave.count; ++i) {
+        double& g = gap[slave.nodes[std::size_t(i)]];
+        g = std::min(g, contact.gap);
       }
+      if (contact.gap >= 0.0) continue;
+      const SegmentNodes& master = surfaces.segments[static_cast<std::size_t>(contact.segment)];
+      const std::array<double, 8> N = shape_functions(master.type, contact.xi);
+      const Vec3 F = state.force_magnitude[p] * contact.normal;
+      statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
+      for (int i = 0; i < slave.count; ++i) {
+        const std::uint32_t node = slave.nodes[std::size_t(i)];
+        const double w = slave.weights[std::size_t(i)];
+        force.x[node] += w * F.x;
+        force.y[node] += w * F.y;
+        force.z[node] += w * F.z;
+      }
+      for (int i = 0; i < node_count(master.type); ++i) {
+        const std::uint32_t node = master.nodes[std::size_t(i)];
+        force.x[node] -= N[std::size_t(i)] * F.x;
+        force.y[node] -= N[std::size_t(i)] * F.y;
+        force.z[node] -= N[std::size_t(i)] * F.z;
+      }
+      state.slave_force = state.slave_force + F;
+      state.max_penetration = std::max(state.max_penetration, -contact.gap);
       if (const double depth = -contact.gap / surfaces.normal_length[p];
           depth > statistics.max_penetration_over_h) {
         statistics.max_penetration_over_h = depth;
-        statistics.deepest_node = slave;
+        statistics.deepest_node = slave.nodes[0];
       }
     }
   }

@@ -1,10 +1,13 @@
-// One direction of a contact pair: every slave node against the master
-// segments. A pass runs the contact pipeline of one step:
+// One direction of a contact pair: every slave point against the master
+// segments. A slave point is a slave node (slave_points: nodes) or a Gauss point of
+// a slave segment (slave_points: quadrature, the pre-discretization penalty of
+// Gabriel, Plesek and Ulbin 2004). A pass runs the contact pipeline of one step:
 //   global search (bucket grid, only when nodes have moved enough)
 //   -> local search (the deck's method) for every candidate pair
-//   -> the closest inside projection of each slave node (the node's one contact)
-//   -> penalty forces on the slave node and the segment's nodes.
+//   -> the closest inside projection of each slave point (the point's one contact)
+//   -> penalty forces on the slave point's nodes and the segment's nodes.
 // A pair with `two_pass: true` runs two passes, the second with the roles swapped.
+// Segments have 4 or 8 nodes (contact::SegmentNodes), and one pass may mix them.
 #pragma once
 
 #include <array>
@@ -17,17 +20,28 @@
 
 namespace exdyn::contact {
 
-using Quad = std::array<std::uint32_t, 4>;
+// A Gauss point of a slave segment.
+struct QuadraturePoint {
+  std::uint32_t segment = 0;  // index into ContactSurfaces::slave_segments
+  Xi xi{};
+  double weight = 0.0;  // Gauss weight (w1 w2) times the reference area element |a1 x a2|, m^2
+};
 
 // The geometry of a pass, fixed for the run (global node ids).
 struct ContactSurfaces {
-  std::vector<std::uint32_t> slave_nodes;  // unique, sorted
-  // Penalty stiffness of each slave node before the frequency caps, N/m:
-  // scale kappa M A / L (automatic rule) or the deck's fixed stiffness.
+  bool quadrature = false;                 // the slave points: Gauss points (true) or nodes
+  std::vector<std::uint32_t> slave_nodes;  // every node of the slave faces, unique, sorted
+  std::vector<SegmentNodes> slave_segments;       // the slave faces' segments (quadrature only)
+  std::vector<QuadraturePoint> quadrature_points;  // quadrature only: the slave points
+  // Penalty stiffness of each slave point, N/m: nodes, scale kappa M A / L before the
+  // frequency caps (automatic rule) or the deck's fixed stiffness; quadrature points,
+  // the pressure per length kappa (capped, docs/contact.md) times the point's weight.
   std::vector<double> stiffness;
-  std::vector<double> normal_length;        // element length normal to the slave face (penetration / h), m
-  std::vector<Quad> segments;               // master quadrilaterals, outward oriented
+  std::vector<double> normal_length;        // element length normal to the slave face at each point, m
+  std::vector<SegmentNodes> segments;       // master segments, outward oriented
   std::vector<std::uint32_t> moving_nodes;  // slave and master nodes (for the rebuild test), unique
+
+  std::size_t point_count() const { return quadrature ? quadrature_points.size() : slave_nodes.size(); }
 };
 
 struct ContactPassSettings {
@@ -35,8 +49,9 @@ struct ContactPassSettings {
   ProjectionSettings projection;
   InitialGuess initial_guess = InitialGuess::lsp;
   double damping_ratio = 0.0;  // zeta, fraction of critical
-  // Automatic stiffness: at each contact k = scale min(kappa M A / L, the
-  // frequency caps of penalty.hpp for the actual 1/m_s + sum N_i^2 / m_i).
+  // Automatic stiffness of slave nodes: at each contact k = scale min(kappa M A / L,
+  // the frequency caps of penalty.hpp for the actual 1/m_s + sum N_i^2 / m_i).
+  // (Quadrature points carry their capped stiffness in ContactSurfaces::stiffness.)
   bool automatic_stiffness = true;
   double stiffness_scale = 1.0;
   double dt = 0.0;               // the step in force, s
@@ -55,15 +70,19 @@ struct ContactPassState {
   std::vector<Xi> previous_xi;            // last step's point of each candidate pair
   NodalVectors moving_at_build;           // positions of moving_nodes at the last build
   // scratch, kept to avoid allocation
-  NodalVectors slave_points;
+  NodalVectors slave_points;  // current position of each slave point, m
   std::vector<Box> boxes;
   BucketWorkspace workspace;
   std::vector<CandidatePair> new_candidates;
   std::vector<Xi> new_previous_xi;
   std::vector<ProjectionResult> results;  // the projection of each candidate pair, this step
-  std::vector<double> force_magnitude;    // F of each slave node's contact, N (0: none)
-  std::vector<double> pair_stiffness;     // k of each slave node's pair before the pass split, N/m
-  struct Contact {                        // the chosen projection of each slave node
+  std::vector<double> force_magnitude;    // F of each slave point's contact, N (0: none)
+  std::vector<double> pair_stiffness;     // k of each slave point's pair before the pass split, N/m
+  // This step: the total contact force on the pass's slave side (N) and its deepest
+  // penetration (m, >= 0): the pair's histories.
+  Vec3 slave_force{};
+  double max_penetration = 0.0;
+  struct Contact {                        // the chosen projection of each slave point
     std::int64_t segment = -1;            // -1: none
     Xi xi{};
     double gap = 0.0;
@@ -79,7 +98,8 @@ struct ContactStatistics {
   long not_converged = 0;  // stopping test not met (no force from them)
   long saddle_points = 0;  // converged to a saddle or a maximum (no force from them)
   double max_penetration_over_h = 0.0;
-  std::uint32_t deepest_node = 0;   // the slave node of that largest penetration
+  std::uint32_t deepest_node = 0;   // the slave node of that largest penetration (for a
+                                    // quadrature point, the first node of its segment)
   double max_pair_stiffness = 0.0;  // largest k of a node pair used (all passes), N/m
 };
 
@@ -92,7 +112,8 @@ struct ContactPhaseSeconds {
 // Runs one pass at the current configuration x = x_ref + u with the velocities v
 // (m/s, the latest half-step velocities). Adds the contact forces to `force` (N),
 // writes the gap of each slave node to gap[node] where it is smaller than what is
-// there (callers start from +infinity and zero what stays so).
+// there (callers start from +infinity and zero what stays so); with quadrature
+// points, a node's gap is the smallest of the points of the segments it belongs to.
 void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
                       ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u,
                       const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,

@@ -18,6 +18,13 @@ inline double automatic_stiffness(double modulus, double area, double length) {
   return automatic_stiffness_factor * modulus * area / length;
 }
 
+// The automatic pressure per length of slave quadrature points (Pa/m): the same rule
+// per unit area, kappa = 8 M / L, so that a point of weight w dA carries kappa w dA,
+// as a node of tributary area A carries kappa A.
+inline double automatic_pressure_stiffness(double modulus, double length) {
+  return automatic_stiffness_factor * modulus / length;
+}
+
 // The contact oscillator's frequency omega_c = sqrt(k inverse_mass) is held to
 // omega_c dt <= 1/sqrt(2): a stiffer spring rings with the step and makes the
 // contact chatter. In the plate chain (k = kappa M h, node masses rho h / 2 per

@@ -15,6 +15,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 
 #include "contact/search_names.hpp"
 
@@ -140,6 +141,22 @@ inline Vec3 outward_normal(const SurfacePoint& p) {
 // Reference shape functions N_i(xi) (the textbook form, used to check the
 // monomial form). Entries beyond node_count(type) are zero.
 std::array<double, 8> shape_functions(SegmentType type, Xi xi);
+
+// The node ids of a segment of a contact face (global node numbers), in the order
+// of Segment: corners, then for quad8 the mid-sides.
+struct SegmentNodes {
+  SegmentType type = SegmentType::quad4;
+  std::array<std::uint32_t, 8> nodes{};
+};
+
+// An axis-aligned box that holds the whole segment: for quad4 the box of its nodes
+// (a bilinear patch lies in the convex hull of its corners); for quad8 the box of
+// the 9 control points of the same surface written as a biquadratic Bezier patch,
+// which can reach beyond the nodes where the segment bulges. lo and hi, m.
+struct SegmentBox {
+  Vec3 lo, hi;
+};
+SegmentBox segment_box(const Segment& segment);
 
 // Length of the diagonal of the nodes' bounding box: the segment's size, the
 // scale of the relative tolerances of the local search.

@@ -1,6 +1,8 @@
 // A block of hexahedra of one formulation and one material (one part), and the
-// loop that adds their internal forces: gather -> kernel -> scatter.
-// Kernels (hex8.hpp, hex8r.hpp) are free functions on fixed-size local data.
+// threaded loop that adds their internal forces: gather -> kernel -> scatter.
+// What depends on the formulation (reference data, kernel, lumped mass, stable
+// step) comes from its element family (element_family.hpp), chosen once per block;
+// the kernels (hex8.hpp, hex8r.hpp, hex20.hpp) are free functions on fixed-size data.
 #pragma once
 
 #include <cstdint>
@@ -20,16 +22,31 @@ struct ElementEnergies {
 // Elements per chunk of the parallel element loop (even: an element pair is never split).
 inline constexpr std::uint32_t element_chunk = 512;
 
+struct ElementBlock;
+struct ElementFamily;
+
+// Adds the internal forces of the block's elements [begin, end) (local indices):
+// the family's loop for the block's reference layout, chosen once when the block is built.
+using ElementLoopFn = ElementEnergies (*)(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
+                                          const NodalVectors& u, NodalVectors& f_int, double* stress);
+
 struct ElementBlock {
   input::Formulation formulation = input::Formulation::hex8;
+  const ElementFamily* family = nullptr;  // what the formulation's elements are and do
+  int nodes_per_element = 8;              // 8 or 20
   material::ElasticConstants material;
   double hourglass_coefficient = 0.0;           // hex8r only
   std::uint32_t first_element = 0;              // global index of the block's first element
   std::uint32_t count = 0;                      // number of elements
-  const std::uint32_t* connectivity = nullptr;  // 8 node ids per element (VTK order), `count` elements
-  // Reference-configuration data precomputed once per element (layout private
-  // to the kernels: e.g. inverse Jacobians and weights at the Gauss points).
+  const std::uint32_t* connectivity = nullptr;  // nodes_per_element ids per element (VTK order)
+  // Reference-configuration data precomputed once per element, and data shared by
+  // the block's elements (layouts private to the family: e.g. inverse Jacobians and
+  // weights at the Gauss points; shape function tables; element matrices).
   std::vector<double> reference;
+  std::vector<double> shared;
+  std::vector<std::uint32_t> reference_index;  // per element, where the family keeps its data there
+  ElementLoopFn loop = nullptr;                // the kernel loop of the layout in use
+  bool constant_jacobian = false;              // every element is a parallelepiped (a faster kernel)
   // The parallel schedule (docs/performance.md): the elements in chunks of
   // element_chunk consecutive ones, grouped in colours whose chunks share no node,
   // so that the chunks of a colour scatter their forces at once without a race and
@@ -54,13 +71,15 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
 ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVectors& u, NodalVectors& f_int,
                                     double* stress);
 
-// Smallest stable time step of the block, s: min over elements of L_e / c1, with
-// L_e the characteristic length (element volume / largest face area) and
-// c1 = sqrt((lambda + 2 mu) / rho). The caller multiplies by the Courant number.
+// Smallest stable time step of the block, s, by the family's rule (docs/theory.md):
+// 8-node elements min over elements of L_e / c1, with L_e the characteristic length
+// (element volume / largest face area) and c1 = sqrt((lambda + 2 mu) / rho); 20-node
+// elements 2 / omega_max of each element's own M^-1 K. The caller multiplies by the
+// Courant number.
 double critical_time_step(const ElementBlock& block, const NodalVectors& x_ref);
 
-// Lumped (row-sum) mass: adds rho * integral of N_i dV of every element to the
-// nodal mass m (kg, one entry per node).
+// Lumped mass, kg, added to m (one entry per node): 8-node elements the row sums
+// rho integral of N_I dV; 20-node elements HRZ (docs/theory.md).
 void add_lumped_mass(const ElementBlock& block, const NodalVectors& x_ref, std::vector<double>& mass);
 
 // add_internal_forces for the block's elements [element_begin, element_end)
@@ -81,7 +100,8 @@ struct InvertedElement {
 };
 
 // The lowest-indexed element of [element_begin, element_end) (local indices) with a
-// non-positive corner Jacobian in the current configuration: at each corner a,
+// non-positive corner Jacobian in the current configuration (of the 8 corner nodes;
+// a 20-node element's mid-edge nodes are not looked at): at each corner a,
 // det[e_xi, e_eta, e_zeta] with e the edges from a towards its three neighbours,
 // oriented along +xi, +eta, +zeta (the trilinear map's Jacobian at a, times 8).
 // All eight positive is the usual validity test of a hexahedron. The safety radius:
@@ -97,7 +117,7 @@ InvertedElement find_inverted_element(const ElementBlock& block, const NodalVect
 
 // True when every element of the block is a parallelepiped, so that the block
 // runs the constant-Jacobian kernels (hex8::parallelepiped_internal_forces,
-// hex8r::parallelepiped_internal_forces).
+// hex8r::parallelepiped_internal_forces, the element matrices of hex20_family.cpp).
 bool uses_parallelepiped_kernel(const ElementBlock& block);
 
 }  // namespace exdyn::element

@@ -18,6 +18,20 @@ const char* name(Formulation formulation) {
       return "hex8";
     case Formulation::hex8r:
       return "hex8r";
+    case Formulation::hex20:
+      return "hex20";
+    case Formulation::hex20r:
+      return "hex20r";
+  }
+  return "?";
+}
+
+const char* name(SlavePoints points) {
+  switch (points) {
+    case SlavePoints::nodes:
+      return "nodes";
+    case SlavePoints::quadrature:
+      return "quadrature";
   }
   return "?";
 }

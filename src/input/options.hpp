@@ -28,9 +28,16 @@ struct MaterialOptions {
 };
 
 enum class Formulation {
-  hex8,   // 8-node brick, 2x2x2 Gauss points
-  hex8r,  // 8-node brick, one point, Flanagan-Belytschko hourglass stiffness
+  hex8,    // 8-node brick, 2x2x2 Gauss points
+  hex8r,   // 8-node brick, one point, Flanagan-Belytschko hourglass stiffness
+  hex20,   // 20-node serendipity brick, 3x3x3 Gauss points
+  hex20r,  // 20-node serendipity brick, 2x2x2 Gauss points
 };
+
+// The 20-node formulations: their parts get mid-edge nodes and 8-node face segments.
+constexpr bool is_quadratic(Formulation formulation) {
+  return formulation == Formulation::hex20 || formulation == Formulation::hex20r;
+}
 
 struct PartOptions {
   std::string name;
@@ -40,7 +47,7 @@ struct PartOptions {
   std::string material;           // a key of `materials`
   int material_index = -1;        // index into Deck::materials
   Formulation formulation = Formulation::hex8;
-  double hourglass_coefficient = 0.05;  // hex8r only
+  double hourglass_coefficient = 0.05;  // hex8 and hex8r only (an error on a 20-node part)
   Vec3 initial_velocity{};
   // Random distortion of the structured grid (docs/input.md, mesh/mesh.hpp): interior
   // nodes move by up to fraction x h per component; 0 = the regular grid.
@@ -71,7 +78,7 @@ struct BoundaryConditionOptions {
 struct PenaltyOptions {
   // Exactly one of the two: automatic rule times `scale`, or a fixed stiffness.
   double scale = 1.0;
-  std::optional<double> stiffness;  // force per length
+  std::optional<double> stiffness;  // force per length (nodes) or pressure per length (quadrature)
   double damping = 0.2;             // viscous contact damping, fraction of critical (docs/input.md)
 
   bool operator==(const PenaltyOptions&) const = default;
@@ -92,11 +99,24 @@ struct LocalSearchOptions {
   bool operator==(const LocalSearchOptions&) const = default;
 };
 
+// The largest number of Gauss points per direction of a slave segment.
+inline constexpr int max_quadrature = 6;
+
+// What of the slave side is projected onto the master segments.
+enum class SlavePoints {
+  nodes,       // each slave node
+  quadrature,  // each Gauss point of each slave segment (pre-discretization penalty)
+};
+
 struct ContactOptions {
   std::string name;
   std::vector<FaceRef> slave;
   std::vector<FaceRef> master;
   bool two_pass = true;
+  SlavePoints slave_points = SlavePoints::nodes;
+  // Gauss points per direction on each slave segment (slave_points: quadrature),
+  // 1 to max_quadrature; unset: 2 on 4-node and 3 on 8-node segments.
+  std::optional<int> quadrature;
   PenaltyOptions penalty;
   GlobalSearchOptions search;
   LocalSearchOptions local_search;
@@ -159,6 +179,7 @@ struct Deck {
 // Names as they appear in a deck, for messages and the `check` echo.
 const char* name(MaterialModel model);
 const char* name(Formulation formulation);
+const char* name(SlavePoints points);
 const char* name(BoxSide side);
 const char* name(OutputField field);
 // "<part>.<side>"

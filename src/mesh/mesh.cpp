@@ -45,10 +45,9 @@ std::array<double, 3> perturbation_direction(const input::PartOptions& options, 
   }
 }
 
-// Node id of grid point (i, j, k) of a part.
+// Node id of corner grid point (i, j, k) of a part (lattice point order (i, j, k)).
 std::uint32_t node_id(const PartRange& part, int i, int j, int k) {
-  const auto& n = part.elements;
-  return part.first_node + static_cast<std::uint32_t>(i + (n[0] + 1) * (j + (n[1] + 1) * k));
+  return part.node_at(part.order * i, part.order * j, part.order * k);
 }
 
 // A perturbed part must keep every element valid: at each corner of each element,
@@ -56,7 +55,9 @@ std::uint32_t node_id(const PartRange& part, int i, int j, int k) {
 // (the trilinear map's Jacobian there, times 8; m^3). Moves of at most fraction h
 // keep a plane grid valid below fraction 1/(2 sqrt 2) = 0.354, but a 3D grid is
 // certain only below 1/(2 sqrt 3) = 0.289 (sigma_min(I + E) >= 1 - ||E||_F), so every
-// perturbed part is checked here, where the error can name the deck key.
+// perturbed part is checked here, where the error can name the deck key. (The
+// mid-edge nodes of a 20-node part sit at the middle of straight edges, so the
+// corner test covers them.)
 void check_perturbed_part(const Mesh& mesh, const input::Deck& deck, std::size_t part_index) {
   const PartRange& part = mesh.parts[part_index];
   const auto& n = part.elements;
@@ -88,14 +89,38 @@ void check_perturbed_part(const Mesh& mesh, const input::Deck& deck, std::size_t
         }
 }
 
+// Lattice offsets (along x, y, z, in units of half an element for order 2) of the
+// nodes of a brick from its lowest corner, in VTK order: the 8 corners, then for 20
+// nodes the mid-edge points of the bottom, the top and the vertical edges.
+constexpr std::array<std::array<int, 3>, 20> brick_offsets{{{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0},
+                                                            {0, 0, 2}, {2, 0, 2}, {2, 2, 2}, {0, 2, 2},
+                                                            {1, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 1, 0},
+                                                            {1, 0, 2}, {2, 1, 2}, {1, 2, 2}, {0, 1, 2},
+                                                            {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}}};
+
+// Nodes of a part of this order with these element counts.
+std::uint64_t part_node_count(const std::array<int, 3>& n, int order) {
+  const std::uint64_t nx = std::uint64_t(n[0]), ny = std::uint64_t(n[1]), nz = std::uint64_t(n[2]);
+  const std::uint64_t corners = (nx + 1) * (ny + 1) * (nz + 1);
+  if (order == 1) return corners;
+  return corners + nx * (ny + 1) * (nz + 1) + (nx + 1) * ny * (nz + 1) + (nx + 1) * (ny + 1) * nz;
+}
+
 void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
   PartRange part;
   part.elements = options.elements;
+  part.order = input::is_quadratic(options.formulation) ? 2 : 1;
+  part.nodes_per_element = part.order == 2 ? 20 : 8;
   const auto& n = options.elements;
+  const int order = part.order;
   part.first_node = static_cast<std::uint32_t>(mesh.node_count());
-  part.node_count = static_cast<std::uint32_t>((n[0] + 1) * (n[1] + 1) * (n[2] + 1));
+  part.node_count = static_cast<std::uint32_t>(part_node_count(n, order));
   part.first_element = static_cast<std::uint32_t>(mesh.element_count());
   part.element_count = static_cast<std::uint32_t>(n[0] * n[1] * n[2]);
+  part.first_connectivity = mesh.connectivity.size();
+  for (int axis = 0; axis < 3; ++axis) part.lattice_size[axis] = order * n[axis] + 1;
+  const auto& size = part.lattice_size;
+  part.lattice.assign(std::size_t(size[0]) * std::size_t(size[1]) * std::size_t(size[2]), no_node);
 
   // Grid coordinates x_i = min + (max - min) i / n, written so that the last
   // node lands exactly on max.
@@ -103,57 +128,81 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
     const double lo = options.box_min[axis], hi = options.box_max[axis];
     return index == n[axis] ? hi : lo + (hi - lo) * static_cast<double>(index) / static_cast<double>(n[axis]);
   };
-  // The optional distortion (parts[i].perturbation): x_c += fraction h_c r_c, with
-  // h_c = (max_c - min_c) / n_c the element length along c (length units) and r a
-  // random vector of length at most 1 (perturbation_direction) over the components
-  // along which the node is strictly inside the grid (0 < ijk[c] < n_c), so every
-  // face stays plane and in place. Each node so moves by at most fraction h: in a
-  // plane grid of squares no corner angle can then close before fraction = 1/(2 sqrt 2)
-  // (two neighbours each moved by fraction h turn an edge by at most that much).
+  // The corner grid point (i, j, k), with the optional distortion (parts[i].perturbation):
+  // x_c += fraction h_c r_c, with h_c = (max_c - min_c) / n_c the element length along c
+  // (length units) and r a random vector of length at most 1 (perturbation_direction)
+  // over the components along which the node is strictly inside the grid
+  // (0 < ijk[c] < n_c), so every face stays plane and in place. Each node so moves by at
+  // most fraction h: in a plane grid of squares no corner angle can then close before
+  // fraction = 1/(2 sqrt 2) (two neighbours each moved by fraction h turn an edge by at
+  // most that much).
   const double fraction = options.perturbation_fraction;
-  for (int k = 0; k <= n[2]; ++k)
-    for (int j = 0; j <= n[1]; ++j)
-      for (int i = 0; i <= n[0]; ++i) {
-        const std::array<int, 3> ijk{i, j, k};
-        std::array<double, 3> x{coordinate(0, i), coordinate(1, j), coordinate(2, k)};
-        if (fraction > 0.0) {
-          const std::array<bool, 3> moves{0 < i && i < n[0], 0 < j && j < n[1], 0 < k && k < n[2]};
-          if (moves[0] || moves[1] || moves[2]) {
-            const std::array<double, 3> r = perturbation_direction(options, part_index, ijk, moves);
-            for (int c = 0; c < 3; ++c)
-              x[c] += fraction * (options.box_max[c] - options.box_min[c]) / static_cast<double>(n[c]) * r[c];
-          }
+  auto corner_point = [&](const std::array<int, 3>& ijk) {
+    std::array<double, 3> x{coordinate(0, ijk[0]), coordinate(1, ijk[1]), coordinate(2, ijk[2])};
+    if (fraction > 0.0) {
+      const std::array<bool, 3> moves{0 < ijk[0] && ijk[0] < n[0], 0 < ijk[1] && ijk[1] < n[1],
+                                      0 < ijk[2] && ijk[2] < n[2]};
+      if (moves[0] || moves[1] || moves[2]) {
+        const std::array<double, 3> r = perturbation_direction(options, part_index, ijk, moves);
+        for (int c = 0; c < 3; ++c)
+          x[c] += fraction * (options.box_max[c] - options.box_min[c]) / static_cast<double>(n[c]) * r[c];
+      }
+    }
+    return x;
+  };
+  std::uint32_t next = part.first_node;  // ids stay below no_node: at most 2^32 - 1 nodes in all
+  for (int k = 0; k < size[2]; ++k)
+    for (int j = 0; j < size[1]; ++j)
+      for (int i = 0; i < size[0]; ++i) {
+        const std::array<int, 3> lattice{i, j, k};
+        int odd = 0;
+        for (int c = 0; c < 3; ++c) odd += lattice[c] % order;
+        if (odd > 1) continue;  // a face or body centre: no node of a serendipity brick
+        std::array<double, 3> x{};
+        if (odd == 0) {
+          x = corner_point({i / order, j / order, k / order});
+        } else {  // a mid-edge point: the middle of the (straight) edge between its corners
+          std::array<int, 3> below{i / order, j / order, k / order}, above = below;
+          for (int c = 0; c < 3; ++c)
+            if (lattice[c] % order != 0) above[c] += 1;
+          const std::array<double, 3> a = corner_point(below), b = corner_point(above);
+          for (int c = 0; c < 3; ++c) x[c] = 0.5 * (a[c] + b[c]);
         }
+        part.lattice[std::size_t(i) + std::size_t(size[0]) * (std::size_t(j) + std::size_t(size[1]) * k)] =
+            next++;
         mesh.x_ref.x.push_back(x[0]);
         mesh.x_ref.y.push_back(x[1]);
         mesh.x_ref.z.push_back(x[2]);
       }
+  EXDYN_ASSERT(next == part.first_node + part.node_count);
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
-        // VTK hexahedron: the face k counter-clockwise, then the face k+1.
-        const std::array<std::uint32_t, 8> element{node_id(part, i, j, k),
-                                                   node_id(part, i + 1, j, k),
-                                                   node_id(part, i + 1, j + 1, k),
-                                                   node_id(part, i, j + 1, k),
-                                                   node_id(part, i, j, k + 1),
-                                                   node_id(part, i + 1, j, k + 1),
-                                                   node_id(part, i + 1, j + 1, k + 1),
-                                                   node_id(part, i, j + 1, k + 1)};
-        mesh.connectivity.insert(mesh.connectivity.end(), element.begin(), element.end());
+        for (int local = 0; local < part.nodes_per_element; ++local) {
+          // Offsets are in half elements: order 1 takes the corners at 0 and 2 as 0 and 1.
+          const auto& d = brick_offsets[static_cast<std::size_t>(local)];
+          const int scale = order;  // lattice points per element
+          const std::uint32_t node = part.node_at(scale * i + d[0] * scale / 2, scale * j + d[1] * scale / 2,
+                                                  scale * k + d[2] * scale / 2);
+          EXDYN_ASSERT(node != no_node);
+          mesh.connectivity.push_back(node);
+        }
         mesh.element_part.push_back(part_index);
       }
-  mesh.parts.push_back(part);
+  mesh.parts.push_back(std::move(part));
 }
 
 }  // namespace
 
 Mesh build_mesh(const input::Deck& deck) {
-  std::uint64_t nodes = 0, elements = 0;
+  std::uint64_t nodes = 0, elements = 0, connectivity = 0;
   for (const auto& part : deck.parts) {
     const auto& n = part.elements;
-    nodes += std::uint64_t(n[0] + 1) * std::uint64_t(n[1] + 1) * std::uint64_t(n[2] + 1);
-    elements += std::uint64_t(n[0]) * std::uint64_t(n[1]) * std::uint64_t(n[2]);
+    const int order = input::is_quadratic(part.formulation) ? 2 : 1;
+    const std::uint64_t count = std::uint64_t(n[0]) * std::uint64_t(n[1]) * std::uint64_t(n[2]);
+    nodes += part_node_count(n, order);
+    elements += count;
+    connectivity += (order == 2 ? 20 : 8) * count;
   }
   // 32-bit node ids (connectivity) and element ids.
   if (nodes > std::numeric_limits<std::uint32_t>::max() ||
@@ -165,7 +214,7 @@ Mesh build_mesh(const input::Deck& deck) {
   mesh.x_ref.x.reserve(nodes);
   mesh.x_ref.y.reserve(nodes);
   mesh.x_ref.z.reserve(nodes);
-  mesh.connectivity.reserve(8 * elements);
+  mesh.connectivity.reserve(connectivity);
   mesh.element_part.reserve(elements);
   for (std::size_t p = 0; p < deck.parts.size(); ++p) {
     add_part(mesh, deck.parts[p], static_cast<int>(p));
@@ -200,19 +249,36 @@ Face face_of(const Mesh& mesh, int part_index, input::BoxSide side) {
       axis = 2, p = 0, q = 1, fixed = n[2];
       break;
   }
+  // Lattice point (a, b) of the face plane, in lattice units along p and q.
+  const int order = part.order;
   auto node_at = [&](int a, int b) {
     std::array<int, 3> ijk{};
-    ijk[axis] = fixed;
+    ijk[axis] = order * fixed;
     ijk[p] = a;
     ijk[q] = b;
-    return node_id(part, ijk[0], ijk[1], ijk[2]);
+    return part.node_at(ijk[0], ijk[1], ijk[2]);
   };
   Face face;
-  for (int b = 0; b <= n[q]; ++b)
-    for (int a = 0; a <= n[p]; ++a) face.nodes.push_back(node_at(a, b));
+  for (int b = 0; b <= order * n[q]; ++b)
+    for (int a = 0; a <= order * n[p]; ++a)
+      if (const std::uint32_t node = node_at(a, b); node != no_node) face.nodes.push_back(node);
   for (int b = 0; b < n[q]; ++b)
-    for (int a = 0; a < n[p]; ++a)
-      face.quads.push_back({node_at(a, b), node_at(a + 1, b), node_at(a + 1, b + 1), node_at(a, b + 1)});
+    for (int a = 0; a < n[p]; ++a) {
+      const int a0 = order * a, b0 = order * b, a1 = a0 + order, b1 = b0 + order;
+      FaceSegment segment;
+      segment.node_count = order == 2 ? 8 : 4;
+      segment.nodes[0] = node_at(a0, b0);
+      segment.nodes[1] = node_at(a1, b0);
+      segment.nodes[2] = node_at(a1, b1);
+      segment.nodes[3] = node_at(a0, b1);
+      if (order == 2) {  // mid-sides of the edges 0-1, 1-2, 2-3, 3-0
+        segment.nodes[4] = node_at(a0 + 1, b0);
+        segment.nodes[5] = node_at(a1, b0 + 1);
+        segment.nodes[6] = node_at(a0 + 1, b1);
+        segment.nodes[7] = node_at(a0, b0 + 1);
+      }
+      face.segments.push_back(segment);
+    }
   return face;
 }
 

@@ -1,10 +1,16 @@
 // Structured hexahedral meshes of box parts, and their named faces.
-// Each part is its own body: parts share no nodes. Within a part, node (i,j,k)
-// is first_node + i + (nx+1) (j + (ny+1) k) and element (i,j,k) is
-// first_element + i + nx (j + ny k). Elements use the VTK hexahedron order.
-// A part with a perturbation (parts[i].perturbation) has its grid points moved at
-// random inside the box, each by at most fraction h, faces kept plane
-// (mesh.cpp states the rule); its topology and numbering are those of the grid.
+// Each part is its own body: parts share no nodes.
+//
+// A part is a lattice of grid points: (order n_x + 1) x (order n_y + 1) x (order n_z + 1)
+// with order 1 for the 8-node formulations and 2 for the 20-node ones. With order 1
+// every lattice point is a node; with order 2 the points with at most one odd index
+// are (the corners and mid-edge points of the serendipity bricks: no face or body
+// centres). Nodes are numbered along the lattice, x fastest, then y, then z, from the
+// part's first_node; element (i,j,k) is first_element + i + nx (j + ny k).
+// Elements use the VTK hexahedron (8) or quadratic hexahedron (20) node order.
+// A part with a perturbation (parts[i].perturbation) has its corner grid points moved
+// at random inside the box, each by at most fraction h, faces kept plane (mesh.cpp
+// states the rule), and its mid-edge nodes at the middle of their edges.
 #pragma once
 
 #include <array>
@@ -16,36 +22,70 @@
 
 namespace exdyn::mesh {
 
+inline constexpr std::uint32_t no_node = 0xffffffffu;
+
 struct PartRange {
   std::uint32_t first_node = 0;
   std::uint32_t node_count = 0;
   std::uint32_t first_element = 0;
   std::uint32_t element_count = 0;
-  std::array<int, 3> elements{};  // nx, ny, nz
+  std::array<int, 3> elements{};        // nx, ny, nz
+  int order = 1;                        // 1: 8-node elements, 2: 20-node elements
+  int nodes_per_element = 8;            // 8 or 20
+  std::size_t first_connectivity = 0;   // offset of the part's first element in Mesh::connectivity
+  std::vector<std::uint32_t> lattice;   // node id of each lattice point (no_node: none), x fastest
+  std::array<int, 3> lattice_size{};    // order n + 1 along each axis
+
+  // Node id at lattice point (I, J, K); no_node where the lattice has no node.
+  std::uint32_t node_at(int i, int j, int k) const {
+    return lattice[static_cast<std::size_t>(i) +
+                   static_cast<std::size_t>(lattice_size[0]) *
+                       (static_cast<std::size_t>(j) + static_cast<std::size_t>(lattice_size[1]) * k)];
+  }
 };
 
 struct Mesh {
   NodalVectors x_ref;                       // reference coordinates, m
-  std::vector<std::uint32_t> connectivity;  // 8 node ids per element
+  std::vector<std::uint32_t> connectivity;  // nodes_per_element ids per element, part after part
   std::vector<std::int32_t> element_part;   // part index of each element
   std::vector<PartRange> parts;             // in deck order
 
   std::size_t node_count() const { return x_ref.size(); }
   std::size_t element_count() const { return element_part.size(); }
+  // The nodes of element e (global index) and how many there are.
+  int nodes_of(std::size_t e) const { return parts[static_cast<std::size_t>(element_part[e])].nodes_per_element; }
+  const std::uint32_t* element_nodes(std::size_t e) const {
+    const PartRange& part = parts[static_cast<std::size_t>(element_part[e])];
+    return connectivity.data() + part.first_connectivity +
+           static_cast<std::size_t>(part.nodes_per_element) * (e - part.first_element);
+  }
+  // True when every part has elements of `nodes` nodes.
+  bool all_elements_have(int nodes) const {
+    for (const PartRange& part : parts)
+      if (part.nodes_per_element != nodes) return false;
+    return true;
+  }
 };
 
-// A named face of a part: its nodes and its quadrilaterals, each ordered
-// counter-clockwise seen from outside, so (y1 - y0) x (y3 - y0) points out of the body.
+// A face segment: 4 corner nodes counter-clockwise seen from outside the body, so
+// (y1 - y0) x (y3 - y0) points out of it; for 8 nodes then the mid-sides of the edges
+// 0-1, 1-2, 2-3, 3-0 (the order of contact::Segment and `exdyn project`).
+struct FaceSegment {
+  std::array<std::uint32_t, 8> nodes{};
+  int node_count = 4;  // 4 or 8
+};
+
+// A named face of a part: its nodes (sorted along the face's lattice) and its segments.
 struct Face {
   std::vector<std::uint32_t> nodes;
-  std::vector<std::array<std::uint32_t, 4>> quads;
+  std::vector<FaceSegment> segments;
 };
 
 // Builds every part of the deck (checks the node count fits 32-bit indices, and that
 // a perturbed part has no element with a non-positive corner Jacobian).
 Mesh build_mesh(const input::Deck& deck);
 
-// The nodes and outward-oriented quadrilaterals of one face of a part.
+// The nodes and outward-oriented segments of one face of a part.
 Face face_of(const Mesh& mesh, int part, input::BoxSide side);
 
 }  // namespace exdyn::mesh

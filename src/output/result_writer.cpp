@@ -244,35 +244,39 @@ void write_dataset(const Hdf5Errors& errors, hid_t file, const std::string& path
 }
 
 // An empty float64 series (0,) extendable without limit, chunked.
-void create_series(const Hdf5Errors& errors, hid_t file, const std::string& path) {
-  const hsize_t dims[1] = {0};
-  const hsize_t max_dims[1] = {H5S_UNLIMITED};
-  const hsize_t chunk[1] = {series_chunk_rows};
-  Handle space(errors.check(H5Screate_simple(1, dims, max_dims), "cannot create dataspace for " + path),
+// An extendable series of rows of `columns` doubles: (H,) for one column, (H, columns) else.
+void create_series(const Hdf5Errors& errors, hid_t file, const std::string& path, hsize_t columns = 1) {
+  const int rank = columns == 1 ? 1 : 2;
+  const hsize_t dims[2] = {0, columns};
+  const hsize_t max_dims[2] = {H5S_UNLIMITED, columns};
+  const hsize_t chunk[2] = {series_chunk_rows, columns};
+  Handle space(errors.check(H5Screate_simple(rank, dims, max_dims), "cannot create dataspace for " + path),
                H5Sclose);
   Handle properties(errors.check(H5Pcreate(H5P_DATASET_CREATE), "cannot create properties for " + path),
                     H5Pclose);
-  errors.check(H5Pset_chunk(properties.get(), 1, chunk), "cannot set chunking of", path);
+  errors.check(H5Pset_chunk(properties.get(), rank, chunk), "cannot set chunking of", path);
   Handle dataset(errors.check(H5Dcreate2(file, path.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
                                          properties.get(), H5P_DEFAULT),
                               "cannot create dataset " + path),
                  H5Dclose);
 }
 
-// Appends `values` to the series `path`, which holds `rows_on_disk` rows.
+// Appends `values` (rows of `columns` doubles) to the series `path`, which holds `rows_on_disk` rows.
 void append_series(const Hdf5Errors& errors, hid_t file, const std::string& path, hsize_t rows_on_disk,
-                   const std::vector<double>& values) {
+                   const std::vector<double>& values, hsize_t columns = 1) {
+  const int rank = columns == 1 ? 1 : 2;
   Handle dataset(errors.check(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "cannot open dataset " + path),
                  H5Dclose);
-  const hsize_t count[1] = {values.size()};
-  const hsize_t new_size[1] = {rows_on_disk + values.size()};
-  const hsize_t offset[1] = {rows_on_disk};
+  const hsize_t rows = values.size() / columns;
+  const hsize_t count[2] = {rows, columns};
+  const hsize_t new_size[2] = {rows_on_disk + rows, columns};
+  const hsize_t offset[2] = {rows_on_disk, 0};
   errors.check(H5Dset_extent(dataset.get(), new_size), "cannot extend dataset", path);
   Handle file_space(errors.check(H5Dget_space(dataset.get()), "cannot get dataspace of " + path), H5Sclose);
   errors.check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, offset, nullptr, count, nullptr),
                "cannot select rows of", path);
   Handle memory_space(
-      errors.check(H5Screate_simple(1, count, nullptr), "cannot create dataspace for " + path), H5Sclose);
+      errors.check(H5Screate_simple(rank, count, nullptr), "cannot create dataspace for " + path), H5Sclose);
   errors.check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
                         values.data()),
                "cannot write dataset", path);
@@ -358,7 +362,13 @@ struct ResultWriter::Impl {
 
   std::vector<double> buffer;  // interleaved (AoS) staging and zeros; reused
   std::vector<HistoryRow> pending_history;
+  std::vector<std::string> contact_pairs;               // names, for /history/contact/NAME
+  std::vector<ContactHistoryRow> pending_contact;        // contact_pairs.size() per pending history row
   hsize_t history_rows_on_disk = 0;
+  // Elements of 8 and 20 nodes mixed: the .xmf names /mesh/mixed_topology (XDMF "Mixed").
+  bool mixed = false;
+  int nodes_per_element = 8;  // 8 or 20 when not mixed
+  std::size_t mixed_topology_size = 0;
   hsize_t steps_on_disk = 0;
   std::optional<double> last_time;
   long last_step = -1;
@@ -404,11 +414,32 @@ void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
 
   // Connectivity: uint32 in memory; int64 on disk, the type every XDMF reader
   // and numpy index with (a uint32 DataItem would need NumberType="UInt").
+  // (E, 8) or (E, 20) when every element has that many nodes. A mesh with both
+  // writes (E, 20) with the rows of 8-node elements padded with -1, and for ParaView
+  // /mesh/mixed_topology, XDMF's "Mixed" list: per element its cell type (9
+  // Hexahedron, 48 Hexahedron_20) then its nodes (docs/output.md).
   {
     const std::vector<std::uint32_t>& connectivity = *mesh.connectivity;
-    std::vector<std::int64_t> connectivity64(connectivity.begin(), connectivity.end());
-    write_dataset(errors, file.get(), "/mesh/connectivity", {element_count, 8}, H5T_STD_I64LE,
+    const std::size_t width = mixed ? 20 : static_cast<std::size_t>(nodes_per_element);
+    std::vector<std::int64_t> connectivity64(element_count * width, -1);
+    std::vector<std::int64_t> mixed_topology;
+    std::size_t next = 0;
+    for (std::size_t e = 0; e < element_count; ++e) {
+      const std::size_t nodes = mesh.element_nodes == nullptr ? 8 : (*mesh.element_nodes)[e];
+      if (mixed) mixed_topology.push_back(nodes == 20 ? 48 : 9);
+      for (std::size_t k = 0; k < nodes; ++k) {
+        connectivity64[width * e + k] = connectivity[next + k];
+        if (mixed) mixed_topology.push_back(connectivity[next + k]);
+      }
+      next += nodes;
+    }
+    write_dataset(errors, file.get(), "/mesh/connectivity", {element_count, width}, H5T_STD_I64LE,
                   H5T_NATIVE_INT64, connectivity64.data());
+    if (mixed) {
+      mixed_topology_size = mixed_topology.size();
+      write_dataset(errors, file.get(), "/mesh/mixed_topology", {mixed_topology.size()}, H5T_STD_I64LE,
+                    H5T_NATIVE_INT64, mixed_topology.data());
+    }
   }
 
   // Part index per element; a mesh without parts is one part, index 0.
@@ -425,6 +456,14 @@ void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
   for (const auto& [column, member] : history_columns) {
     create_series(errors, file.get(), std::string("/history/") + column);
   }
+  if (!contact_pairs.empty()) {
+    create_group(errors, file.get(), "/history/contact");
+    for (const std::string& pair : contact_pairs) {
+      create_group(errors, file.get(), "/history/contact/" + pair);
+      create_series(errors, file.get(), "/history/contact/" + pair + "/force", 3);
+      create_series(errors, file.get(), "/history/contact/" + pair + "/max_penetration");
+    }
+  }
   file.close();
 }
 
@@ -434,6 +473,18 @@ void ResultWriter::Impl::write_history(hid_t file) {
   for (const auto& [column, member] : history_columns) {
     for (std::size_t i = 0; i < pending_history.size(); ++i) column_values[i] = pending_history[i].*member;
     append_series(errors, file, std::string("/history/") + column, history_rows_on_disk, column_values);
+  }
+  const std::size_t pairs = contact_pairs.size();
+  std::vector<double> force(3 * pending_history.size());
+  for (std::size_t k = 0; k < pairs; ++k) {
+    for (std::size_t i = 0; i < pending_history.size(); ++i) {
+      const ContactHistoryRow& row = pending_contact[pairs * i + k];
+      for (int c = 0; c < 3; ++c) force[3 * i + std::size_t(c)] = row.force[std::size_t(c)];
+      column_values[i] = row.max_penetration;
+    }
+    const std::string group = "/history/contact/" + contact_pairs[k];
+    append_series(errors, file, group + "/force", history_rows_on_disk, force, 3);
+    append_series(errors, file, group + "/max_penetration", history_rows_on_disk, column_values);
   }
 }
 
@@ -499,9 +550,15 @@ std::string ResultWriter::Impl::grid_xml(const StepData& data, const std::string
   xml.reserve(1600);
   xml += "      <Grid Name=\"step_" + group + "\" GridType=\"Uniform\">\n";
   xml += "        <Time Value=\"" + format_time(data.time) + "\"/>\n";
-  xml += "        <Topology TopologyType=\"Hexahedron\" NumberOfElements=\"" + elements +
-         "\" NodesPerElement=\"8\">\n";
-  xml += "          " + data_item(elements + " 8", "Int", "/mesh/connectivity");
+  if (mixed) {
+    xml += "        <Topology TopologyType=\"Mixed\" NumberOfElements=\"" + elements + "\">\n";
+    xml += "          " + data_item(std::to_string(mixed_topology_size), "Int", "/mesh/mixed_topology");
+  } else {
+    const std::string nodes_per = std::to_string(nodes_per_element);
+    xml += std::string("        <Topology TopologyType=\"") + (nodes_per_element == 20 ? "Hexahedron_20" : "Hexahedron") +
+           "\" NumberOfElements=\"" + elements + "\" NodesPerElement=\"" + nodes_per + "\">\n";
+    xml += "          " + data_item(elements + " " + nodes_per, "Int", "/mesh/connectivity");
+  }
   xml += "        </Topology>\n";
   xml += "        <Geometry GeometryType=\"XYZ\">\n";
   xml += "          " + data_item(nodes + " 3", "Float", "/mesh/coordinates");
@@ -540,7 +597,8 @@ void ResultWriter::Impl::remove_stale_xdmf() const {
 // ---------------------------------------------------------------------------
 
 ResultWriter::ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
-                           const std::vector<input::OutputField>& fields) {
+                           const std::vector<input::OutputField>& fields,
+                           const std::vector<std::string>& contact_pairs) {
   // Names end up in "NAME.h5:/path" inside the .xmf, which the XDMF readers
   // split at the colon; a slash would put the files somewhere else.
   if (name.empty() || name.find_first_of(":/\\") != std::string::npos) {
@@ -554,11 +612,27 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   if (mesh.x_ref->y.size() != node_count || mesh.x_ref->z.size() != node_count) {
     throw std::invalid_argument("ResultWriter: coordinate components differ in length");
   }
-  if (mesh.connectivity->size() % 8 != 0) {
+  // Elements of 8 nodes, or of the sizes element_nodes gives (8 or 20).
+  std::size_t element_count = mesh.connectivity->size() / 8;
+  bool has_8 = true, has_20 = false;
+  if (mesh.element_nodes != nullptr) {
+    element_count = mesh.element_nodes->size();
+    std::size_t total = 0;
+    has_8 = false;
+    for (const std::uint8_t nodes : *mesh.element_nodes) {
+      if (nodes != 8 && nodes != 20)
+        throw std::invalid_argument("ResultWriter: an element of " + std::to_string(nodes) +
+                                    " nodes (8 or 20 expected)");
+      (nodes == 8 ? has_8 : has_20) = true;
+      total += nodes;
+    }
+    if (total != mesh.connectivity->size())
+      throw std::invalid_argument("ResultWriter: connectivity length " + std::to_string(mesh.connectivity->size()) +
+                                  " is not the " + std::to_string(total) + " nodes of the elements");
+  } else if (mesh.connectivity->size() % 8 != 0) {
     throw std::invalid_argument("ResultWriter: connectivity length " +
                                 std::to_string(mesh.connectivity->size()) + " is not a multiple of 8");
   }
-  const std::size_t element_count = mesh.connectivity->size() / 8;
   if (mesh.element_part != nullptr && mesh.element_part->size() != element_count) {
     throw std::invalid_argument("ResultWriter: " + std::to_string(mesh.element_part->size()) +
                                 " part indices for " + std::to_string(element_count) + " elements");
@@ -566,16 +640,22 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   // ParaView reads an out-of-range node index without complaint and draws garbage.
   for (std::size_t i = 0; i < mesh.connectivity->size(); ++i) {
     if ((*mesh.connectivity)[i] >= node_count) {
-      throw std::invalid_argument("ResultWriter: element " + std::to_string(i / 8) + " names node " +
+      throw std::invalid_argument("ResultWriter: connectivity entry " + std::to_string(i) + " names node " +
                                   std::to_string((*mesh.connectivity)[i]) + " of " +
                                   std::to_string(node_count));
     }
   }
+  for (const std::string& pair : contact_pairs)
+    if (pair.empty() || pair.find('/') != std::string::npos || pair == "." || pair == "..")
+      throw std::invalid_argument("ResultWriter: contact pair name '" + pair + "' cannot name an HDF5 group");
 
   fs::create_directories(directory);
   impl_ = std::make_unique<Impl>(fs::path(directory), name);
   impl_->node_count = node_count;
   impl_->element_count = element_count;
+  impl_->mixed = has_8 && has_20;
+  impl_->nodes_per_element = has_20 ? 20 : 8;
+  impl_->contact_pairs = contact_pairs;
   for (const FieldLayout& layout : field_layouts) {
     if (std::find(fields.begin(), fields.end(), layout.field) != fields.end())
       impl_->fields.push_back(&layout);
@@ -602,7 +682,13 @@ ResultWriter::~ResultWriter() {
   }
 }
 
-void ResultWriter::add_history(const HistoryRow& row) { impl_->pending_history.push_back(row); }
+void ResultWriter::add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact) {
+  if (contact.size() != impl_->contact_pairs.size())
+    throw std::logic_error("ResultWriter::add_history: " + std::to_string(contact.size()) +
+                           " contact rows for " + std::to_string(impl_->contact_pairs.size()) + " pairs");
+  impl_->pending_history.push_back(row);
+  impl_->pending_contact.insert(impl_->pending_contact.end(), contact.begin(), contact.end());
+}
 
 void ResultWriter::write_step(const StepData& data) {
   Impl& w = *impl_;
@@ -656,6 +742,7 @@ void ResultWriter::write_step(const StepData& data) {
   w.steps_on_disk += 1;
   w.history_rows_on_disk += w.pending_history.size();
   w.pending_history.clear();
+  w.pending_contact.clear();
   w.last_time = data.time;
   w.last_step = data.step;
   w.step_xml.push_back(w.grid_xml(data, group_name));
@@ -671,6 +758,7 @@ void ResultWriter::flush() {
   file.close();
   w.history_rows_on_disk += w.pending_history.size();
   w.pending_history.clear();
+  w.pending_contact.clear();
 }
 
 std::string ResultWriter::h5_path() const { return impl_->h5_file.string(); }

@@ -4,6 +4,7 @@
 // (temporary file + rename), so a reader never sees a step that is not on disk.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -16,8 +17,10 @@ namespace exdyn::output {
 
 struct MeshView {
   const NodalVectors* x_ref = nullptr;                       // N reference node coordinates
-  const std::vector<std::uint32_t>* connectivity = nullptr;  // 8 E, VTK hexahedron order
+  const std::vector<std::uint32_t>* connectivity = nullptr;  // the elements' nodes one after the other,
+                                                             // VTK (quadratic) hexahedron order
   const std::vector<std::int32_t>* element_part = nullptr;   // E; null = one part, index 0
+  const std::vector<std::uint8_t>* element_nodes = nullptr;  // E node counts (8 or 20); null = all 8
 };
 
 // The fields of one step. A null pointer is written as zeros when the field is
@@ -44,6 +47,12 @@ struct HistoryRow {
   double total_energy = 0.0;
 };
 
+// One history row of one contact pair.
+struct ContactHistoryRow {
+  std::array<double, 3> force{};  // total contact force on the pair's slave side, N
+  double max_penetration = 0.0;   // the pair's deepest penetration at that step, m (>= 0)
+};
+
 // Call from one thread (the serial HDF5 library is not thread-safe). HDF5 and
 // file-system failures throw std::runtime_error naming the file and dataset;
 // a caller's mistake (time not increasing, a field of the wrong size) throws
@@ -54,14 +63,17 @@ class ResultWriter {
   // Creates (or overwrites) DIRECTORY/NAME.h5 with /mesh; creates DIRECTORY if
   // needed. NAME.xmf is written from the first step on (ParaView's Xdmf2 reader
   // crashes on a collection with no step); a NAME.xmf of an earlier run is removed.
+  // contact_pairs: the names of the contact pairs, whose histories go to
+  // /history/contact/NAME (one ContactHistoryRow each with every history row).
   ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
-               const std::vector<input::OutputField>& fields);
+               const std::vector<input::OutputField>& fields, const std::vector<std::string>& contact_pairs = {});
   ~ResultWriter();
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
 
-  // Buffers a history row; rows are flushed to /history at every write_step and flush().
-  void add_history(const HistoryRow& row);
+  // Buffers a history row, with one row per contact pair (in the constructor's
+  // order); rows are flushed to /history at every write_step and flush().
+  void add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact = {});
   // Writes /steps/NNNNNN, appends to /time, flushes history, closes the file,
   // then rewrites the .xmf atomically. Steps must come in strictly increasing
   // time and step number.

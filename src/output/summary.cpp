@@ -38,14 +38,28 @@ Json to_json(const RunSummary& s) {
   energy["final_total"] = number(s.energy.final_total);
   energy["max_relative_error"] = number(s.energy.max_relative_error);
 
-  Json contact;
-  contact["projections"] = s.contact.projections;
-  contact["mean_iterations"] = number(s.contact.mean_iterations);
-  contact["max_iterations"] = s.contact.max_iterations;
-  contact["not_converged"] = s.contact.not_converged;
-  contact["saddle_points"] = s.contact.saddle_points;
-  contact["max_penetration_over_h"] = number(s.contact.max_penetration_over_h);
-  contact["penalty_stiffness"] = number(s.contact.penalty_stiffness);
+  const auto figures = [](const ContactFigures& f) {
+    Json json;
+    json["projections"] = f.projections;
+    json["mean_iterations"] = number(f.mean_iterations);
+    json["max_iterations"] = f.max_iterations;
+    json["not_converged"] = f.not_converged;
+    json["saddle_points"] = f.saddle_points;
+    json["max_penetration_over_h"] = number(f.max_penetration_over_h);
+    json["penalty_stiffness"] = number(f.penalty_stiffness);
+    return json;
+  };
+  Json contact = figures(s.contact);
+  Json pairs = Json::object();
+  for (const ContactPairSummary& pair : s.contact.pairs) {
+    Json json = figures(pair.figures);
+    json["slave_points"] = pair.slave_points;
+    json["method"] = pair.method;
+    json["local_search_seconds"] = number(pair.local_search_seconds);
+    json["max_force"] = number(pair.max_force);
+    pairs[pair.name] = std::move(json);
+  }
+  contact["pairs"] = std::move(pairs);
 
   Json mesh;
   mesh["nodes"] = s.nodes;
@@ -66,6 +80,9 @@ Json to_json(const RunSummary& s) {
   j["phase_seconds"] = std::move(phases);
   j["energy"] = std::move(energy);
   j["contact"] = std::move(contact);
+  Json mpi;
+  mpi["ranks"] = 1;
+  j["mpi"] = std::move(mpi);
   Json guards;  // ours, after the spec's keys
   guards["inversion_passes"] = s.guard_checks.inversion_passes;
   guards["largest_energy_growth"] = number(s.guard_checks.largest_energy_growth);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace exdyn::output {
 
@@ -22,14 +23,28 @@ struct EnergySummary {
   double max_relative_error = 0.0;  // max |E_total(t) - E_total(0)| / max(E seen)
 };
 
-struct ContactSummary {
+struct ContactFigures {
   long projections = 0;
   double mean_iterations = 0.0;
   long max_iterations = 0;
   long not_converged = 0;
   long saddle_points = 0;
   double max_penetration_over_h = 0.0;
-  double penalty_stiffness = 0.0;
+  double penalty_stiffness = 0.0;  // the largest node (or point) pair stiffness used, N/m
+};
+
+// One contact pair's figures (contact.pairs.NAME).
+struct ContactPairSummary {
+  std::string name;
+  std::string slave_points;  // "nodes" or "quadrature"
+  std::string method;        // the local search method
+  ContactFigures figures;
+  double local_search_seconds = 0.0;  // wall time of the pair's local search, s
+  double max_force = 0.0;             // largest |total force on the slave side| over the steps, N
+};
+
+struct ContactSummary : ContactFigures {
+  std::vector<ContactPairSummary> pairs;  // deck order
 };
 
 // The run-time guards (docs/stability.md); an addition to the spec's keys.

@@ -7,6 +7,7 @@
 
 #include "common/errors.hpp"
 #include "contact/penalty.hpp"
+#include "contact/quadrature.hpp"
 #include "material/elastic.hpp"
 
 namespace exdyn::solver {
@@ -25,25 +26,76 @@ double dilatational_modulus(const input::Deck& deck, int part) {
   return material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density).dilatational_modulus();
 }
 
-// Area (m^2) of a quadrilateral: |d1 x d2| / 2 with its diagonals (exact when planar).
-double quad_area(const NodalVectors& x, const contact::Quad& q) {
-  const contact::Vec3 d1{x.x[q[2]] - x.x[q[0]], x.y[q[2]] - x.y[q[0]], x.z[q[2]] - x.z[q[0]]};
-  const contact::Vec3 d2{x.x[q[3]] - x.x[q[1]], x.y[q[3]] - x.y[q[1]], x.z[q[3]] - x.z[q[1]]};
-  return 0.5 * contact::norm(contact::cross(d1, d2));
+contact::SegmentNodes segment_nodes(const mesh::FaceSegment& face_segment) {
+  contact::SegmentNodes segment;
+  segment.type = face_segment.node_count == 8 ? contact::SegmentType::quad8 : contact::SegmentType::quad4;
+  segment.nodes = face_segment.nodes;
+  return segment;
+}
+
+contact::Segment reference_segment(const NodalVectors& x, const contact::SegmentNodes& ids) {
+  contact::Segment segment;
+  segment.type = ids.type;
+  for (int i = 0; i < contact::node_count(ids.type); ++i) {
+    const std::uint32_t n = ids.nodes[std::size_t(i)];
+    segment.nodes[std::size_t(i)] = {x.x[n], x.y[n], x.z[n]};
+  }
+  return segment;
+}
+
+// |a1 x a2| at xi: the area element of the segment, m^2 per unit xi1 xi2.
+double area_element(const contact::Segment& segment, contact::Xi xi) {
+  const contact::SurfacePoint p = contact::evaluate(segment, xi);
+  return contact::norm(contact::cross(p.a1, p.a2));
+}
+
+// The share of a segment's area (m^2) that each of its nodes carries for the
+// automatic stiffness of slave nodes. quad4: a quarter of the area |d1 x d2| / 2 of
+// its diagonals (exact when planar). quad8: the consistent nodal areas integral N_I dA
+// are negative at the corners (-A/12 on a flat square), so the areas are lumped like
+// the HRZ mass: integral N_I^2 dA, scaled to add up to the area (3x3 Gauss points).
+std::array<double, 8> nodal_areas(const NodalVectors& x, const contact::SegmentNodes& ids) {
+  std::array<double, 8> areas{};
+  const contact::Segment segment = reference_segment(x, ids);
+  if (ids.type == contact::SegmentType::quad4) {
+    const contact::Vec3 d1 = segment.nodes[2] - segment.nodes[0], d2 = segment.nodes[3] - segment.nodes[1];
+    const double quarter = 0.25 * 0.5 * contact::norm(contact::cross(d1, d2));
+    for (int i = 0; i < 4; ++i) areas[std::size_t(i)] = quarter;
+    return areas;
+  }
+  const contact::GaussLegendre rule = contact::gauss_legendre(3);
+  double area = 0.0, sum = 0.0;
+  std::array<double, 8> diagonal{};
+  for (int i = 0; i < rule.count; ++i)
+    for (int j = 0; j < rule.count; ++j) {
+      const contact::Xi xi{rule.abscissa[std::size_t(i)], rule.abscissa[std::size_t(j)]};
+      const double dA = rule.weight[std::size_t(i)] * rule.weight[std::size_t(j)] * area_element(segment, xi);
+      const std::array<double, 8> N = contact::shape_functions(ids.type, xi);
+      for (int k = 0; k < 8; ++k) diagonal[std::size_t(k)] += N[std::size_t(k)] * N[std::size_t(k)] * dA;
+      area += dA;
+    }
+  for (double d : diagonal) sum += d;
+  for (int k = 0; k < 8; ++k) areas[std::size_t(k)] = area * diagonal[std::size_t(k)] / sum;
+  return areas;
 }
 
 struct PassGeometry {
   contact::ContactSurfaces surfaces;
-  std::vector<double> area;                                          // tributary area of each slave node, m^2
+  std::vector<double> area;  // node mode: tributary area of each slave node, m^2
+  // quadrature mode: for each slave node, sum over the points of its segments of
+  // |N_I| weight sum_J |N_J|, m^2: the area over which its springs act (the cap).
+  std::vector<double> spring_area;
   double modulus = std::numeric_limits<double>::infinity();          // smallest M of the parts involved, Pa
   double smallest_length = std::numeric_limits<double>::infinity();  // m
 };
 
-PassGeometry pass_geometry(const input::Deck& deck, const Model& model,
+PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const input::ContactOptions& options,
                            const std::vector<input::FaceRef>& slave,
                            const std::vector<input::FaceRef>& master) {
   PassGeometry g;
   auto& s = g.surfaces;
+  s.quadrature = options.slave_points == input::SlavePoints::quadrature;
+  const NodalVectors& x = model.mesh.x_ref;
   std::vector<mesh::Face> slave_faces;
   for (const auto& f : slave) {
     slave_faces.push_back(mesh::face_of(model.mesh, f.part, f.side));
@@ -57,33 +109,109 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model,
     return static_cast<std::size_t>(std::lower_bound(s.slave_nodes.begin(), s.slave_nodes.end(), node) -
                                     s.slave_nodes.begin());
   };
+  std::vector<double> node_length(s.slave_nodes.size(), std::numeric_limits<double>::infinity());
   g.area.assign(s.slave_nodes.size(), 0.0);
-  s.normal_length.assign(s.slave_nodes.size(), std::numeric_limits<double>::infinity());
+  g.spring_area.assign(s.slave_nodes.size(), 0.0);
   for (std::size_t i = 0; i < slave.size(); ++i) {
     const double length =
         normal_element_length(deck.parts[static_cast<std::size_t>(slave[i].part)], slave[i].side);
     g.smallest_length = std::min(g.smallest_length, length);
-    for (const auto& quad : slave_faces[i].quads) {
-      const double quarter = 0.25 * quad_area(model.mesh.x_ref, quad);
-      for (std::uint32_t node : quad) g.area[slave_index(node)] += quarter;
-    }
     for (std::uint32_t node : slave_faces[i].nodes) {
-      double& l = s.normal_length[slave_index(node)];
+      double& l = node_length[slave_index(node)];
       l = std::min(l, length);
     }
+    for (const auto& face_segment : slave_faces[i].segments) {
+      const contact::SegmentNodes ids = segment_nodes(face_segment);
+      if (!s.quadrature) {
+        const std::array<double, 8> areas = nodal_areas(x, ids);
+        for (int k = 0; k < contact::node_count(ids.type); ++k)
+          g.area[slave_index(ids.nodes[std::size_t(k)])] += areas[std::size_t(k)];
+        continue;
+      }
+      // Gauss points of the slave segment: n x n, n = quadrature (default 2 on
+      // quad4, 3 on quad8), weight w_i w_j |a1 x a2| on the reference segment.
+      const int n = options.quadrature.value_or(ids.type == contact::SegmentType::quad4 ? 2 : 3);
+      const contact::GaussLegendre rule = contact::gauss_legendre(n);
+      const contact::Segment segment = reference_segment(x, ids);
+      const auto segment_index = static_cast<std::uint32_t>(s.slave_segments.size());
+      s.slave_segments.push_back(ids);
+      for (int b = 0; b < rule.count; ++b)
+        for (int a = 0; a < rule.count; ++a) {
+          contact::QuadraturePoint point;
+          point.segment = segment_index;
+          point.xi = {rule.abscissa[std::size_t(a)], rule.abscissa[std::size_t(b)]};
+          point.weight = rule.weight[std::size_t(a)] * rule.weight[std::size_t(b)] * area_element(segment, point.xi);
+          s.quadrature_points.push_back(point);
+          s.normal_length.push_back(length);
+          const std::array<double, 8> N = contact::shape_functions(ids.type, point.xi);
+          double absolute_sum = 0.0;
+          for (int k = 0; k < contact::node_count(ids.type); ++k) absolute_sum += std::abs(N[std::size_t(k)]);
+          for (int k = 0; k < contact::node_count(ids.type); ++k)
+            g.spring_area[slave_index(ids.nodes[std::size_t(k)])] +=
+                std::abs(N[std::size_t(k)]) * point.weight * absolute_sum;
+        }
+    }
   }
+  if (!s.quadrature) s.normal_length = node_length;
   for (const auto& f : master) {
     const mesh::Face face = mesh::face_of(model.mesh, f.part, f.side);
-    s.segments.insert(s.segments.end(), face.quads.begin(), face.quads.end());
+    for (const auto& face_segment : face.segments) s.segments.push_back(segment_nodes(face_segment));
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
     g.smallest_length = std::min(g.smallest_length,
                                  normal_element_length(deck.parts[static_cast<std::size_t>(f.part)], f.side));
   }
   s.moving_nodes = s.slave_nodes;
-  for (const auto& quad : s.segments) s.moving_nodes.insert(s.moving_nodes.end(), quad.begin(), quad.end());
+  for (const auto& segment : s.segments)
+    s.moving_nodes.insert(s.moving_nodes.end(), segment.nodes.begin(),
+                          segment.nodes.begin() + contact::node_count(segment.type));
   std::sort(s.moving_nodes.begin(), s.moving_nodes.end());
   s.moving_nodes.erase(std::unique(s.moving_nodes.begin(), s.moving_nodes.end()), s.moving_nodes.end());
   return g;
+}
+
+// The largest 1/m of the master nodes of a pass, 1/kg.
+double largest_master_inverse_mass(const Model& model, const contact::ContactSurfaces& s) {
+  double largest = 0.0;
+  for (const auto& segment : s.segments)
+    for (int k = 0; k < contact::node_count(segment.type); ++k)
+      largest = std::max(largest, 1.0 / model.mass[segment.nodes[std::size_t(k)]]);
+  return largest;
+}
+
+// The stiffness of each quadrature point, N/m: kappa (Pa/m) times its weight, kappa
+// the deck's fixed value or the automatic scale 8 M / L capped per slave segment so
+// that no slave node's springs together exceed the frequency caps of penalty.hpp:
+// kappa a_I <= scale min(accurate, stable bound) for 1/m_I + the largest master 1/m,
+// with a_I the node's spring area (PassGeometry::spring_area).
+void quadrature_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g, double dt,
+                          double courant) {
+  auto& s = g.surfaces;
+  const double master_inverse_mass = largest_master_inverse_mass(model, s);
+  std::vector<double> segment_kappa(s.slave_segments.size(), std::numeric_limits<double>::infinity());
+  for (std::size_t seg = 0; seg < s.slave_segments.size(); ++seg) {
+    const contact::SegmentNodes& ids = s.slave_segments[seg];
+    for (int k = 0; k < contact::node_count(ids.type); ++k) {
+      const std::uint32_t node = ids.nodes[std::size_t(k)];
+      const std::size_t i = static_cast<std::size_t>(
+          std::lower_bound(s.slave_nodes.begin(), s.slave_nodes.end(), node) - s.slave_nodes.begin());
+      const double inverse_mass = 1.0 / model.mass[node] + master_inverse_mass;
+      const double cap = options.penalty.scale *
+                         std::min(contact::accurate_stiffness_bound(dt, inverse_mass),
+                                  contact::stable_stiffness_bound(dt, courant, options.penalty.damping, inverse_mass));
+      segment_kappa[seg] = std::min(segment_kappa[seg], cap / g.spring_area[i]);
+    }
+  }
+  s.stiffness.resize(s.quadrature_points.size());
+  for (std::size_t p = 0; p < s.quadrature_points.size(); ++p) {
+    const contact::QuadraturePoint& q = s.quadrature_points[p];
+    double kappa = 0.0;  // Pa/m
+    if (options.penalty.stiffness)
+      kappa = *options.penalty.stiffness;
+    else
+      kappa = std::min(options.penalty.scale * contact::automatic_pressure_stiffness(g.modulus, s.normal_length[p]),
+                       segment_kappa[q.segment]);
+    s.stiffness[p] = kappa * q.weight;
+  }
 }
 
 // A fixed penalty stiffness that no contact could carry stably is bad input: even
@@ -91,20 +219,30 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model,
 // (inverse mass 1/m_s, the most favourable case), k exceeds the bound of
 // penalty.hpp for this step, Courant number and damping.
 void refuse_unstable_stiffness(const input::Deck& deck, const Model& model, const ContactPair& pair,
-                               const input::ContactOptions& options, std::size_t index, double dt,
-                               double courant) {
-  double heaviest = 0.0;  // kg
-  for (const auto& pass : pair.passes)
-    for (const std::uint32_t node : pass.slave_nodes) heaviest = std::max(heaviest, model.mass[node]);
-  const double bound = contact::stable_stiffness_bound(dt, courant, options.penalty.damping, 1.0 / heaviest);
+                               const std::vector<PassGeometry>& geometry, const input::ContactOptions& options,
+                               std::size_t index, double dt, double courant) {
+  // Nodes: the bound of the heaviest slave node. Quadrature points: kappa a_I for the
+  // node whose bound / a_I is largest, the most favourable.
+  double bound = 0.0;
+  for (const auto& g : geometry) {
+    const auto& pass = g.surfaces;
+    for (std::size_t i = 0; i < pass.slave_nodes.size(); ++i) {
+      const double node_bound =
+          contact::stable_stiffness_bound(dt, courant, options.penalty.damping, 1.0 / model.mass[pass.slave_nodes[i]]);
+      bound = std::max(bound, pass.quadrature ? node_bound / g.spring_area[i] : node_bound);
+    }
+  }
   if (*options.penalty.stiffness <= bound) return;
-  char text[400];
+  const bool quadrature = options.slave_points == input::SlavePoints::quadrature;
+  const char* units = quadrature ? "Pa/m" : "N/m";
+  char text[440];
   std::snprintf(
       text, sizeof text,
-      "%.4g N/m is above the stability bound of this mesh and time step: no contact of pair '%s' can be "
-      "stable with k > %.4g N/m (dt = %.4g s, Courant %.3g, damping %.3g; docs/contact.md). Lower it, "
+      "%.4g %s is above the stability bound of this mesh and time step: no contact of pair '%s' can be "
+      "stable with %s > %.4g %s (dt = %.4g s, Courant %.3g, damping %.3g; docs/contact.md). Lower it, "
       "use penalty: {scale: s} (the automatic rule), or lower time.courant",
-      *options.penalty.stiffness, pair.name.c_str(), bound, dt, courant, options.penalty.damping);
+      *options.penalty.stiffness, units, pair.name.c_str(), quadrature ? "kappa" : "k", bound, units, dt, courant,
+      options.penalty.damping);
   throw InputError(SourceLocation{deck.source_file, 0, 0},
                    "contact[" + std::to_string(index) + "].penalty.stiffness", text);
 }
@@ -116,23 +254,30 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
   for (const auto& options : deck.contact) {
     ContactPair pair;
     pair.name = options.name;
+    pair.slave_points = options.slave_points;
     const int pass_count = options.two_pass ? 2 : 1;
     double smallest_length = std::numeric_limits<double>::infinity();
+    std::vector<PassGeometry> geometry;
     for (int p = 0; p < pass_count; ++p) {
-      PassGeometry g = p == 0 ? pass_geometry(deck, model, options.slave, options.master)
-                              : pass_geometry(deck, model, options.master, options.slave);
+      geometry.push_back(p == 0 ? pass_geometry(deck, model, options, options.slave, options.master)
+                                : pass_geometry(deck, model, options, options.master, options.slave));
+      PassGeometry& g = geometry.back();
       smallest_length = std::min(smallest_length, g.smallest_length);
       auto& s = g.surfaces;
+      if (s.quadrature) {
+        quadrature_stiffness(options, model, g, dt, dt / critical_dt);
+        continue;
+      }
       s.stiffness.resize(s.slave_nodes.size());
       for (std::size_t i = 0; i < s.slave_nodes.size(); ++i)
         s.stiffness[i] = options.penalty.stiffness
                              ? *options.penalty.stiffness
                              : options.penalty.scale *
                                    contact::automatic_stiffness(g.modulus, g.area[i], s.normal_length[i]);
-      pair.passes.push_back(std::move(s));
     }
     if (options.penalty.stiffness)
-      refuse_unstable_stiffness(deck, model, pair, options, contact.pairs.size(), dt, dt / critical_dt);
+      refuse_unstable_stiffness(deck, model, pair, geometry, options, contact.pairs.size(), dt, dt / critical_dt);
+    for (auto& g : geometry) pair.passes.push_back(std::move(g.surfaces));
     auto& settings = pair.settings;
     settings.project = contact::select_method(options.local_search.method);
     settings.projection.method = options.local_search.method;
@@ -158,6 +303,19 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
   std::sort(contact.nodes.begin(), contact.nodes.end());
   contact.nodes.erase(std::unique(contact.nodes.begin(), contact.nodes.end()), contact.nodes.end());
   return contact;
+}
+
+contact::Vec3 ContactPair::slave_force() const {
+  contact::Vec3 force{};
+  for (std::size_t p = 0; p < states.size(); ++p)
+    force = p == 0 ? force + states[p].slave_force : force - states[p].slave_force;
+  return force;
+}
+
+double ContactPair::max_penetration() const {
+  double deepest = 0.0;
+  for (const auto& state : states) deepest = std::max(deepest, state.max_penetration);
+  return deepest;
 }
 
 std::string ContactModel::pair_of(std::uint32_t node) const {

@@ -13,9 +13,20 @@ namespace exdyn::solver {
 
 struct ContactPair {
   std::string name;
+  input::SlavePoints slave_points = input::SlavePoints::nodes;
   contact::ContactPassSettings settings;
   std::vector<contact::ContactSurfaces> passes;  // slave -> master, and master -> slave if two_pass
   std::vector<contact::ContactPassState> states;
+  // Accumulated over the run (contact.pairs.NAME of the summary).
+  contact::ContactStatistics statistics;
+  contact::ContactPhaseSeconds seconds;
+  double max_force = 0.0;  // largest |force on the slave side| of a step, N
+
+  // This step's total contact force on the pair's slave side (N): the first pass's
+  // slave-side force minus the second pass's (whose slave side is the pair's master side).
+  contact::Vec3 slave_force() const;
+  // This step's deepest penetration of either pass, m.
+  double max_penetration() const;
 };
 
 struct ContactModel {

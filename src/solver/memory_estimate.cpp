@@ -13,6 +13,7 @@
 #include "common/nodal_vectors.hpp"
 #include "element/hex8.hpp"
 #include "element/hex8r.hpp"
+#include "element/hex20.hpp"
 
 namespace exdyn::solver {
 
@@ -23,7 +24,16 @@ static_assert(bytes_per_element_besides_reference == 8 * sizeof(std::uint32_t) +
                                                          (6 + 1) * sizeof(double) + 8 * sizeof(std::int64_t));
 
 std::uint64_t bytes_per_element(const input::PartOptions& part) {
-  // The layouts element_block.cpp chooses: a regular box is made of parallelepipeds.
+  if (input::is_quadratic(part.formulation)) {
+    // hex20_family.cpp: the general reference data of every element (kept for a
+    // distorted part, replaced by a few shared matrices for a box), 20 node ids, the
+    // int64 connectivity written to HDF5 and the group index of each element.
+    const int gauss_points = part.formulation == input::Formulation::hex20 ? 27 : 8;
+    return 20 * sizeof(std::uint32_t) + sizeof(std::int32_t) + (6 + 1) * sizeof(double) +
+           20 * sizeof(std::int64_t) + sizeof(std::uint32_t) +
+           8 * static_cast<std::uint64_t>(element::hex20::reference_size(gauss_points));
+  }
+  // The layouts hex8_family.cpp chooses: a regular box is made of parallelepipeds.
   const bool hex8 = part.formulation == input::Formulation::hex8;
   const int reference_doubles = part.perturbation_fraction > 0.0
                                     ? (hex8 ? element::hex8::reference_size : element::hex8r::reference_size)
@@ -67,6 +77,27 @@ double grid_count_real(const std::array<int, 3>& n, int offset) {
   return (double(n[0]) + offset) * (double(n[1]) + offset) * (double(n[2]) + offset);
 }
 
+// Nodes of a part: the grid points, and for a 20-node part the mid-edge points
+// (nx (ny+1) (nz+1) and its two permutations), exact or saturated.
+std::uint64_t node_count(const input::PartOptions& part, const std::array<int, 3>& n) {
+  std::uint64_t count = grid_count(n, 1);
+  if (!input::is_quadratic(part.formulation)) return count;
+  for (int axis = 0; axis < 3; ++axis) {
+    std::array<int, 3> edges = n;
+    for (int other = 0; other < 3; ++other)
+      if (other != axis) edges[static_cast<std::size_t>(other)] += 1;
+    count = sum(count, grid_count(edges, 0));
+  }
+  return count;
+}
+double node_count_real(const input::PartOptions& part, const std::array<int, 3>& n) {
+  double count = grid_count_real(n, 1);
+  if (input::is_quadratic(part.formulation))
+    count += double(n[0]) * (n[1] + 1.0) * (n[2] + 1.0) + (n[0] + 1.0) * double(n[1]) * (n[2] + 1.0) +
+             (n[0] + 1.0) * (n[1] + 1.0) * double(n[2]);
+  return count;
+}
+
 // "123456" when exact, "about 1e+15" when it saturated 64 bits.
 std::string format_count(std::uint64_t count, double real) {
   if (count != saturated) return std::to_string(count);
@@ -91,9 +122,9 @@ MemoryEstimate estimate_memory(const input::Deck& deck) {
   MemoryEstimate estimate;
   for (const input::PartOptions& part : deck.parts) {
     const std::array<int, 3> n = element_counts(part);
-    estimate.nodes = sum(estimate.nodes, grid_count(n, 1));
+    estimate.nodes = sum(estimate.nodes, node_count(part, n));
     estimate.elements = sum(estimate.elements, grid_count(n, 0));
-    estimate.bytes += grid_count_real(n, 1) * double(bytes_per_node) +
+    estimate.bytes += node_count_real(part, n) * double(bytes_per_node) +
                       grid_count_real(n, 0) * double(bytes_per_element(part));
   }
   return estimate;
@@ -127,7 +158,7 @@ void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> avail
   for (std::size_t p = 0; p < deck.parts.size(); ++p) {
     const input::PartOptions& part = deck.parts[p];
     const std::array<int, 3> n = element_counts(part);
-    nodes_real += grid_count_real(n, 1);
+    nodes_real += node_count_real(part, n);
     elements_real += grid_count_real(n, 0);
     least = std::min(least, bytes_per_element(part));
     most = std::max(most, bytes_per_element(part));

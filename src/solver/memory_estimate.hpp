@@ -22,9 +22,12 @@ namespace exdyn::solver {
 //   per element, 156 B besides the element block's reference data: 8 node ids 32 B
 //     and the part index 4 B (mesh); stress 6 doubles and von Mises 1 (time loop,
 //     step writer); the int64 connectivity written to HDF5 64 B
-//   reference data per element (element_block.cpp): the parallelepiped kernels'
+//   reference data per element (hex8_family.cpp): the parallelepiped kernels'
 //     at most 11 doubles for a regular box; a distorted part (perturbation) runs the
 //     general kernels, 81 doubles (hex8) or 36 (hex8r)
+//   20-node parts (hex20_family.cpp): 20 node ids, the int64 connectivity, and the
+//     general reference data while the block is built, 271 doubles (hex20) or 81
+//     (hex20r); a part has about 4 nodes per element
 // Not counted: arrays of the contact faces and fixed faces (they grow with the
 // surface, not the volume) and the program itself.
 inline constexpr std::uint64_t bytes_per_node = 31 * 8;

@@ -23,7 +23,7 @@ Model build_model(const input::Deck& deck) {
     model.blocks.push_back(element::make_element_block(
         part.formulation, material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density),
         part.hourglass_coefficient, range.first_element, range.element_count,
-        model.mesh.connectivity.data() + 8 * std::size_t(range.first_element), model.mesh.x_ref));
+        model.mesh.connectivity.data() + range.first_connectivity, model.mesh.x_ref));
     element::add_lumped_mass(model.blocks.back(), model.mesh.x_ref, model.mass);
   }
   model.inverse_mass.resize(node_count);
@@ -34,7 +34,7 @@ Model build_model(const input::Deck& deck) {
   for (const auto& bc : deck.boundary_conditions)
     for (const auto& face_ref : bc.faces) {
       const mesh::Face face = mesh::face_of(model.mesh, face_ref.part, face_ref.side);
-      for (int c = 0; c < 3; ++c)
+      for (int c = 0; c < 3; ++c)  // every node of the face, mid-side nodes included
         if (bc.fix[c])
           model.fixed_nodes[c].insert(model.fixed_nodes[c].end(), face.nodes.begin(), face.nodes.end());
     }

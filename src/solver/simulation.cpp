@@ -76,19 +76,20 @@ element::ElementEnergies compute_internal_forces(const Model& model, State& stat
 // The contact pass of every pair at x^n = x_ref + u^n with v^{n-1/2}; then the
 // work done against the contact forces (trapezoidal rule):
 //   E_c^n = E_c^{n-1} - 1/2 (f_c^{n-1} + f_c^n).(u^n - u^{n-1}),  u^n - u^{n-1} = dt v^{n-1/2}.
-void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt,
-                            contact::ContactStatistics& statistics, contact::ContactPhaseSeconds& seconds) {
+void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt) {
   std::swap(state.contact_force, state.previous_contact_force);
   for (std::uint32_t node : contact.nodes) {
     state.contact_force.x[node] = state.contact_force.y[node] = state.contact_force.z[node] = 0.0;
     state.previous_gap[node] = state.gap[node];
     state.gap[node] = std::numeric_limits<double>::infinity();
   }
-  for (auto& pair : contact.pairs)
+  for (auto& pair : contact.pairs) {
     for (std::size_t p = 0; p < pair.passes.size(); ++p)
       contact::run_contact_pass(pair.passes[p], pair.settings, pair.states[p], model.mesh.x_ref,
-                                state.displacement, state.velocity, model.mass, state.contact_force,
-                                state.gap, statistics, seconds);
+                                state.displacement, state.velocity, model.mass, state.contact_force, state.gap,
+                                pair.statistics, pair.seconds);
+    pair.max_force = std::max(pair.max_force, contact::norm(pair.slave_force()));
+  }
   double power = 0.0;  // (f_c^{n-1} + f_c^n).v^{n-1/2}, W x 2
   for (std::uint32_t node : contact.nodes) {
     if (state.gap[node] == std::numeric_limits<double>::infinity()) state.gap[node] = 0.0;  // no candidate
@@ -97,6 +98,36 @@ void compute_contact_forces(const Model& model, ContactModel& contact, State& st
              (state.previous_contact_force.z[node] + state.contact_force.z[node]) * state.velocity.z[node];
   }
   state.contact_energy -= 0.5 * dt * power;
+}
+
+// The figures of all pairs together (the run's), from each pair's.
+contact::ContactStatistics total_statistics(const ContactModel& contact) {
+  contact::ContactStatistics total;
+  for (const auto& pair : contact.pairs) {
+    const contact::ContactStatistics& s = pair.statistics;
+    total.projections += s.projections;
+    total.iterations += s.iterations;
+    total.max_iterations = std::max(total.max_iterations, s.max_iterations);
+    total.not_converged += s.not_converged;
+    total.saddle_points += s.saddle_points;
+    if (s.max_penetration_over_h > total.max_penetration_over_h) {
+      total.max_penetration_over_h = s.max_penetration_over_h;
+      total.deepest_node = s.deepest_node;
+    }
+    total.max_pair_stiffness = std::max(total.max_pair_stiffness, s.max_pair_stiffness);
+  }
+  return total;
+}
+
+// This step's row of each pair's history.
+std::vector<output::ContactHistoryRow> contact_history(const ContactModel& contact) {
+  std::vector<output::ContactHistoryRow> rows;
+  rows.reserve(contact.pairs.size());
+  for (const auto& pair : contact.pairs) {
+    const contact::Vec3 f = pair.slave_force();
+    rows.push_back({{f.x, f.y, f.z}, pair.max_penetration()});
+  }
+  return rows;
 }
 
 // a = M^-1 (f_contact - f_int); the fixed components get a = 0 so that they keep v = 0.
@@ -252,9 +283,8 @@ class StepWriter {
   std::vector<double> von_mises_;
 };
 
-void summarise_contact(const contact::ContactStatistics& statistics,
-                       const contact::ContactPhaseSeconds& seconds, output::RunSummary& summary) {
-  auto& c = summary.contact;
+output::ContactFigures contact_figures(const contact::ContactStatistics& statistics) {
+  output::ContactFigures c;
   c.projections = statistics.projections;
   c.mean_iterations = statistics.projections > 0 ? static_cast<double>(statistics.iterations) /
                                                        static_cast<double>(statistics.projections)
@@ -264,9 +294,30 @@ void summarise_contact(const contact::ContactStatistics& statistics,
   c.saddle_points = statistics.saddle_points;
   c.max_penetration_over_h = statistics.max_penetration_over_h;
   c.penalty_stiffness = statistics.max_pair_stiffness;
-  summary.phase_seconds.contact_global_search = seconds.global_search;
-  summary.phase_seconds.contact_local_search = seconds.local_search;
-  summary.phase_seconds.contact_forces = seconds.forces;
+  return c;
+}
+
+void summarise_contact(const ContactModel& contact, const contact::ContactStatistics& statistics,
+                       output::RunSummary& summary) {
+  static_cast<output::ContactFigures&>(summary.contact) = contact_figures(statistics);
+  summary.contact.pairs.resize(contact.pairs.size());
+  double global_search = 0.0, local_search = 0.0, forces = 0.0;
+  for (std::size_t k = 0; k < contact.pairs.size(); ++k) {
+    const ContactPair& pair = contact.pairs[k];
+    output::ContactPairSummary& out = summary.contact.pairs[k];
+    out.name = pair.name;
+    out.slave_points = input::name(pair.slave_points);
+    out.method = std::string(contact::name(pair.settings.projection.method));
+    out.figures = contact_figures(pair.statistics);
+    out.local_search_seconds = pair.seconds.local_search;
+    out.max_force = pair.max_force;
+    global_search += pair.seconds.global_search;
+    local_search += pair.seconds.local_search;
+    forces += pair.seconds.forces;
+  }
+  summary.phase_seconds.contact_global_search = global_search;
+  summary.phase_seconds.contact_local_search = local_search;
+  summary.phase_seconds.contact_forces = forces;
 }
 
 }  // namespace
@@ -290,10 +341,15 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
 
   const std::string directory =
       controls.output_directory.empty() ? deck.output.directory : controls.output_directory;
+  std::vector<std::uint8_t> element_nodes(model.mesh.element_count());
+  for (std::size_t e = 0; e < element_nodes.size(); ++e)
+    element_nodes[e] = static_cast<std::uint8_t>(model.mesh.nodes_of(e));
+  std::vector<std::string> pair_names;
+  for (const auto& pair : contact.pairs) pair_names.push_back(pair.name);
   output::ResultWriter writer(
       directory, deck.name,
-      output::MeshView{&model.mesh.x_ref, &model.mesh.connectivity, &model.mesh.element_part},
-      deck.output.fields);
+      output::MeshView{&model.mesh.x_ref, &model.mesh.connectivity, &model.mesh.element_part, &element_nodes},
+      deck.output.fields, pair_names);
   const std::string summary_path = (std::filesystem::path(directory) / (deck.name + ".json")).string();
 
   State state;
@@ -311,8 +367,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   StepWriter step_writer(writer, model);
 
   output::PhaseSeconds& phase = summary.phase_seconds;
-  contact::ContactStatistics contact_statistics;
-  contact::ContactPhaseSeconds contact_seconds;
+  contact::ContactStatistics contact_statistics;  // all pairs together, updated every step
   Stopwatch loop_watch;
   double last_progress = -1.0;
   double initial_total = 0.0, largest_energy = 0.0, max_energy_error = 0.0;
@@ -339,7 +394,8 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
     ScopedTimer timer(phase.output);
     if (state.step > last_written) {
       writer.add_history({state.time, energy.kinetic, energy.internal, energy.contact, energy.hourglass,
-                          energy.external_work, energy.total()});
+                          energy.external_work, energy.total()},
+                         contact_history(contact));
       step_writer.write(state, dt);
       last_written = state.step;
     }
@@ -371,7 +427,8 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
         energy.hourglass = element_energy.hourglass;
       }
       if (!contact.pairs.empty()) {
-        compute_contact_forces(model, contact, state, dt, contact_statistics, contact_seconds);
+        compute_contact_forces(model, contact, state, dt);
+        contact_statistics = total_statistics(contact);
         energy.contact = state.contact_energy;
       }
       {
@@ -398,7 +455,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       if (largest_energy > 0.0)
         max_energy_error = std::max(max_energy_error, std::abs(total - initial_total) / largest_energy);
       summary.energy = {initial_total, total, max_energy_error};
-      summarise_contact(contact_statistics, contact_seconds, summary);
+      summarise_contact(contact, contact_statistics, summary);
 
       {  // the guards of docs/stability.md; the state of step n is finite here
         ScopedTimer timer(phase.guards);
@@ -432,8 +489,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
             const element::InvertedElement inverted =
                 element::find_inverted_element(block, model.mesh.x_ref, state.displacement);
             if (inverted.found) {
-              const std::uint32_t node =
-                  model.mesh.connectivity[8 * std::size_t(inverted.element) + std::size_t(inverted.corner)];
+              const std::uint32_t node = model.mesh.element_nodes(inverted.element)[inverted.corner];
               char detail[160];
               std::snprintf(detail, sizeof detail, " (det J = %.3g m^3 at its corner node %u)",
                             inverted.det_jacobian, node);
@@ -452,7 +508,8 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
         ScopedTimer timer(phase.output);
         if (state.step % deck.output.history_every == 0 || last)
           writer.add_history({state.time, energy.kinetic, energy.internal, energy.contact, energy.hourglass,
-                              energy.external_work, total});
+                              energy.external_work, total},
+                             contact_history(contact));
         if (state.step % deck.output.every == 0 || last) {
           step_writer.write(state, dt);
           last_written = state.step;

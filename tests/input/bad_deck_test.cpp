@@ -42,7 +42,7 @@ const BadDeck bad_decks[] = {
     {"elements_two_entries.yaml", "parts[0].elements", 8, "expected a list of 3 integers >= 1"},
     {"duplicate_part_names.yaml", "parts[1].name", 10, "part name 'plate_a' is used twice"},
     {"unknown_formulation.yaml", "parts[0].formulation", 10,
-     "unknown formulation 'hex20'; expected hex8, hex8r"},
+     "unknown formulation 'tet4'; expected hex8, hex8r, hex20, hex20r"},
     {"unknown_local_search_method.yaml", "contact[0].local_search.method", 21,
      "unknown local search method 'bgfs'; did you mean 'bfgs'?"},
     {"unknown_output_field.yaml", "output.fields[1]", 14, "unknown output field 'strain'"},
@@ -70,6 +70,12 @@ const BadDeck bad_decks[] = {
      "expected a number in [0, 0.5) (a fraction of the element length h), got 0.5: at 0.5 or more a node can "
      "reach or pass its neighbour"},
     {"perturbation_seed_negative.yaml", "parts[0].perturbation.seed", 12, "expected an integer >= 0, got -1"},
+    {"hourglass_on_hex20.yaml", "parts[0].hourglass", 11, "hourglass applies to hex8r parts"},
+    {"quadrature_zero.yaml", "contact[0].quadrature", 21,
+     "expected an integer from 1 to 6 (Gauss points per direction on each slave segment), got 0"},
+    {"unknown_slave_points.yaml", "contact[0].slave_points", 20,
+     "unknown slave points 'gauss'; expected nodes, quadrature"},
+    {"contact_name_with_slash.yaml", "contact[0].name", 17, "expected a contact pair name without '/'"},
 };
 
 class BadDeckTest : public ::testing::TestWithParam<BadDeck> {};

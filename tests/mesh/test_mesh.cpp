@@ -93,8 +93,10 @@ TEST(Mesh, EveryFaceQuadNormalPointsOutOfThePart) {
       const int axis = static_cast<int>(side) / 2;
       const int a = (axis + 1) % 3, b = (axis + 2) % 3;
       EXPECT_EQ(face.nodes.size(), std::size_t((n[a] + 1) * (n[b] + 1)));
-      EXPECT_EQ(face.quads.size(), std::size_t(n[a] * n[b]));
-      for (const auto& q : face.quads) {
+      EXPECT_EQ(face.segments.size(), std::size_t(n[a] * n[b]));
+      for (const auto& segment : face.segments) {
+        EXPECT_EQ(segment.node_count, 4);
+        const auto& q = segment.nodes;
         const auto normal =
             cross(minus(point(mesh, q[1]), point(mesh, q[0])), minus(point(mesh, q[3]), point(mesh, q[0])));
         const double length =

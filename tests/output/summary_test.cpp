@@ -51,7 +51,7 @@ RunSummary example() {
   s.element_cycles_per_second = 716800.0;
   s.phase_seconds = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0};
   s.energy = {10.0, 9.5, 0.05};
-  s.contact = {1000, 3.5, 12, 2, 1, 0.01, 1.5e9};
+  static_cast<ContactFigures&>(s.contact) = {1000, 3.5, 12, 2, 1, 0.01, 1.5e9};
   return s;
 }
 
@@ -65,7 +65,7 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
   EXPECT_EQ(keys,
             (std::vector<std::string>{"name", "status", "message", "exdyn_version", "threads", "mesh",
                                       "steps", "dt", "end_time", "wall_seconds", "element_cycles_per_second",
-                                      "phase_seconds", "energy", "contact", "guards"}));
+                                      "phase_seconds", "energy", "contact", "mpi", "guards"}));
   EXPECT_EQ(j["name"], "plate_impact");
   EXPECT_EQ(j["status"], "completed");
   EXPECT_EQ(j["message"], "");
@@ -92,7 +92,9 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                                 {"not_converged", 2},
                                 {"saddle_points", 1},
                                 {"max_penetration_over_h", 0.01},
-                                {"penalty_stiffness", 1.5e9}}));
+                                {"penalty_stiffness", 1.5e9},
+                                {"pairs", Json::object()}}));
+  EXPECT_EQ(j["mpi"], (Json{{"ranks", 1}}));
   for (const char* integer : {"projections", "max_iterations", "not_converged", "saddle_points"}) {
     EXPECT_TRUE(j["contact"][integer].is_number_integer()) << integer;
   }

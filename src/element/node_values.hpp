@@ -1,0 +1,18 @@
+// Values at the nodes of one element: the local data of the element kernels.
+#pragma once
+
+#include <array>
+
+namespace exdyn::element {
+
+// One vector per node of one element (or of an element pair, Real = Pack2), the
+// components apart: x[I], y[I], z[I] for local node I.
+template <int Nodes, class Real = double>
+struct NodeValues {
+  std::array<Real, Nodes> x, y, z;
+  NodeValues() : x{}, y{}, z{} {}  // zero
+  struct Uninitialized {};          // for arrays written whole before they are read
+  explicit NodeValues(Uninitialized) {}
+};
+
+}  // namespace exdyn::element

@@ -1,0 +1,123 @@
+// The deck's contact pairs: penalty, global and local search settings.
+#include "input/deck_validator.hpp"
+
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "input/text_tools.hpp"
+
+namespace exdyn::input::deck {
+
+PenaltyOptions DeckValidator::penalty(const YAML::Node& node, const std::string& path) const {
+  PenaltyOptions result;
+  if (node.IsNull()) return result;
+  check_map(node, path, {"scale", "stiffness", "damping"});
+  const YAML::Node scale = optional(node, "scale");
+  const YAML::Node stiffness = optional(node, "stiffness");
+  if (scale.IsDefined())
+    result.scale = number_where(scale, child_path(path, "scale"), "a number > 0", positive);
+  if (stiffness.IsDefined()) {
+    const std::string stiffness_path = child_path(path, "stiffness");
+    result.stiffness = number_where(stiffness, stiffness_path, "a number > 0 (force per length; pressure per length with slave_points: quadrature)", positive);
+    if (scale.IsDefined())
+      fail(stiffness, stiffness_path,
+           "give either scale (times the automatic stiffness) or stiffness (a fixed value), not both; "
+           "scale is given " +
+               position_text(scale, child_path(path, "scale")));
+  }
+  if (const YAML::Node damping = optional(node, "damping"); damping.IsDefined())
+    result.damping = number_where(damping, child_path(path, "damping"), "a number >= 0", non_negative);
+  return result;
+}
+
+GlobalSearchOptions DeckValidator::global_search(const YAML::Node& node, const std::string& path) const {
+  GlobalSearchOptions result;
+  if (node.IsNull()) return result;
+  check_map(node, path, {"cell_size"});
+  if (const YAML::Node cell_size = optional(node, "cell_size"); cell_size.IsDefined()) {
+    if (cell_size.IsScalar() && !is_quoted(cell_size) && cell_size.Scalar() == "auto") return result;
+    result.cell_size =
+        number_where(cell_size, child_path(path, "cell_size"), "a number > 0 or auto", positive);
+  }
+  return result;
+}
+
+LocalSearchOptions DeckValidator::local_search(const YAML::Node& node, const std::string& path) const {
+  LocalSearchOptions result;
+  if (node.IsNull()) return result;
+  check_map(node, path, {"method", "tolerance", "max_iterations", "initial_guess"});
+  if (const YAML::Node method = optional(node, "method"); method.IsDefined())
+    result.method =
+        contact::search_method_names[choice(method, child_path(path, "method"), "local search method",
+                                            names_of(contact::search_method_names))]
+            .first;
+  if (const YAML::Node tolerance = optional(node, "tolerance"); tolerance.IsDefined())
+    result.tolerance = number_where(tolerance, child_path(path, "tolerance"), "a number > 0", positive);
+  if (const YAML::Node iterations = optional(node, "max_iterations"); iterations.IsDefined())
+    result.max_iterations =
+        integer_where(iterations, child_path(path, "max_iterations"), "an integer >= 1", 1);
+  if (const YAML::Node guess = optional(node, "initial_guess"); guess.IsDefined())
+    result.initial_guess =
+        contact::initial_guess_names[choice(guess, child_path(path, "initial_guess"), "initial guess",
+                                            names_of(contact::initial_guess_names))]
+            .first;
+  return result;
+}
+
+std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node, const std::string& path,
+                                                         const std::vector<PartOptions>& parts) const {
+  std::vector<ContactOptions> result;
+  if (node.IsNull()) return result;
+  check_sequence(node, path, "a list of contact pairs");
+  std::map<std::string, std::size_t> index_by_name;
+  for (std::size_t c = 0; c < node.size(); ++c) {
+    const std::string pair_path = child_path(path, c);
+    const YAML::Node entry = node[c];
+    check_map(entry, pair_path,
+              {"name", "slave", "master", "two_pass", "slave_points", "quadrature", "penalty", "search",
+               "local_search"});
+    ContactOptions pair;
+    const std::string name_path = child_path(pair_path, "name");
+    const YAML::Node name_node = required(entry, pair_path, "name");
+    pair.name = text(name_node, name_path, "a contact pair name");
+    // The name is an HDF5 group, /history/contact/NAME (docs/output.md).
+    if (pair.name.find('/') != std::string::npos || pair.name == "." || pair.name == "..")
+      fail(name_node, name_path,
+           "expected a contact pair name without '/' (it names the group /history/contact/NAME of the "
+           "results), got '" + pair.name + "'");
+    const auto [first, inserted] = index_by_name.emplace(pair.name, c);
+    if (!inserted)
+      fail(name_node, name_path,
+           "contact pair name '" + pair.name + "' is used twice (first by " +
+               child_path(path, first->second) + ")");
+    pair.slave = face_list(required(entry, pair_path, "slave"), child_path(pair_path, "slave"), parts);
+    pair.master = face_list(required(entry, pair_path, "master"), child_path(pair_path, "master"), parts);
+    if (const YAML::Node two_pass = optional(entry, "two_pass"); two_pass.IsDefined())
+      pair.two_pass = boolean(two_pass, child_path(pair_path, "two_pass"));
+    if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined())
+      pair.slave_points = all_slave_points[choice(points, child_path(pair_path, "slave_points"), "slave points",
+                                                  names_of(all_slave_points))];
+    // Accepted with slave_points: nodes too (unused there), so that batch runs can
+    // switch the slave points with --set alone.
+    if (const YAML::Node quadrature = optional(entry, "quadrature"); quadrature.IsDefined()) {
+      const std::string quadrature_path = child_path(pair_path, "quadrature");
+      const std::string expected = "an integer from 1 to " + std::to_string(max_quadrature) +
+                                   " (Gauss points per direction on each slave segment)";
+      pair.quadrature = integer_where(quadrature, quadrature_path, expected, 1);
+      if (*pair.quadrature > max_quadrature)
+        fail(quadrature, quadrature_path, "expected " + expected + ", got " + describe(quadrature));
+    }
+    if (const YAML::Node penalty_node = optional(entry, "penalty"); penalty_node.IsDefined())
+      pair.penalty = penalty(penalty_node, child_path(pair_path, "penalty"));
+    if (const YAML::Node search = optional(entry, "search"); search.IsDefined())
+      pair.search = global_search(search, child_path(pair_path, "search"));
+    if (const YAML::Node local = optional(entry, "local_search"); local.IsDefined())
+      pair.local_search = local_search(local, child_path(pair_path, "local_search"));
+    result.push_back(std::move(pair));
+  }
+  return result;
+}
+
+}  // namespace exdyn::input::deck

@@ -1,0 +1,244 @@
+// The deck's materials, parts, face names and boundary conditions.
+#include "input/deck_validator.hpp"
+
+
+#include <algorithm>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "input/text_tools.hpp"
+
+namespace exdyn::input::deck {
+
+std::string DeckValidator::run_name(const YAML::Node& node, const std::string& path) const {
+  const std::string expected = "a name of letters, digits, _ and -";
+  const std::string value = text(node, path, expected);
+  const bool valid = std::all_of(value.begin(), value.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+  });
+  if (!valid) fail(node, path, "expected " + expected + ", got '" + value + "'");
+  return value;
+}
+
+std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, const std::string& path) const {
+  if (!node.IsMap() || node.size() == 0)
+    fail(node, path,
+         "expected a map of materials by name, e.g. {steel: {model: linear_elastic, ...}}; got " +
+             describe(node));
+  const std::vector<std::string> keys{"model", "density", "youngs_modulus", "poissons_ratio"};
+  std::vector<MaterialOptions> result;
+  std::map<std::string, YAML::Node> seen;
+  for (auto entry = node.begin(); entry != node.end(); ++entry) {
+    const YAML::Node key_node = entry->first;
+    const std::string name_path = path + "[" + std::to_string(result.size()) + "]";
+    MaterialOptions material;
+    material.name = text(key_node, name_path, "a material name");
+    const std::string material_path = child_path(path, material.name);
+    const auto [first, inserted] = seen.emplace(material.name, key_node);
+    if (!inserted)
+      fail(key_node, material_path,
+           "material '" + material.name + "' is defined twice (first " +
+               position_text(first->second, material_path) + ")");
+    const YAML::Node body = entry->second;
+    check_map(body, material_path, keys);
+    material.model =
+        all_material_models[choice(required(body, material_path, "model"), child_path(material_path, "model"),
+                                   "material model", names_of(all_material_models))];
+    material.density = number_where(required(body, material_path, "density"),
+                                    child_path(material_path, "density"), "a number > 0", positive);
+    material.youngs_modulus =
+        number_where(required(body, material_path, "youngs_modulus"),
+                     child_path(material_path, "youngs_modulus"), "a number > 0", positive);
+    material.poissons_ratio = number_where(required(body, material_path, "poissons_ratio"),
+                                           child_path(material_path, "poissons_ratio"),
+                                           "a number in (-1, 0.5)", poissons_ratio_range);
+    result.push_back(std::move(material));
+  }
+  return result;
+}
+
+PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
+                                const std::vector<MaterialOptions>& materials) const {
+  check_map(node, path,
+            {"name", "box", "elements", "material", "formulation", "hourglass", "initial_velocity",
+             "perturbation"});
+  PartOptions result;
+  result.name = text(required(node, path, "name"), child_path(path, "name"), "a part name");
+
+  const std::string box_path = child_path(path, "box");
+  const YAML::Node box = required(node, path, "box");
+  check_map(box, box_path, {"min", "max"});
+  result.box_min = vector3(required(box, box_path, "min"), child_path(box_path, "min"));
+  const YAML::Node box_max = required(box, box_path, "max");
+  result.box_max = vector3(box_max, child_path(box_path, "max"));
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (result.box_max[i] > result.box_min[i]) continue;
+    fail(box_max, child_path(box_path, "max"),
+         "expected max > min in every component, got " + std::string(component_names[i]) + ": max " +
+             format_number(result.box_max[i]) + " <= min " + format_number(result.box_min[i]));
+  }
+
+  const std::string elements_path = child_path(path, "elements");
+  const YAML::Node elements = required(node, path, "elements");
+  const std::string expected = "a list of 3 integers >= 1 [nx, ny, nz]";
+  check_sequence(elements, elements_path, expected);
+  if (elements.size() != 3)
+    fail(elements, elements_path, "expected " + expected + ", got " + describe(elements));
+  for (std::size_t i = 0; i < 3; ++i)
+    result.elements[i] = integer_where(elements[i], child_path(elements_path, i), "an integer >= 1", 1);
+
+  const std::string material_path = child_path(path, "material");
+  const YAML::Node material = required(node, path, "material");
+  result.material = text(material, material_path, "a material name");
+  std::vector<std::string> material_names;
+  for (const MaterialOptions& known : materials) material_names.push_back(known.name);
+  const auto found = std::find(material_names.begin(), material_names.end(), result.material);
+  if (found == material_names.end())
+    fail(material, material_path,
+         "unknown material '" + result.material + "'" +
+             suggestion(result.material, material_names, "the materials are"));
+  result.material_index = static_cast<int>(found - material_names.begin());
+
+  if (const YAML::Node formulation = optional(node, "formulation"); formulation.IsDefined())
+    result.formulation = all_formulations[choice(formulation, child_path(path, "formulation"), "formulation",
+                                                 names_of(all_formulations))];
+
+  // Accepted for hex8 too (and unused there), so that batch runs can switch between
+  // hex8 and hex8r with --set without editing the hourglass block. A 20-node part has
+  // no hourglass control: the key there is a mistake, not a setting to keep.
+  if (const YAML::Node hourglass = optional(node, "hourglass");
+      hourglass.IsDefined() && !hourglass.IsNull()) {
+    const std::string hourglass_path = child_path(path, "hourglass");
+    if (is_quadratic(result.formulation))
+      fail(hourglass, hourglass_path,
+           std::string("hourglass applies to hex8r parts (and is accepted, unused, on hex8); this part is ") +
+               name(result.formulation) +
+               ", whose Gauss points leave no hourglass mode to control: remove the key");
+    check_map(hourglass, hourglass_path, {"coefficient"});
+    if (const YAML::Node coefficient = optional(hourglass, "coefficient"); coefficient.IsDefined())
+      result.hourglass_coefficient =
+          number_where(coefficient, child_path(hourglass_path, "coefficient"), "a number >= 0", non_negative);
+  }
+
+  if (const YAML::Node velocity = optional(node, "initial_velocity"); velocity.IsDefined())
+    result.initial_velocity = vector3(velocity, child_path(path, "initial_velocity"));
+
+  if (const YAML::Node perturbation = optional(node, "perturbation");
+      perturbation.IsDefined() && !perturbation.IsNull()) {
+    const std::string perturbation_path = child_path(path, "perturbation");
+    check_map(perturbation, perturbation_path, {"fraction", "seed"});
+    if (const YAML::Node fraction = optional(perturbation, "fraction"); fraction.IsDefined()) {
+      const std::string fraction_path = child_path(perturbation_path, "fraction");
+      const std::string fraction_range = "a number in [0, 0.5) (a fraction of the element length h)";
+      result.perturbation_fraction = number_where(fraction, fraction_path, fraction_range, non_negative);
+      // Two neighbours moving toward each other by fraction h each close a gap of h.
+      if (result.perturbation_fraction >= 0.5)
+        fail(fraction, fraction_path,
+             "expected " + fraction_range + ", got " + describe(fraction) +
+                 ": at 0.5 or more a node can reach or pass its neighbour and invert elements");
+    }
+    if (const YAML::Node seed = optional(perturbation, "seed"); seed.IsDefined())
+      result.perturbation_seed = static_cast<unsigned>(
+          integer_where(seed, child_path(perturbation_path, "seed"), "an integer >= 0", 0));
+  }
+  return result;
+}
+
+std::vector<PartOptions> DeckValidator::parts(const YAML::Node& node, const std::string& path,
+                                              const std::vector<MaterialOptions>& materials) const {
+  check_sequence(node, path, "a list of parts");
+  if (node.size() == 0) fail(node, path, "expected at least one part, got an empty list");
+  std::vector<PartOptions> result;
+  std::map<std::string, std::size_t> index_by_name;
+  for (std::size_t p = 0; p < node.size(); ++p) {
+    const std::string part_path = child_path(path, p);
+    result.push_back(part(node[p], part_path, materials));
+    const auto [first, inserted] = index_by_name.emplace(result.back().name, p);
+    if (!inserted) {
+      const std::string name_path = child_path(part_path, "name");
+      const std::string first_path = child_path(child_path(path, first->second), "name");
+      fail(node[p]["name"], name_path,
+           "part name '" + result.back().name + "' is used twice (first by " +
+               child_path(path, first->second) + ", " +
+               position_text(node[first->second]["name"], first_path) + ")");
+    }
+  }
+  return result;
+}
+
+FaceRef DeckValidator::face(const YAML::Node& node, const std::string& path,
+                            const std::vector<PartOptions>& parts) const {
+  const std::vector<std::string> sides = names_of(all_box_sides);
+  const std::string value = text(node, path, "a face name <part>.<side>");
+  std::vector<std::string> part_names;
+  std::vector<std::string> face_names;
+  for (const PartOptions& known : parts) {
+    part_names.push_back(known.name);
+    for (const std::string& side : sides) face_names.push_back(known.name + "." + side);
+  }
+  std::string hint = "; the parts are " + join(part_names, ", ") + " and the sides " + join(sides, ", ");
+  if (const std::optional<std::string> nearest = nearest_name(value, face_names))
+    hint = "; did you mean '" + *nearest + "'?";
+  // The side follows the last point, so part names may contain points.
+  const std::size_t point = value.rfind('.');
+  if (point == std::string::npos)
+    fail(node, path, "expected a face name <part>.<side>, got '" + value + "'" + hint);
+  const std::string part_name = value.substr(0, point);
+  const std::string side_name = value.substr(point + 1);
+  const auto part_found = std::find(part_names.begin(), part_names.end(), part_name);
+  if (part_found == part_names.end())
+    fail(node, path, "unknown part '" + part_name + "' in face '" + value + "'" + hint);
+  const auto side_found = std::find(sides.begin(), sides.end(), side_name);
+  if (side_found == sides.end())
+    fail(node, path, "unknown side '" + side_name + "' in face '" + value + "'" + hint);
+  return FaceRef{static_cast<int>(part_found - part_names.begin()),
+                 all_box_sides[static_cast<std::size_t>(side_found - sides.begin())]};
+}
+
+std::vector<FaceRef> DeckValidator::face_list(const YAML::Node& node, const std::string& path,
+                                              const std::vector<PartOptions>& parts) const {
+  const std::string expected = "a non-empty list of face names like [plate.xmin]";
+  check_sequence(node, path, expected);
+  if (node.size() == 0) fail(node, path, "expected " + expected + ", got an empty list");
+  std::vector<FaceRef> result;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string face_path = child_path(path, i);
+    const FaceRef reference = face(node[i], face_path, parts);
+    const auto repeated = std::find(result.begin(), result.end(), reference);
+    if (repeated != result.end()) fail(node[i], face_path, "face '" + node[i].Scalar() + "' is listed twice");
+    result.push_back(reference);
+  }
+  return result;
+}
+
+std::vector<BoundaryConditionOptions> DeckValidator::boundary_conditions(
+    const YAML::Node& node, const std::string& path, const std::vector<PartOptions>& parts) const {
+  std::vector<BoundaryConditionOptions> result;
+  if (node.IsNull()) return result;
+  check_sequence(node, path, "a list of boundary conditions {faces: [...], fix: [...]}");
+  for (std::size_t b = 0; b < node.size(); ++b) {
+    const std::string bc_path = child_path(path, b);
+    const YAML::Node entry = node[b];
+    check_map(entry, bc_path, {"faces", "fix"});
+    BoundaryConditionOptions condition;
+    condition.faces = face_list(required(entry, bc_path, "faces"), child_path(bc_path, "faces"), parts);
+    const std::string fix_path = child_path(bc_path, "fix");
+    const YAML::Node fix = required(entry, bc_path, "fix");
+    const std::string expected = "a non-empty list of components among x, y, z";
+    check_sequence(fix, fix_path, expected);
+    if (fix.size() == 0) fail(fix, fix_path, "expected " + expected + ", got an empty list");
+    const std::vector<std::string> components(component_names.begin(), component_names.end());
+    for (std::size_t i = 0; i < fix.size(); ++i) {
+      const std::string component_path = child_path(fix_path, i);
+      const std::size_t axis = choice(fix[i], component_path, "component", components);
+      if (condition.fix[axis])
+        fail(fix[i], component_path, "component '" + components[axis] + "' is listed twice");
+      condition.fix[axis] = true;
+    }
+    result.push_back(std::move(condition));
+  }
+  return result;
+}
+
+}  // namespace exdyn::input::deck

@@ -1,0 +1,74 @@
+// The deck's time, output and guards sections.
+#include "input/deck_validator.hpp"
+
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "input/text_tools.hpp"
+
+namespace exdyn::input::deck {
+
+TimeOptions DeckValidator::time(const YAML::Node& node, const std::string& path) const {
+  check_map(node, path, {"end_time", "courant", "dt"});
+  TimeOptions result;
+  result.end_time =
+      number_where(required(node, path, "end_time"), child_path(path, "end_time"), "a number > 0", positive);
+  const YAML::Node courant = optional(node, "courant");
+  const YAML::Node dt = optional(node, "dt");
+  if (courant.IsDefined())
+    result.courant = number_where(courant, child_path(path, "courant"), "a number > 0", positive);
+  if (dt.IsDefined()) {
+    const std::string dt_path = child_path(path, "dt");
+    result.dt = number_where(dt, dt_path, "a number > 0", positive);
+    if (courant.IsDefined())
+      fail(dt, dt_path,
+           "give either courant (a fraction of the stable step) or dt (a fixed step), not both; courant is "
+           "given " +
+               position_text(courant, child_path(path, "courant")));
+  }
+  return result;
+}
+
+OutputOptions DeckValidator::output(const YAML::Node& node, const std::string& path) const {
+  OutputOptions result;
+  if (node.IsNull()) return result;
+  check_map(node, path, {"directory", "every", "fields", "history_every"});
+  if (const YAML::Node directory = optional(node, "directory"); directory.IsDefined())
+    result.directory = text(directory, child_path(path, "directory"), "a directory name");
+  if (const YAML::Node every = optional(node, "every"); every.IsDefined())
+    result.every = integer_where(every, child_path(path, "every"), "an integer >= 1", 1);
+  if (const YAML::Node fields = optional(node, "fields"); fields.IsDefined()) {
+    const std::string fields_path = child_path(path, "fields");
+    const std::vector<std::string> field_names = names_of(all_output_fields);
+    check_sequence(fields, fields_path, "a list of field names among " + join(field_names, ", "));
+    result.fields.clear();
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      const std::string field_path = child_path(fields_path, i);
+      const OutputField field = all_output_fields[choice(fields[i], field_path, "output field", field_names)];
+      if (std::find(result.fields.begin(), result.fields.end(), field) != result.fields.end())
+        fail(fields[i], field_path,
+             "field '" + field_names[static_cast<std::size_t>(field)] + "' is listed twice");
+      result.fields.push_back(field);
+    }
+  }
+  if (const YAML::Node history = optional(node, "history_every"); history.IsDefined())
+    result.history_every = integer_where(history, child_path(path, "history_every"), "an integer >= 1", 1);
+  return result;
+}
+
+GuardOptions DeckValidator::guards(const YAML::Node& node, const std::string& path) const {
+  GuardOptions result;
+  if (node.IsNull()) return result;
+  check_map(node, path, {"energy_growth", "max_penetration"});
+  if (const YAML::Node growth = optional(node, "energy_growth"); growth.IsDefined())
+    result.energy_growth =
+        number_where(growth, child_path(path, "energy_growth"), "a number > 0 (a fraction)", positive);
+  if (const YAML::Node penetration = optional(node, "max_penetration"); penetration.IsDefined())
+    result.max_penetration = number_where(penetration, child_path(path, "max_penetration"),
+                                          "a number > 0 (a fraction of the element length)", positive);
+  return result;
+}
+
+}  // namespace exdyn::input::deck

@@ -1,0 +1,157 @@
+// to_yaml: the resolved deck as YAML, every default filled in (`exdyn check`).
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "input/deck_reader.hpp"
+#include "input/deck_validator.hpp"
+#include "input/text_tools.hpp"
+
+namespace exdyn::input {
+namespace {
+
+using namespace deck;
+
+// ---------------------------------------------------------------------------
+// Writing YAML: numbers in the shortest form that reads back to the same double.
+
+std::string yaml_text(std::string_view value) {
+  const bool plain_characters = !value.empty() && std::all_of(value.begin(), value.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-' || c == '.' || c == '/';
+  });
+  const bool plain =
+      plain_characters && value.front() != '-' && !parse_double(value) && !looks_like_yaml_keyword(value);
+  if (plain) return std::string(value);
+  std::string quoted = "\"";
+  for (const char c : value) {
+    switch (c) {
+      case '"':
+        quoted += "\\\"";
+        break;
+      case '\\':
+        quoted += "\\\\";
+        break;
+      case '\n':
+        quoted += "\\n";
+        break;
+      case '\t':
+        quoted += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          constexpr char hex[] = "0123456789abcdef";
+          quoted += "\\x";
+          quoted += hex[(c >> 4) & 0xf];
+          quoted += hex[c & 0xf];
+        } else {
+          quoted += c;
+        }
+    }
+  }
+  return quoted + "\"";
+}
+
+std::string yaml_number(double value) {
+  if (std::isnan(value)) return ".nan";
+  if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
+  return format_number(value);
+}
+
+std::string yaml_vector(const Vec3& value) {
+  return "[" + yaml_number(value[0]) + ", " + yaml_number(value[1]) + ", " + yaml_number(value[2]) + "]";
+}
+
+std::string yaml_faces(const Deck& deck, const std::vector<FaceRef>& faces) {
+  std::vector<std::string> names;
+  for (const FaceRef& reference : faces) names.push_back(yaml_text(face_name(deck, reference)));
+  return "[" + join(names, ", ") + "]";
+}
+
+
+}  // namespace
+
+std::string to_yaml(const Deck& deck) {
+  std::ostringstream out;
+  out << "# The resolved deck" << (deck.source_file.empty() ? "" : " " + deck.source_file)
+      << ", every default filled in.\n";
+  out << "name: " << yaml_text(deck.name) << "\n";
+
+  out << "materials:\n";
+  for (const MaterialOptions& material : deck.materials)
+    out << "  " << yaml_text(material.name) << ": {model: " << name(material.model)
+        << ", density: " << yaml_number(material.density)
+        << ", youngs_modulus: " << yaml_number(material.youngs_modulus)
+        << ", poissons_ratio: " << yaml_number(material.poissons_ratio) << "}\n";
+
+  out << "parts:\n";
+  for (const PartOptions& part : deck.parts) {
+    out << "  - name: " << yaml_text(part.name) << "\n"
+        << "    box: {min: " << yaml_vector(part.box_min) << ", max: " << yaml_vector(part.box_max) << "}\n"
+        << "    elements: [" << part.elements[0] << ", " << part.elements[1] << ", " << part.elements[2]
+        << "]\n"
+        << "    material: " << yaml_text(part.material) << "\n"
+        << "    formulation: " << name(part.formulation) << "\n"
+        << (is_quadratic(part.formulation)
+                ? std::string()
+                : "    hourglass: {coefficient: " + yaml_number(part.hourglass_coefficient) + "}\n")
+        << "    initial_velocity: " << yaml_vector(part.initial_velocity) << "\n"
+        << "    perturbation: {fraction: " << yaml_number(part.perturbation_fraction)
+        << ", seed: " << part.perturbation_seed << "}\n";
+  }
+
+  out << "boundary_conditions:" << (deck.boundary_conditions.empty() ? " []" : "") << "\n";
+  for (const BoundaryConditionOptions& condition : deck.boundary_conditions) {
+    std::vector<std::string> components;
+    for (std::size_t axis = 0; axis < 3; ++axis)
+      if (condition.fix[axis]) components.emplace_back(component_names[axis]);
+    out << "  - {faces: " << yaml_faces(deck, condition.faces) << ", fix: [" << join(components, ", ")
+        << "]}\n";
+  }
+
+  out << "contact:" << (deck.contact.empty() ? " []" : "") << "\n";
+  for (const ContactOptions& pair : deck.contact) {
+    const PenaltyOptions& penalty = pair.penalty;
+    const LocalSearchOptions& local = pair.local_search;
+    out << "  - name: " << yaml_text(pair.name) << "\n"
+        << "    slave: " << yaml_faces(deck, pair.slave) << "\n"
+        << "    master: " << yaml_faces(deck, pair.master) << "\n"
+        << "    two_pass: " << (pair.two_pass ? "true" : "false") << "\n"
+        << "    slave_points: " << name(pair.slave_points) << "\n"
+        << (pair.quadrature ? "    quadrature: " + std::to_string(*pair.quadrature) + "\n" : std::string())
+        << "    penalty: {"
+        << (penalty.stiffness ? "stiffness: " + yaml_number(*penalty.stiffness)
+                              : "scale: " + yaml_number(penalty.scale))
+        << ", damping: " << yaml_number(penalty.damping) << "}\n"
+        << "    search: {cell_size: "
+        << (pair.search.cell_size ? yaml_number(*pair.search.cell_size) : "auto") << "}\n"
+        << "    local_search: {method: " << contact::name(local.method)
+        << ", tolerance: " << yaml_number(local.tolerance) << ", max_iterations: " << local.max_iterations
+        << ", initial_guess: " << contact::name(local.initial_guess) << "}\n";
+  }
+
+  out << "time:\n"
+      << "  end_time: " << yaml_number(deck.time.end_time) << "\n";
+  if (deck.time.dt)
+    out << "  dt: " << yaml_number(*deck.time.dt) << "\n";
+  else
+    out << "  courant: " << yaml_number(deck.time.courant) << "\n";
+
+  std::vector<std::string> fields;
+  for (const OutputField field : deck.output.fields) fields.emplace_back(name(field));
+  out << "output:\n"
+      << "  directory: " << yaml_text(deck.output.directory) << "\n"
+      << "  every: " << deck.output.every << "\n"
+      << "  fields: [" << join(fields, ", ") << "]\n"
+      << "  history_every: " << deck.output.history_every << "\n"
+      << "guards:\n"
+      << "  energy_growth: " << yaml_number(deck.guards.energy_growth) << "\n"
+      << "  max_penetration: " << yaml_number(deck.guards.max_penetration) << "\n";
+  return out.str();
+}
+
+
+}  // namespace exdyn::input
