@@ -1,0 +1,159 @@
+// Contact of 20-node bodies: input/plate_impact_hex20.yaml (8-node segments,
+// slave quadrature points) against its one-plate reference calculation, the same
+// run with slave nodes, and why a quad8 face cannot carry a uniform pressure on
+// its nodes alone (../shared/reference/quadratic-and-hertz.md).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "../support/result_file.hpp"
+#include "../support/temp_dir.hpp"
+#include "contact/quadrature.hpp"
+#include "contact/segment.hpp"
+#include "input/deck_reader.hpp"
+#include "material/elastic.hpp"
+#include "solver/simulation.hpp"
+
+namespace {
+
+using exdyn::testing::read_dataset;
+using exdyn::testing::step_path;
+
+struct PlateRun {
+  exdyn::testing::TempDir directory{"exdyn_quadratic"};
+  exdyn::input::Deck deck;
+  exdyn::output::RunSummary summary;
+
+  explicit PlateRun(exdyn::input::Deck d) : deck(std::move(d)) {
+    exdyn::solver::RunControls controls;
+    controls.output_directory = directory.path().string();
+    summary = exdyn::solver::run_simulation(deck, controls);
+  }
+  std::vector<double> stress() const {
+    return read_dataset(directory.file(deck.name + ".h5"), step_path(summary.steps, "stress")).values;
+  }
+};
+
+exdyn::input::Deck plate_deck(const std::vector<exdyn::input::Override>& overrides = {}) {
+  return exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/plate_impact_hex20.yaml", overrides);
+}
+
+// The paper's reference calculation: plate A alone, its contact face held in x.
+exdyn::input::Deck reference_deck() {
+  exdyn::input::Deck deck = plate_deck();
+  deck.name = "plate_impact_hex20_reference";
+  deck.parts.resize(1);
+  deck.contact.clear();
+  for (auto& condition : deck.boundary_conditions)
+    std::erase_if(condition.faces, [](const exdyn::input::FaceRef& face) { return face.part != 0; });
+  exdyn::input::BoundaryConditionOptions wall;
+  wall.faces = {{0, exdyn::input::BoxSide::xmax}};
+  wall.fix = {true, false, false};
+  deck.boundary_conditions.push_back(wall);
+  return deck;
+}
+
+constexpr int n = 50;                               // elements along x and z of each plate
+const double plateau = 7800 * 6020.1841 * 1.0;      // rho c1 v0, Pa (46.957 MPa)
+
+class PlateImpactHex20 : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    quadrature_ = std::make_unique<PlateRun>(plate_deck());
+    nodes_ = std::make_unique<PlateRun>(plate_deck({{"contact[0].slave_points", "nodes"}}));
+    reference_ = std::make_unique<PlateRun>(reference_deck());
+  }
+  static void TearDownTestSuite() {
+    quadrature_.reset();
+    nodes_.reset();
+    reference_.reset();
+  }
+  // sigma_x of element i of the row next to z = 0, counted from the contact plane,
+  // in plate A (0) or B (1).
+  static double row(const std::vector<double>& s, int plate, int i) {
+    const int element = plate == 0 ? n - 1 - i : n * n + i;
+    return s[6 * std::size_t(element)];
+  }
+  static inline std::unique_ptr<PlateRun> quadrature_, nodes_, reference_;
+};
+
+// Mean sigma_x of the row for x/d < 0.45 and the element at the contact face.
+TEST_F(PlateImpactHex20, QuadraturePointsAgreeWithTheReferenceCalculation) {
+  const auto s = quadrature_->stress(), r = reference_->stress();
+  for (int plate = 0; plate < 2; ++plate) {
+    double mean = 0.0, mean_reference = 0.0;
+    int count = 0;
+    for (int i = 0; (i + 0.5) / n < 0.45; ++i, ++count) {
+      mean += row(s, plate, i);
+      mean_reference += row(r, 0, i);
+    }
+    mean /= count, mean_reference /= count;
+    const double face = std::abs(row(s, plate, 0) - row(r, 0, 0)) / plateau;
+    std::printf("plate %c: row mean x/d < 0.45 %.4f (reference %.4f) of the plateau, %.3f %% apart; "
+                "face element %.3f %% of the plateau from the reference\n",
+                "AB"[plate], mean / plateau, mean_reference / plateau,
+                100 * std::abs(mean - mean_reference) / plateau, 100 * face);
+    EXPECT_LE(std::abs(mean - mean_reference), 0.005 * plateau);
+    EXPECT_LE(face, 0.005 * plateau);
+  }
+}
+
+TEST_F(PlateImpactHex20, TwoPassQuadratureKeepsThePlatesMirrorImages) {
+  const auto s = quadrature_->stress();
+  double worst = 0.0;
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < n; ++i)
+      for (int c : {0, 1, 2, 5}) {
+        const double sign = c == 5 ? -1.0 : 1.0;  // xz changes sign under x -> -x
+        const std::size_t a = 6 * std::size_t(i + n * k) + std::size_t(c);
+        const std::size_t b = 6 * std::size_t(n * n + (n - 1 - i) + n * k) + std::size_t(c);
+        worst = std::max(worst, std::abs(s[a] - sign * s[b]));
+      }
+  std::printf("largest mirror difference of the two plates: %.3e of the plateau\n", worst / plateau);
+  EXPECT_LE(worst, 1e-12 * plateau);
+}
+
+TEST_F(PlateImpactHex20, EnergyIsKeptAndTheSearchIsTrivialOnFlatFaces) {
+  for (const PlateRun* run : {quadrature_.get(), nodes_.get(), reference_.get()}) {
+    std::printf("%s: energy error %.3e, projections %ld, mean iterations %.3f, largest %ld\n",
+                run->deck.name.c_str(), run->summary.energy.max_relative_error, run->summary.contact.projections,
+                run->summary.contact.mean_iterations, run->summary.contact.max_iterations);
+    EXPECT_LE(run->summary.energy.max_relative_error, 1e-3);
+  }
+  const auto& c = quadrature_->summary.contact;
+  ASSERT_EQ(c.pairs.size(), 1u);
+  EXPECT_EQ(c.pairs[0].slave_points, "quadrature");
+  EXPECT_EQ(c.not_converged, 0);
+  EXPECT_EQ(c.saddle_points, 0);
+  EXPECT_LT(c.max_penetration_over_h, 0.01);
+}
+
+// Slave nodes on 8-node faces: the element at the contact face is far from the
+// reference (the corner nodes would need pulling, the contact only pushes), and
+// quadrature points fix it (the test above: within 0.5 %).
+TEST_F(PlateImpactHex20, SlaveNodesOnQuad8FacesCannotCarryTheUniformPressure) {
+  const auto s = nodes_->stress(), r = reference_->stress();
+  const double face = std::abs(row(s, 0, 0) - row(r, 0, 0)) / plateau;
+  std::printf("slave nodes: face element %.1f %% of the plateau from the reference\n", 100 * face);
+  EXPECT_GT(face, 0.05);
+}
+
+// quadratic-and-hertz.md: a uniform pressure p on a flat 8-node face of area A has
+// the consistent nodal forces -pA/12 at each corner and +pA/3 at each mid-side.
+TEST(Quad8Face, ConsistentNodalForcesOfAUniformPressureAreNegativeAtTheCorners) {
+  const double side = 2.0, area = side * side;
+  const exdyn::contact::GaussLegendre rule = exdyn::contact::gauss_legendre(3);
+  std::array<double, 8> force{};
+  for (int i = 0; i < rule.count; ++i)
+    for (int j = 0; j < rule.count; ++j) {
+      const auto N = exdyn::contact::shape_functions(exdyn::contact::SegmentType::quad8,
+                                                     {rule.abscissa[std::size_t(i)], rule.abscissa[std::size_t(j)]});
+      const double w = rule.weight[std::size_t(i)] * rule.weight[std::size_t(j)] * (area / 4.0);  // dA = A/4 dxi
+      for (int k = 0; k < 8; ++k) force[std::size_t(k)] += N[std::size_t(k)] * w;  // p = 1
+    }
+  for (int k = 0; k < 8; ++k) EXPECT_NEAR(force[std::size_t(k)], k < 4 ? -area / 12.0 : area / 3.0, 1e-14);
+}
+
+}  // namespace
