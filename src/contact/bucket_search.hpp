@@ -39,8 +39,8 @@ struct BucketWorkspace {
 // Bounding box of each quadrilateral segment, inflated by `capture` (m) in every
 // direction. position(node) gives a node's current coordinates as {x, y, z}.
 template <class PositionFn>
-void segment_boxes(PositionFn position, const std::vector<std::array<std::uint32_t, 4>>& segments, double capture,
-                   std::vector<Box>& boxes) {
+void segment_boxes(PositionFn position, const std::vector<std::array<std::uint32_t, 4>>& segments,
+                   double capture, std::vector<Box>& boxes) {
   boxes.resize(segments.size());
   for (std::size_t s = 0; s < segments.size(); ++s) {
     const std::array<double, 3> first = position(segments[s][0]);
@@ -87,6 +87,7 @@ void bucket_search(const NodalVectors& points, const std::vector<Box>& boxes, do
                    BucketWorkspace& workspace, std::vector<CandidatePair>& pairs);
 
 // The same set by testing every pair (the reference for tests).
-void brute_force_search(const NodalVectors& points, const std::vector<Box>& boxes, std::vector<CandidatePair>& pairs);
+void brute_force_search(const NodalVectors& points, const std::vector<Box>& boxes,
+                        std::vector<CandidatePair>& pairs);
 
 }  // namespace exdyn::contact

@@ -29,9 +29,9 @@ struct QuadraturePoint {
 
 // The geometry of a pass, fixed for the run (global node ids).
 struct ContactSurfaces {
-  bool quadrature = false;                 // the slave points: Gauss points (true) or nodes
-  std::vector<std::uint32_t> slave_nodes;  // every node of the slave faces, unique, sorted
-  std::vector<SegmentNodes> slave_segments;       // the slave faces' segments (quadrature only)
+  bool quadrature = false;                         // the slave points: Gauss points (true) or nodes
+  std::vector<std::uint32_t> slave_nodes;          // every node of the slave faces, unique, sorted
+  std::vector<SegmentNodes> slave_segments;        // the slave faces' segments (quadrature only)
   std::vector<QuadraturePoint> quadrature_points;  // quadrature only: the slave points
   // Penalty stiffness of each slave point, N/m: nodes, scale kappa M A / L before the
   // frequency caps (automatic rule) or the deck's fixed stiffness; quadrature points,
@@ -82,8 +82,8 @@ struct ContactPassState {
   // penetration (m, >= 0): the pair's histories.
   Vec3 slave_force{};
   double max_penetration = 0.0;
-  struct Contact {                        // the chosen projection of each slave point
-    std::int64_t segment = -1;            // -1: none
+  struct Contact {              // the chosen projection of each slave point
+    std::int64_t segment = -1;  // -1: none
     Xi xi{};
     double gap = 0.0;
     Vec3 normal{};

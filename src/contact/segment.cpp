@@ -53,8 +53,8 @@ SegmentBox segment_box(const Segment& segment) {
     const Vec3 b6 = middle(y[3], y[6], y[2]);  // edge xi2 = +1
     const Vec3 b7 = middle(y[0], y[7], y[3]);  // edge xi1 = -1
     // Centre control point: the map applied along xi2 to the column of xi1-midpoints.
-    const Vec3 column_mid = middle(y[7], centre, y[5]);    // Bezier along xi1 at xi2 = 0
-    const Vec3 b8 = middle(b4, column_mid, b6);            // then along xi2
+    const Vec3 column_mid = middle(y[7], centre, y[5]);  // Bezier along xi1 at xi2 = 0
+    const Vec3 b8 = middle(b4, column_mid, b6);          // then along xi2
     points[4] = b4, points[5] = b5, points[6] = b6, points[7] = b7, points[8] = b8;
     count = 9;
   }

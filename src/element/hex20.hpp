@@ -24,9 +24,9 @@ using ElementVectors20 = NodeValues<20>;
 
 // (xi, eta, zeta) of node I.
 inline constexpr std::array<Vector3, 20> node_natural_coordinates{{
-    {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1},
-    {-1, 1, 1},   {0, -1, -1}, {1, 0, -1}, {0, 1, -1},  {-1, 0, -1}, {0, -1, 1}, {1, 0, 1},
-    {0, 1, 1},    {-1, 0, 1},  {-1, -1, 0}, {1, -1, 0}, {1, 1, 0},   {-1, 1, 0},
+    {-1, -1, -1}, {1, -1, -1}, {1, 1, -1},  {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1},
+    {-1, 1, 1},   {0, -1, -1}, {1, 0, -1},  {0, 1, -1},  {-1, 0, -1}, {0, -1, 1}, {1, 0, 1},
+    {0, 1, 1},    {-1, 0, 1},  {-1, -1, 0}, {1, -1, 0},  {1, 1, 0},   {-1, 1, 0},
 }};
 
 // Corner (s_a = +-1): N = (1 + s.xi products)(s1 xi + s2 eta + s3 zeta - 2) / 8;
@@ -191,9 +191,12 @@ inline double internal_forces(int gauss_points, const double* table, const doubl
       for (int j = 0; j < 3; ++j) h[3 * i + j] = d[i][0] * r[j] + d[i][1] * r[3 + j] + d[i][2] * r[6 + j];
     const double w = r[9];
     const double lambda_trace = lambda * (h[0] + h[4] + h[8]);
-    const double s[6] = {w * (lambda_trace + 2.0 * mu * h[0]), w * (lambda_trace + 2.0 * mu * h[4]),
-                         w * (lambda_trace + 2.0 * mu * h[8]), w * mu * (h[1] + h[3]),
-                         w * mu * (h[5] + h[7]),             w * mu * (h[2] + h[6])};
+    const double s[6] = {w * (lambda_trace + 2.0 * mu * h[0]),
+                         w * (lambda_trace + 2.0 * mu * h[4]),
+                         w * (lambda_trace + 2.0 * mu * h[8]),
+                         w * mu * (h[1] + h[3]),
+                         w * mu * (h[5] + h[7]),
+                         w * mu * (h[2] + h[6])};
     for (int k = 0; k < 6; ++k) stress_sum[k] += s[k];
     constexpr int row[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};  // s_ij in SymTensor order
     for (int i = 0; i < 3; ++i) {
@@ -208,7 +211,8 @@ inline double internal_forces(int gauss_points, const double* table, const doubl
   const double inverse_volume = reference[10 * gauss_points];
   for (int k = 0; k < 6; ++k) mean_stress[k] = stress_sum[k] * inverse_volume;
   double energy = 0.0;
-  for (int node = 0; node < 20; ++node) energy += u.x[node] * f.x[node] + u.y[node] * f.y[node] + u.z[node] * f.z[node];
+  for (int node = 0; node < 20; ++node)
+    energy += u.x[node] * f.x[node] + u.y[node] * f.y[node] + u.z[node] * f.z[node];
   return 0.5 * energy;
 }
 
@@ -251,8 +255,8 @@ inline bool is_affine(const ElementVectors20& x, double tolerance = 1.0e-12) {
   for (int e = 0; e < 12; ++e) {
     const int a = edge[e][0], b = edge[e][1], m = 8 + e;
     size = std::max({size, std::abs(x.x[b] - x.x[a]), std::abs(x.y[b] - x.y[a]), std::abs(x.z[b] - x.z[a])});
-    off = std::max({off, std::abs(x.x[m] - 0.5 * (x.x[a] + x.x[b])), std::abs(x.y[m] - 0.5 * (x.y[a] + x.y[b])),
-                    std::abs(x.z[m] - 0.5 * (x.z[a] + x.z[b]))});
+    off = std::max({off, std::abs(x.x[m] - 0.5 * (x.x[a] + x.x[b])),
+                    std::abs(x.y[m] - 0.5 * (x.y[a] + x.y[b])), std::abs(x.z[m] - 0.5 * (x.z[a] + x.z[b]))});
   }
   return off <= tolerance * size;
 }

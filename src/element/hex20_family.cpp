@@ -13,7 +13,6 @@
 //    the displacements of up to `batch` elements at once (a small matrix product,
 //    7,920 multiply-adds per element instead of about 12,000 at 27 Gauss points).
 #include <Eigen/Dense>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -31,10 +30,10 @@ namespace {
 
 using hex20::ElementVectors20;
 
-constexpr int dofs = 60;          // 20 nodes x 3: x of the 20 nodes, then y, then z
-constexpr int matrix_rows = 66;   // K (60 rows) then S (6 rows: mean xx yy zz xy yz xz)
+constexpr int dofs = 60;         // 20 nodes x 3: x of the 20 nodes, then y, then z
+constexpr int matrix_rows = 66;  // K (60 rows) then S (6 rows: mean xx yy zz xy yz xz)
 constexpr int matrix_size = matrix_rows * dofs;
-constexpr int batch = 8;          // elements per matrix product
+constexpr int batch = 8;                // elements per matrix product
 constexpr std::size_t max_groups = 64;  // distinct Jacobians kept before falling back to the general layout
 
 ElementVectors20 gather20(const NodalVectors& v, const std::uint32_t* nodes) {
@@ -106,7 +105,8 @@ ElementEnergies affine_loop(const ElementBlock& block, std::uint32_t begin, std:
     // A run of up to `batch` consecutive elements that share one matrix.
     const std::uint32_t group = block.reference_index[e];
     int count = 1;
-    while (count < batch && e + std::uint32_t(count) < end && block.reference_index[e + std::uint32_t(count)] == group)
+    while (count < batch && e + std::uint32_t(count) < end &&
+           block.reference_index[e + std::uint32_t(count)] == group)
       ++count;
     for (int slot = 0; slot < batch; ++slot) {
       if (slot >= count) {  // unused columns: zeros, computed and dropped
@@ -165,7 +165,8 @@ void element_matrix(int gauss_points, const double* table, const double* referen
 // point agree to 1e-12 of their size (an affine element's are the same at every point).
 bool same_jacobian(const double* a, const double* b) {
   double size = 0.0, difference = 0.0;
-  for (int k = 0; k < 9; ++k) size = std::max(size, std::abs(a[k])), difference = std::max(difference, std::abs(a[k] - b[k]));
+  for (int k = 0; k < 9; ++k)
+    size = std::max(size, std::abs(a[k])), difference = std::max(difference, std::abs(a[k] - b[k]));
   return difference <= 1e-12 * size && std::abs(a[9] - b[9]) <= 1e-12 * std::abs(a[9]);
 }
 
@@ -181,7 +182,8 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
   bool affine = true;
   for (std::uint32_t e = 0; e < block.count; ++e) {
     const ElementVectors20 x = gather20(x_ref, block.connectivity + 20 * std::size_t(e));
-    const double smallest = hex20::make_reference(x, rule, table.data(), block.reference.data() + std::size_t(stride) * e);
+    const double smallest =
+        hex20::make_reference(x, rule, table.data(), block.reference.data() + std::size_t(stride) * e);
     if (!(smallest > 0.0)) throw_inverted(block.first_element + e, smallest);
     affine = affine && hex20::is_affine(x);
   }
@@ -193,7 +195,9 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
       const double* mine = block.reference.data() + std::size_t(stride) * e;
       std::size_t g = 0;
       // The previous element's group first: runs of equal elements are the rule.
-      if (e > 0 && same_jacobian(block.reference.data() + std::size_t(stride) * representative[block.reference_index[e - 1]], mine))
+      if (e > 0 && same_jacobian(block.reference.data() +
+                                     std::size_t(stride) * representative[block.reference_index[e - 1]],
+                                 mine))
         g = block.reference_index[e - 1];
       else
         for (g = 0; g < representative.size(); ++g)
@@ -209,8 +213,9 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
   if (affine) {
     block.shared.assign(std::size_t(matrix_size) * representative.size(), 0.0);
     for (std::size_t g = 0; g < representative.size(); ++g)
-      element_matrix(gauss_points, table.data(), block.reference.data() + std::size_t(stride) * representative[g],
-                     block.material.lambda, block.material.mu, block.shared.data() + std::size_t(matrix_size) * g);
+      element_matrix(gauss_points, table.data(),
+                     block.reference.data() + std::size_t(stride) * representative[g], block.material.lambda,
+                     block.material.mu, block.shared.data() + std::size_t(matrix_size) * g);
     block.reference.clear();
     block.reference.shrink_to_fit();
     block.loop = affine_loop;
@@ -262,8 +267,8 @@ double element_eigenvalue_step(const ElementBlock& block, const NodalVectors& x_
     for (std::uint32_t e = 0; e < block.count; ++e) {
       const std::uint32_t g = block.reference_index[e];
       if (done[g]) continue;
-      const std::array<double, 20> m =
-          hex20::hrz_masses(gather20(x_ref, block.connectivity + 20 * std::size_t(e)), block.material.density);
+      const std::array<double, 20> m = hex20::hrz_masses(
+          gather20(x_ref, block.connectivity + 20 * std::size_t(e)), block.material.density);
       group_step[g] = element_step(block.shared.data() + std::size_t(matrix_size) * g, m);
       done[g] = 1;
       smallest = std::min(smallest, group_step[g]);
@@ -274,7 +279,8 @@ double element_eigenvalue_step(const ElementBlock& block, const NodalVectors& x_
   for (std::ptrdiff_t k = 0; k < count; ++k) {
     const auto e = static_cast<std::size_t>(k);
     std::vector<double> matrix(static_cast<std::size_t>(matrix_size));
-    element_matrix(gauss_points, table.data(), block.reference.data() + std::size_t(hex20::reference_size(gauss_points)) * e,
+    element_matrix(gauss_points, table.data(),
+                   block.reference.data() + std::size_t(hex20::reference_size(gauss_points)) * e,
                    block.material.lambda, block.material.mu, matrix.data());
     const std::array<double, 20> m =
         hex20::hrz_masses(gather20(x_ref, block.connectivity + 20 * e), block.material.density);

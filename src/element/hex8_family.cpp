@@ -108,9 +108,9 @@ ElementEnergies hex8_parallelepiped_loop(const ElementBlock& block, std::uint32_
   return element_pair_loop(block, begin, end, hex8::parallelepiped_reference_size, u, f_int, stress,
                            [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
                                         BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
-                             return std::array<Pack2, 2>{
-                                 hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s),
-                                 Pack2{0.0, 0.0}};
+                             return std::array<Pack2, 2>{hex8::parallelepiped_internal_forces(
+                                                             reference, lambda, mu, u_local, f_local, s),
+                                                         Pack2{0.0, 0.0}};
                            });
 }
 
@@ -141,7 +141,8 @@ ElementEnergies hex8r_parallelepiped_loop(const ElementBlock& block, std::uint32
 // Precomputes the reference data of every element with make(x, reference) (which
 // returns the smallest det J), stride doubles each, pairs interleaved when `paired`.
 template <class Make>
-void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t stride, bool paired, Make make) {
+void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t stride, bool paired,
+                    Make make) {
   const std::size_t stored = paired ? 2 * ((static_cast<std::size_t>(block.count) + 1) / 2) : block.count;
   block.reference.assign(stride * stored, 0.0);
   static_assert(hex8::reference_size >= hex8r::reference_size &&
@@ -173,8 +174,9 @@ void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
   block.constant_jacobian = all_parallelepipeds(block, x_ref);
   if (block.constant_jacobian) {
     block.loop = hex8_parallelepiped_loop;
-    fill_reference(block, x_ref, hex8::parallelepiped_reference_size, true,
-                   [](const ElementVectors& x, double* r) { return hex8::make_parallelepiped_reference(x, r); });
+    fill_reference(
+        block, x_ref, hex8::parallelepiped_reference_size, true,
+        [](const ElementVectors& x, double* r) { return hex8::make_parallelepiped_reference(x, r); });
   } else {
     block.loop = hex8_general_loop;
     fill_reference(block, x_ref, hex8::reference_size, false,
@@ -193,9 +195,10 @@ void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
                    });
   } else {
     block.loop = hex8r_general_loop;
-    fill_reference(block, x_ref, hex8r::reference_size, true, [mu, coefficient](const ElementVectors& x, double* r) {
-      return hex8r::make_reference(x, mu, coefficient, r);
-    });
+    fill_reference(block, x_ref, hex8r::reference_size, true,
+                   [mu, coefficient](const ElementVectors& x, double* r) {
+                     return hex8r::make_reference(x, mu, coefficient, r);
+                   });
   }
 }
 

@@ -11,7 +11,7 @@ template <int Nodes, class Real = double>
 struct NodeValues {
   std::array<Real, Nodes> x, y, z;
   NodeValues() : x{}, y{}, z{} {}  // zero
-  struct Uninitialized {};          // for arrays written whole before they are read
+  struct Uninitialized {};         // for arrays written whole before they are read
   explicit NodeValues(Uninitialized) {}
 };
 

@@ -1,11 +1,9 @@
 // The deck's contact pairs: penalty, global and local search settings.
-#include "input/deck_validator.hpp"
-
-
 #include <map>
 #include <string>
 #include <vector>
 
+#include "input/deck_validator.hpp"
 #include "input/text_tools.hpp"
 
 namespace exdyn::input::deck {
@@ -20,7 +18,9 @@ PenaltyOptions DeckValidator::penalty(const YAML::Node& node, const std::string&
     result.scale = number_where(scale, child_path(path, "scale"), "a number > 0", positive);
   if (stiffness.IsDefined()) {
     const std::string stiffness_path = child_path(path, "stiffness");
-    result.stiffness = number_where(stiffness, stiffness_path, "a number > 0 (force per length; pressure per length with slave_points: quadrature)", positive);
+    result.stiffness = number_where(
+        stiffness, stiffness_path,
+        "a number > 0 (force per length; pressure per length with slave_points: quadrature)", positive);
     if (scale.IsDefined())
       fail(stiffness, stiffness_path,
            "give either scale (times the automatic stiffness) or stiffness (a fixed value), not both; "
@@ -86,7 +86,8 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
     if (pair.name.find('/') != std::string::npos || pair.name == "." || pair.name == "..")
       fail(name_node, name_path,
            "expected a contact pair name without '/' (it names the group /history/contact/NAME of the "
-           "results), got '" + pair.name + "'");
+           "results), got '" +
+               pair.name + "'");
     const auto [first, inserted] = index_by_name.emplace(pair.name, c);
     if (!inserted)
       fail(name_node, name_path,
@@ -97,8 +98,8 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
     if (const YAML::Node two_pass = optional(entry, "two_pass"); two_pass.IsDefined())
       pair.two_pass = boolean(two_pass, child_path(pair_path, "two_pass"));
     if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined())
-      pair.slave_points = all_slave_points[choice(points, child_path(pair_path, "slave_points"), "slave points",
-                                                  names_of(all_slave_points))];
+      pair.slave_points = all_slave_points[choice(points, child_path(pair_path, "slave_points"),
+                                                  "slave points", names_of(all_slave_points))];
     // Accepted with slave_points: nodes too (unused there), so that batch runs can
     // switch the slave points with --set alone.
     if (const YAML::Node quadrature = optional(entry, "quadrature"); quadrature.IsDefined()) {

@@ -1,12 +1,10 @@
 // The deck's materials, parts, face names and boundary conditions.
-#include "input/deck_validator.hpp"
-
-
 #include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "input/deck_validator.hpp"
 #include "input/text_tools.hpp"
 
 namespace exdyn::input::deck {

@@ -1,11 +1,9 @@
 // The deck's time, output and guards sections.
-#include "input/deck_validator.hpp"
-
-
 #include <algorithm>
 #include <string>
 #include <vector>
 
+#include "input/deck_validator.hpp"
 #include "input/text_tools.hpp"
 
 namespace exdyn::input::deck {

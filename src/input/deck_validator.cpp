@@ -2,7 +2,6 @@
 // top-level deck() that calls one reader per section (docs/input.md, "Errors").
 #include "input/deck_validator.hpp"
 
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>

@@ -71,7 +71,6 @@ std::string yaml_faces(const Deck& deck, const std::vector<FaceRef>& faces) {
   return "[" + join(names, ", ") + "]";
 }
 
-
 }  // namespace
 
 std::string to_yaml(const Deck& deck) {
@@ -152,6 +151,5 @@ std::string to_yaml(const Deck& deck) {
       << "  max_penetration: " << yaml_number(deck.guards.max_penetration) << "\n";
   return out.str();
 }
-
 
 }  // namespace exdyn::input

@@ -92,11 +92,10 @@ void check_perturbed_part(const Mesh& mesh, const input::Deck& deck, std::size_t
 // Lattice offsets (along x, y, z, in units of half an element for order 2) of the
 // nodes of a brick from its lowest corner, in VTK order: the 8 corners, then for 20
 // nodes the mid-edge points of the bottom, the top and the vertical edges.
-constexpr std::array<std::array<int, 3>, 20> brick_offsets{{{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0},
-                                                            {0, 0, 2}, {2, 0, 2}, {2, 2, 2}, {0, 2, 2},
-                                                            {1, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 1, 0},
-                                                            {1, 0, 2}, {2, 1, 2}, {1, 2, 2}, {0, 1, 2},
-                                                            {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}}};
+constexpr std::array<std::array<int, 3>, 20> brick_offsets{
+    {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 2}, {2, 2, 2},
+     {0, 2, 2}, {1, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 1, 0}, {1, 0, 2}, {2, 1, 2},
+     {1, 2, 2}, {0, 1, 2}, {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}}};
 
 // Nodes of a part of this order with these element counts.
 std::uint64_t part_node_count(const std::array<int, 3>& n, int order) {

@@ -29,12 +29,12 @@ struct PartRange {
   std::uint32_t node_count = 0;
   std::uint32_t first_element = 0;
   std::uint32_t element_count = 0;
-  std::array<int, 3> elements{};        // nx, ny, nz
-  int order = 1;                        // 1: 8-node elements, 2: 20-node elements
-  int nodes_per_element = 8;            // 8 or 20
-  std::size_t first_connectivity = 0;   // offset of the part's first element in Mesh::connectivity
-  std::vector<std::uint32_t> lattice;   // node id of each lattice point (no_node: none), x fastest
-  std::array<int, 3> lattice_size{};    // order n + 1 along each axis
+  std::array<int, 3> elements{};       // nx, ny, nz
+  int order = 1;                       // 1: 8-node elements, 2: 20-node elements
+  int nodes_per_element = 8;           // 8 or 20
+  std::size_t first_connectivity = 0;  // offset of the part's first element in Mesh::connectivity
+  std::vector<std::uint32_t> lattice;  // node id of each lattice point (no_node: none), x fastest
+  std::array<int, 3> lattice_size{};   // order n + 1 along each axis
 
   // Node id at lattice point (I, J, K); no_node where the lattice has no node.
   std::uint32_t node_at(int i, int j, int k) const {
@@ -53,7 +53,9 @@ struct Mesh {
   std::size_t node_count() const { return x_ref.size(); }
   std::size_t element_count() const { return element_part.size(); }
   // The nodes of element e (global index) and how many there are.
-  int nodes_of(std::size_t e) const { return parts[static_cast<std::size_t>(element_part[e])].nodes_per_element; }
+  int nodes_of(std::size_t e) const {
+    return parts[static_cast<std::size_t>(element_part[e])].nodes_per_element;
+  }
   const std::uint32_t* element_nodes(std::size_t e) const {
     const PartRange& part = parts[static_cast<std::size_t>(element_part[e])];
     return connectivity.data() + part.first_connectivity +

@@ -362,8 +362,8 @@ struct ResultWriter::Impl {
 
   std::vector<double> buffer;  // interleaved (AoS) staging and zeros; reused
   std::vector<HistoryRow> pending_history;
-  std::vector<std::string> contact_pairs;               // names, for /history/contact/NAME
-  std::vector<ContactHistoryRow> pending_contact;        // contact_pairs.size() per pending history row
+  std::vector<std::string> contact_pairs;          // names, for /history/contact/NAME
+  std::vector<ContactHistoryRow> pending_contact;  // contact_pairs.size() per pending history row
   hsize_t history_rows_on_disk = 0;
   // Elements of 8 and 20 nodes mixed: the .xmf names /mesh/mixed_topology (XDMF "Mixed").
   bool mixed = false;
@@ -555,8 +555,9 @@ std::string ResultWriter::Impl::grid_xml(const StepData& data, const std::string
     xml += "          " + data_item(std::to_string(mixed_topology_size), "Int", "/mesh/mixed_topology");
   } else {
     const std::string nodes_per = std::to_string(nodes_per_element);
-    xml += std::string("        <Topology TopologyType=\"") + (nodes_per_element == 20 ? "Hexahedron_20" : "Hexahedron") +
-           "\" NumberOfElements=\"" + elements + "\" NodesPerElement=\"" + nodes_per + "\">\n";
+    xml += std::string("        <Topology TopologyType=\"") +
+           (nodes_per_element == 20 ? "Hexahedron_20" : "Hexahedron") + "\" NumberOfElements=\"" + elements +
+           "\" NodesPerElement=\"" + nodes_per + "\">\n";
     xml += "          " + data_item(elements + " " + nodes_per, "Int", "/mesh/connectivity");
   }
   xml += "        </Topology>\n";
@@ -627,8 +628,9 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
       total += nodes;
     }
     if (total != mesh.connectivity->size())
-      throw std::invalid_argument("ResultWriter: connectivity length " + std::to_string(mesh.connectivity->size()) +
-                                  " is not the " + std::to_string(total) + " nodes of the elements");
+      throw std::invalid_argument("ResultWriter: connectivity length " +
+                                  std::to_string(mesh.connectivity->size()) + " is not the " +
+                                  std::to_string(total) + " nodes of the elements");
   } else if (mesh.connectivity->size() % 8 != 0) {
     throw std::invalid_argument("ResultWriter: connectivity length " +
                                 std::to_string(mesh.connectivity->size()) + " is not a multiple of 8");

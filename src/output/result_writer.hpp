@@ -66,7 +66,8 @@ class ResultWriter {
   // contact_pairs: the names of the contact pairs, whose histories go to
   // /history/contact/NAME (one ContactHistoryRow each with every history row).
   ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
-               const std::vector<input::OutputField>& fields, const std::vector<std::string>& contact_pairs = {});
+               const std::vector<input::OutputField>& fields,
+               const std::vector<std::string>& contact_pairs = {});
   ~ResultWriter();
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;

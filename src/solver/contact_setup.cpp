@@ -140,7 +140,8 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
           contact::QuadraturePoint point;
           point.segment = segment_index;
           point.xi = {rule.abscissa[std::size_t(a)], rule.abscissa[std::size_t(b)]};
-          point.weight = rule.weight[std::size_t(a)] * rule.weight[std::size_t(b)] * area_element(segment, point.xi);
+          point.weight =
+              rule.weight[std::size_t(a)] * rule.weight[std::size_t(b)] * area_element(segment, point.xi);
           s.quadrature_points.push_back(point);
           s.normal_length.push_back(length);
           const std::array<double, 8> N = contact::shape_functions(ids.type, point.xi);
@@ -183,8 +184,8 @@ double largest_master_inverse_mass(const Model& model, const contact::ContactSur
 // that no slave node's springs together exceed the frequency caps of penalty.hpp:
 // kappa a_I <= scale min(accurate, stable bound) for 1/m_I + the largest master 1/m,
 // with a_I the node's spring area (PassGeometry::spring_area).
-void quadrature_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g, double dt,
-                          double courant) {
+void quadrature_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g,
+                          double dt, double courant) {
   auto& s = g.surfaces;
   const double master_inverse_mass = largest_master_inverse_mass(model, s);
   std::vector<double> segment_kappa(s.slave_segments.size(), std::numeric_limits<double>::infinity());
@@ -195,9 +196,10 @@ void quadrature_stiffness(const input::ContactOptions& options, const Model& mod
       const std::size_t i = static_cast<std::size_t>(
           std::lower_bound(s.slave_nodes.begin(), s.slave_nodes.end(), node) - s.slave_nodes.begin());
       const double inverse_mass = 1.0 / model.mass[node] + master_inverse_mass;
-      const double cap = options.penalty.scale *
-                         std::min(contact::accurate_stiffness_bound(dt, inverse_mass),
-                                  contact::stable_stiffness_bound(dt, courant, options.penalty.damping, inverse_mass));
+      const double cap =
+          options.penalty.scale *
+          std::min(contact::accurate_stiffness_bound(dt, inverse_mass),
+                   contact::stable_stiffness_bound(dt, courant, options.penalty.damping, inverse_mass));
       segment_kappa[seg] = std::min(segment_kappa[seg], cap / g.spring_area[i]);
     }
   }
@@ -208,8 +210,9 @@ void quadrature_stiffness(const input::ContactOptions& options, const Model& mod
     if (options.penalty.stiffness)
       kappa = *options.penalty.stiffness;
     else
-      kappa = std::min(options.penalty.scale * contact::automatic_pressure_stiffness(g.modulus, s.normal_length[p]),
-                       segment_kappa[q.segment]);
+      kappa = std::min(
+          options.penalty.scale * contact::automatic_pressure_stiffness(g.modulus, s.normal_length[p]),
+          segment_kappa[q.segment]);
     s.stiffness[p] = kappa * q.weight;
   }
 }
@@ -219,16 +222,17 @@ void quadrature_stiffness(const input::ContactOptions& options, const Model& mod
 // (inverse mass 1/m_s, the most favourable case), k exceeds the bound of
 // penalty.hpp for this step, Courant number and damping.
 void refuse_unstable_stiffness(const input::Deck& deck, const Model& model, const ContactPair& pair,
-                               const std::vector<PassGeometry>& geometry, const input::ContactOptions& options,
-                               std::size_t index, double dt, double courant) {
+                               const std::vector<PassGeometry>& geometry,
+                               const input::ContactOptions& options, std::size_t index, double dt,
+                               double courant) {
   // Nodes: the bound of the heaviest slave node. Quadrature points: kappa a_I for the
   // node whose bound / a_I is largest, the most favourable.
   double bound = 0.0;
   for (const auto& g : geometry) {
     const auto& pass = g.surfaces;
     for (std::size_t i = 0; i < pass.slave_nodes.size(); ++i) {
-      const double node_bound =
-          contact::stable_stiffness_bound(dt, courant, options.penalty.damping, 1.0 / model.mass[pass.slave_nodes[i]]);
+      const double node_bound = contact::stable_stiffness_bound(dt, courant, options.penalty.damping,
+                                                                1.0 / model.mass[pass.slave_nodes[i]]);
       bound = std::max(bound, pass.quadrature ? node_bound / g.spring_area[i] : node_bound);
     }
   }
@@ -241,8 +245,8 @@ void refuse_unstable_stiffness(const input::Deck& deck, const Model& model, cons
       "%.4g %s is above the stability bound of this mesh and time step: no contact of pair '%s' can be "
       "stable with %s > %.4g %s (dt = %.4g s, Courant %.3g, damping %.3g; docs/contact.md). Lower it, "
       "use penalty: {scale: s} (the automatic rule), or lower time.courant",
-      *options.penalty.stiffness, units, pair.name.c_str(), quadrature ? "kappa" : "k", bound, units, dt, courant,
-      options.penalty.damping);
+      *options.penalty.stiffness, units, pair.name.c_str(), quadrature ? "kappa" : "k", bound, units, dt,
+      courant, options.penalty.damping);
   throw InputError(SourceLocation{deck.source_file, 0, 0},
                    "contact[" + std::to_string(index) + "].penalty.stiffness", text);
 }
@@ -276,7 +280,8 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
                                    contact::automatic_stiffness(g.modulus, g.area[i], s.normal_length[i]);
     }
     if (options.penalty.stiffness)
-      refuse_unstable_stiffness(deck, model, pair, geometry, options, contact.pairs.size(), dt, dt / critical_dt);
+      refuse_unstable_stiffness(deck, model, pair, geometry, options, contact.pairs.size(), dt,
+                                dt / critical_dt);
     for (auto& g : geometry) pair.passes.push_back(std::move(g.surfaces));
     auto& settings = pair.settings;
     settings.project = contact::select_method(options.local_search.method);

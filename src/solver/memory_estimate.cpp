@@ -11,9 +11,9 @@
 
 #include "common/errors.hpp"
 #include "common/nodal_vectors.hpp"
+#include "element/hex20.hpp"
 #include "element/hex8.hpp"
 #include "element/hex8r.hpp"
-#include "element/hex20.hpp"
 
 namespace exdyn::solver {
 

@@ -86,8 +86,8 @@ void compute_contact_forces(const Model& model, ContactModel& contact, State& st
   for (auto& pair : contact.pairs) {
     for (std::size_t p = 0; p < pair.passes.size(); ++p)
       contact::run_contact_pass(pair.passes[p], pair.settings, pair.states[p], model.mesh.x_ref,
-                                state.displacement, state.velocity, model.mass, state.contact_force, state.gap,
-                                pair.statistics, pair.seconds);
+                                state.displacement, state.velocity, model.mass, state.contact_force,
+                                state.gap, pair.statistics, pair.seconds);
     pair.max_force = std::max(pair.max_force, contact::norm(pair.slave_force()));
   }
   double power = 0.0;  // (f_c^{n-1} + f_c^n).v^{n-1/2}, W x 2

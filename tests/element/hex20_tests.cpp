@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-
 #include <cmath>
 #include <random>
 #include <vector>
@@ -54,7 +53,8 @@ TEST(Hex20, ShapeFunctionsAreKroneckerAndPartitionOfUnity) {
   for (int node = 0; node < 20; ++node) {
     const Vector3& s = hex20::node_natural_coordinates[std::size_t(node)];
     const std::array<double, 20> n = hex20::shape_functions(s[0], s[1], s[2]);
-    for (int other = 0; other < 20; ++other) EXPECT_NEAR(n[std::size_t(other)], node == other ? 1.0 : 0.0, 1e-15);
+    for (int other = 0; other < 20; ++other)
+      EXPECT_NEAR(n[std::size_t(other)], node == other ? 1.0 : 0.0, 1e-15);
   }
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -94,7 +94,8 @@ TEST(Hex20, ConsistentRowSumsAreNegativeAtCornersAndHrzFractionsAre7And16Over248
     double total = 0.0;
     for (double value : n) total += value;
     // The cube [-1, 1]^3: V = 8, so the fraction of rho V is the sum / 8.
-    for (int k = 0; k < 20; ++k) row_sum[std::size_t(k)] += rule.weight[std::size_t(g)] * n[std::size_t(k)] * total / 8.0;
+    for (int k = 0; k < 20; ++k)
+      row_sum[std::size_t(k)] += rule.weight[std::size_t(g)] * n[std::size_t(k)] * total / 8.0;
   }
   for (int k = 0; k < 20; ++k) EXPECT_NEAR(row_sum[std::size_t(k)], k < 8 ? -1.0 / 8.0 : 1.0 / 6.0, 1e-15);
 
@@ -113,8 +114,8 @@ TEST(Hex20, ConsistentRowSumsAreNegativeAtCornersAndHrzFractionsAre7And16Over248
 TEST(Hex20, HrzMassOfADistortedBlockIsPositiveAndAddsUpToRhoV) {
   const input::Deck deck = box_deck(input::Formulation::hex20, {3, 2, 2}, {3, 2, 2}, 0.25);
   const mesh::Mesh mesh = mesh::build_mesh(deck);
-  const ElementBlock block = make_element_block(input::Formulation::hex20, steel, 0.0, 0, 12,
-                                                mesh.connectivity.data(), mesh.x_ref);
+  const ElementBlock block =
+      make_element_block(input::Formulation::hex20, steel, 0.0, 0, 12, mesh.connectivity.data(), mesh.x_ref);
   std::vector<double> mass(mesh.node_count(), 0.0);
   add_lumped_mass(block, mesh.x_ref, mass);
   double total = 0.0;
@@ -162,9 +163,12 @@ TEST(Hex20, RigidMotionGivesNoForceAndUniformStrainItsStress) {
     f.fill(0.0);
     const ElementEnergies uniform = add_internal_forces(block, u, f, stress.data());
     const double trace = h[0] + h[4] + h[8];
-    const double expected[6] = {steel.lambda * trace + 2 * steel.mu * h[0], steel.lambda * trace + 2 * steel.mu * h[4],
-                                steel.lambda * trace + 2 * steel.mu * h[8], steel.mu * (h[1] + h[3]),
-                                steel.mu * (h[5] + h[7]),                   steel.mu * (h[2] + h[6])};
+    const double expected[6] = {steel.lambda * trace + 2 * steel.mu * h[0],
+                                steel.lambda * trace + 2 * steel.mu * h[4],
+                                steel.lambda * trace + 2 * steel.mu * h[8],
+                                steel.mu * (h[1] + h[3]),
+                                steel.mu * (h[5] + h[7]),
+                                steel.mu * (h[2] + h[6])};
     for (int e = 0; e < 8; ++e)
       for (int k = 0; k < 6; ++k)
         EXPECT_NEAR(stress[std::size_t(6 * e + k)], expected[k], 1e-9 * std::abs(expected[0]));
@@ -188,7 +192,8 @@ TEST(Hex20, AffineMatrixPathEqualsTheGaussPointKernel) {
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> unit(-1e-4, 1e-4);
     NodalVectors u(mesh.node_count()), f(mesh.node_count()), f_simple(mesh.node_count());
-    for (std::size_t n = 0; n < mesh.node_count(); ++n) u.x[n] = unit(rng), u.y[n] = unit(rng), u.z[n] = unit(rng);
+    for (std::size_t n = 0; n < mesh.node_count(); ++n)
+      u.x[n] = unit(rng), u.y[n] = unit(rng), u.z[n] = unit(rng);
     std::vector<double> stress(6 * 37, 0.0);
     const ElementEnergies fast = add_internal_forces(block, u, f, stress.data());
 
@@ -203,12 +208,14 @@ TEST(Hex20, AffineMatrixPathEqualsTheGaussPointKernel) {
       ElementVectors20 x, ue, fe;
       for (int k = 0; k < 20; ++k) {
         const auto n = nodes[k];
-        x.x[std::size_t(k)] = mesh.x_ref.x[n], x.y[std::size_t(k)] = mesh.x_ref.y[n], x.z[std::size_t(k)] = mesh.x_ref.z[n];
+        x.x[std::size_t(k)] = mesh.x_ref.x[n], x.y[std::size_t(k)] = mesh.x_ref.y[n],
+        x.z[std::size_t(k)] = mesh.x_ref.z[n];
         ue.x[std::size_t(k)] = u.x[n], ue.y[std::size_t(k)] = u.y[n], ue.z[std::size_t(k)] = u.z[n];
       }
       hex20::make_reference(x, rule, table.data(), reference.data());
       material::SymTensor s;
-      energy += hex20::internal_forces(rule.count, table.data(), reference.data(), steel.lambda, steel.mu, ue, fe, s);
+      energy += hex20::internal_forces(rule.count, table.data(), reference.data(), steel.lambda, steel.mu, ue,
+                                       fe, s);
       for (int k = 0; k < 6; ++k) {
         EXPECT_NEAR(stress[std::size_t(6 * (7 + e) + std::size_t(k))], s[std::size_t(k)],
                     1e-11 * std::max(1.0, std::abs(s[0])));
@@ -216,12 +223,14 @@ TEST(Hex20, AffineMatrixPathEqualsTheGaussPointKernel) {
       }
       for (int k = 0; k < 20; ++k) {
         const auto n = nodes[k];
-        f_simple.x[n] += fe.x[std::size_t(k)], f_simple.y[n] += fe.y[std::size_t(k)], f_simple.z[n] += fe.z[std::size_t(k)];
+        f_simple.x[n] += fe.x[std::size_t(k)], f_simple.y[n] += fe.y[std::size_t(k)],
+            f_simple.z[n] += fe.z[std::size_t(k)];
       }
     }
     double largest = 0.0, difference = 0.0;
     for (std::size_t n = 0; n < mesh.node_count(); ++n) {
-      largest = std::max({largest, std::abs(f_simple.x[n]), std::abs(f_simple.y[n]), std::abs(f_simple.z[n])});
+      largest =
+          std::max({largest, std::abs(f_simple.x[n]), std::abs(f_simple.y[n]), std::abs(f_simple.z[n])});
       difference = std::max({difference, std::abs(f.x[n] - f_simple.x[n]), std::abs(f.y[n] - f_simple.y[n]),
                              std::abs(f.z[n] - f_simple.z[n])});
     }
@@ -238,13 +247,13 @@ TEST(Hex20, CriticalStepOfACubeIs0268ATimesC1) {
   const double a = 2.0;
   const input::Deck deck = box_deck(input::Formulation::hex20, {1, 1, 1}, {a, a, a});
   const mesh::Mesh mesh = mesh::build_mesh(deck);
-  const ElementBlock block = make_element_block(input::Formulation::hex20, steel, 0.0, 0, 1,
-                                                mesh.connectivity.data(), mesh.x_ref);
+  const ElementBlock block =
+      make_element_block(input::Formulation::hex20, steel, 0.0, 0, 1, mesh.connectivity.data(), mesh.x_ref);
   const double c1 = steel.dilatational_wave_speed();
   EXPECT_NEAR(critical_time_step(block, mesh.x_ref) * c1 / a, 0.268, 0.0005);
   // The reduced-integration brick is softer: a longer step.
-  const ElementBlock reduced = make_element_block(input::Formulation::hex20r, steel, 0.0, 0, 1,
-                                                  mesh.connectivity.data(), mesh.x_ref);
+  const ElementBlock reduced =
+      make_element_block(input::Formulation::hex20r, steel, 0.0, 0, 1, mesh.connectivity.data(), mesh.x_ref);
   EXPECT_GT(critical_time_step(reduced, mesh.x_ref), critical_time_step(block, mesh.x_ref));
 }
 

@@ -55,8 +55,8 @@ exdyn::input::Deck reference_deck() {
   return deck;
 }
 
-constexpr int n = 50;                               // elements along x and z of each plate
-const double plateau = 7800 * 6020.1841 * 1.0;      // rho c1 v0, Pa (46.957 MPa)
+constexpr int n = 50;                           // elements along x and z of each plate
+const double plateau = 7800 * 6020.1841 * 1.0;  // rho c1 v0, Pa (46.957 MPa)
 
 class PlateImpactHex20 : public ::testing::Test {
  protected:
@@ -91,10 +91,11 @@ TEST_F(PlateImpactHex20, QuadraturePointsAgreeWithTheReferenceCalculation) {
     }
     mean /= count, mean_reference /= count;
     const double face = std::abs(row(s, plate, 0) - row(r, 0, 0)) / plateau;
-    std::printf("plate %c: row mean x/d < 0.45 %.4f (reference %.4f) of the plateau, %.3f %% apart; "
-                "face element %.3f %% of the plateau from the reference\n",
-                "AB"[plate], mean / plateau, mean_reference / plateau,
-                100 * std::abs(mean - mean_reference) / plateau, 100 * face);
+    std::printf(
+        "plate %c: row mean x/d < 0.45 %.4f (reference %.4f) of the plateau, %.3f %% apart; "
+        "face element %.3f %% of the plateau from the reference\n",
+        "AB"[plate], mean / plateau, mean_reference / plateau,
+        100 * std::abs(mean - mean_reference) / plateau, 100 * face);
     EXPECT_LE(std::abs(mean - mean_reference), 0.005 * plateau);
     EXPECT_LE(face, 0.005 * plateau);
   }
@@ -118,8 +119,9 @@ TEST_F(PlateImpactHex20, TwoPassQuadratureKeepsThePlatesMirrorImages) {
 TEST_F(PlateImpactHex20, EnergyIsKeptAndTheSearchIsTrivialOnFlatFaces) {
   for (const PlateRun* run : {quadrature_.get(), nodes_.get(), reference_.get()}) {
     std::printf("%s: energy error %.3e, projections %ld, mean iterations %.3f, largest %ld\n",
-                run->deck.name.c_str(), run->summary.energy.max_relative_error, run->summary.contact.projections,
-                run->summary.contact.mean_iterations, run->summary.contact.max_iterations);
+                run->deck.name.c_str(), run->summary.energy.max_relative_error,
+                run->summary.contact.projections, run->summary.contact.mean_iterations,
+                run->summary.contact.max_iterations);
     EXPECT_LE(run->summary.energy.max_relative_error, 1e-3);
   }
   const auto& c = quadrature_->summary.contact;
@@ -148,10 +150,11 @@ TEST(Quad8Face, ConsistentNodalForcesOfAUniformPressureAreNegativeAtTheCorners) 
   std::array<double, 8> force{};
   for (int i = 0; i < rule.count; ++i)
     for (int j = 0; j < rule.count; ++j) {
-      const auto N = exdyn::contact::shape_functions(exdyn::contact::SegmentType::quad8,
-                                                     {rule.abscissa[std::size_t(i)], rule.abscissa[std::size_t(j)]});
-      const double w = rule.weight[std::size_t(i)] * rule.weight[std::size_t(j)] * (area / 4.0);  // dA = A/4 dxi
-      for (int k = 0; k < 8; ++k) force[std::size_t(k)] += N[std::size_t(k)] * w;  // p = 1
+      const auto N = exdyn::contact::shape_functions(
+          exdyn::contact::SegmentType::quad8, {rule.abscissa[std::size_t(i)], rule.abscissa[std::size_t(j)]});
+      const double w =
+          rule.weight[std::size_t(i)] * rule.weight[std::size_t(j)] * (area / 4.0);  // dA = A/4 dxi
+      for (int k = 0; k < 8; ++k) force[std::size_t(k)] += N[std::size_t(k)] * w;    // p = 1
     }
   for (int k = 0; k < 8; ++k) EXPECT_NEAR(force[std::size_t(k)], k < 4 ? -area / 12.0 : area / 3.0, 1e-14);
 }
