@@ -9,9 +9,12 @@ the exact values (scripts/plate_measures.py), and writes the CSV, the charts
     /usr/bin/python3 scripts/batch_plate_impact.py --meshes 25,50 --methods bfgs,dfp \\
         --formulations hex8 --out /tmp/b --docs /tmp/b/docs --jobs 2
 
-Grid: --meshes (elements per plate side; the y thickness follows h so the elements
-stay cubes), --formulations, --methods (or `all`); one reference run per mesh and
-formulation (no contact, so no method). Cases run in parallel (--jobs, default the
+Grid: --meshes (node intervals per plate side, h = d / mesh: elements per side for
+8-node formulations, half as many for 20-node ones, so every formulation of a mesh
+has the same node spacing; the y thickness follows so the elements stay cubes),
+--formulations (hex8, hex8r, hex20, hex20r), --slave-points (nodes, quadrature),
+--methods (or `all`); one reference run per mesh and formulation (no contact, so no
+method and no slave points). Cases run in parallel (--jobs, default the
 cores), one `exdyn run` process each; a case whose summary JSON exists with status
 `completed` is not run again (resume). Writes OUT/cases/CASE/{NAME.h5,NAME.xmf,NAME.json},
 OUT/batch.csv (one row per case), DOCS/figures/results_*.png and the generated parts
@@ -47,7 +50,9 @@ PVPYTHON_RUNNER = os.path.join(os.path.dirname(REPO), "shared", "tools", "paravi
 PICTURES_SCRIPT = os.path.join(REPO, "scripts", "paraview", "plate_pictures.py")
 
 ALL_METHODS = ["newton", "lsp", "steepest_descent", "broyden", "bfgs", "dfp", "simplex", "hybrid", "robust"]
-ALL_FORMULATIONS = ["hex8", "hex8r"]
+ALL_FORMULATIONS = ["hex8", "hex8r", "hex20", "hex20r"]
+DEFAULT_FORMULATIONS = ["hex8", "hex8r"]
+ALL_SLAVE_POINTS = ["nodes", "quadrature"]
 DEFAULT_MESHES = [25, 50, 100, 200]
 FIGURE_MESH = 100          # the paper's mesh: Fig. 8, Fig. 9 and the ParaView pictures
 FIGURE_METHOD = "bfgs"     # the deck's method
@@ -57,7 +62,7 @@ CONTACT_PHASES = ["contact_global_search", "contact_local_search", "contact_forc
 MEASURES = ["plateau_mean", "plateau_error", "front_over_h", "front_over_d", "front_error_over_h",
             "profile_error", "sigma_z_mean_error", "sigma_z_max_error", "contact_vs_reference_row",
             "contact_vs_reference_all", "mirror_symmetry"]
-COLUMNS = (["case", "kind", "mesh", "h", "formulation", "method", "status", "elements", "steps", "dt",
+COLUMNS = (["case", "kind", "mesh", "h", "formulation", "slave_points", "method", "status", "elements", "steps", "dt",
             "wall_seconds", "process_seconds", "element_cycles_per_second", "energy_max_relative_error",
             "contact_projections", "contact_mean_iterations", "contact_max_iterations",
             "contact_not_converged", "contact_saddle_points", "contact_max_penetration_over_h",
@@ -74,10 +79,13 @@ def log(msg):
 
 
 class Case:
-    def __init__(self, kind, mesh, formulation, method, out_root, pictures=False):
+    def __init__(self, kind, mesh, formulation, method, out_root, pictures=False, slave_points="nodes"):
         self.kind, self.mesh, self.formulation, self.method = kind, mesh, formulation, method
+        self.slave_points = slave_points if kind == "contact" else ""
         self.pictures = pictures    # writes every field at 8 steps, for ParaView
-        self.name = (f"contact_{formulation}_n{mesh}_{method}" if kind == "contact"
+        # The default slave points keep the names of the cases run before the axis existed.
+        points = "" if self.slave_points in ("", "nodes") else "_" + self.slave_points
+        self.name = (f"contact_{formulation}_n{mesh}_{method}{points}" if kind == "contact"
                      else f"reference_{formulation}_n{mesh}")
         self.dir = os.path.join(out_root, "cases", self.name)
         self.deck = CONTACT_DECK if kind == "contact" else REFERENCE_DECK
@@ -99,6 +107,10 @@ class Case:
     def settings(self):
         """The --set values: the deck values this case varies."""
         n, h, d = self.mesh, self.h, pm.D
+        if self.formulation.startswith("hex20"):   # elements of 2h: nodes every h
+            if n % 2:
+                raise ValueError(f"mesh {n}: a 20-node mesh needs an even number of node intervals")
+            n, h = n // 2, 2 * h
         sets = [f"parts[0].elements=[{n},1,{n}]",
                 f"parts[0].box={{min: [{-d!r}, 0, 0], max: [0, {h!r}, {d!r}]}}",
                 f"parts[0].formulation={self.formulation}"]
@@ -106,7 +118,8 @@ class Case:
             sets += [f"parts[1].elements=[{n},1,{n}]",
                      f"parts[1].box={{min: [0, 0, 0], max: [{d!r}, {h!r}, {d!r}]}}",
                      f"parts[1].formulation={self.formulation}",
-                     f"contact[0].local_search.method={self.method}"]
+                     f"contact[0].local_search.method={self.method}",
+                     f"contact[0].slave_points={self.slave_points}"]
         if self.pictures:
             every = max(1, round(64 * n / 100))       # 8 outputs over the run (448 steps at n = 100)
             fields = ("[displacement, velocity, stress, von_mises, contact_force, gap]" if self.kind == "contact"
@@ -134,9 +147,10 @@ def build_grid(args):
         for form in args.formulations:
             cases.append(Case("reference", n, form, "", args.out))
             for m in args.methods:
-                pictures = (n == args.figure_mesh and form == args.formulations[0]
-                            and m == args.figure_method)
-                cases.append(Case("contact", n, form, m, args.out, pictures))
+                for points in args.slave_points:
+                    pictures = (n == args.figure_mesh and form == args.formulations[0]
+                                and m == args.figure_method and points == args.slave_points[0])
+                    cases.append(Case("contact", n, form, m, args.out, pictures, points))
     return cases
 
 
@@ -203,6 +217,7 @@ def run_grid(cases, args):
 def case_row(case, reference):
     row = {k: "" for k in COLUMNS}
     row.update(case=case.name, kind=case.kind, mesh=case.mesh, h=case.h, formulation=case.formulation,
+               slave_points=case.slave_points,
                method=case.method)
     s = case.summary()
     if s is None:
@@ -727,8 +742,12 @@ def default_exdyn():
 def main(argv):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--meshes", default=",".join(map(str, DEFAULT_MESHES)),
-                   help="elements per plate side, comma separated (default %(default)s)")
-    p.add_argument("--formulations", default=",".join(ALL_FORMULATIONS))
+                   help="node intervals per plate side (elements for 8-node formulations), comma "
+                        "separated (default %(default)s)")
+    p.add_argument("--formulations", default=",".join(DEFAULT_FORMULATIONS),
+                   help="comma separated among " + ", ".join(ALL_FORMULATIONS) + ", or all")
+    p.add_argument("--slave-points", default="nodes",
+                   help="contact slave points, comma separated among nodes, quadrature, or all")
     p.add_argument("--methods", default="all", help="local search methods, comma separated, or all")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="cases run at once (default: cores)")
     p.add_argument("--out", default=os.path.join(REPO, "results", "batch"), help="results directory")
@@ -742,12 +761,19 @@ def main(argv):
     try:
         args = p.parse_args(argv)
         args.meshes = parse_list(args.meshes, kind=int)
-        args.formulations = parse_list(args.formulations, ALL_FORMULATIONS)
+        args.formulations = (ALL_FORMULATIONS if args.formulations == "all"
+                             else parse_list(args.formulations, ALL_FORMULATIONS))
+        args.slave_points = (ALL_SLAVE_POINTS if args.slave_points == "all"
+                             else parse_list(args.slave_points, ALL_SLAVE_POINTS))
         args.methods = ALL_METHODS if args.methods == "all" else parse_list(args.methods, ALL_METHODS)
     except (argparse.ArgumentTypeError, ValueError) as e:
         print(f"batch_plate_impact: {e}", file=sys.stderr)
         return 2
-    if not args.meshes or not args.formulations or not args.methods or args.jobs < 1:
+    if any(f.startswith("hex20") for f in args.formulations) and any(n % 2 for n in args.meshes):
+        print("batch_plate_impact: 20-node formulations need even meshes (node intervals per side)",
+              file=sys.stderr)
+        return 2
+    if not args.meshes or not args.formulations or not args.slave_points or not args.methods or args.jobs < 1:
         print("batch_plate_impact: empty grid or --jobs < 1", file=sys.stderr)
         return 2
     if args.figure_method not in args.methods:
