@@ -36,6 +36,23 @@ struct Model {
   element::ElementBlock block;
 };
 
+// A smooth non-trivial displacement plus noise (every mode loaded), zero forces
+// and stresses for `count` elements; `length` the box side, m.
+void load(Model& model, double length, std::uint32_t count, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const std::size_t node_count = model.x_ref.size();
+  model.u.resize(node_count);
+  model.f_int.resize(node_count);
+  for (std::size_t id = 0; id < node_count; ++id) {
+    const double x = model.x_ref.x[id] / length, y = model.x_ref.y[id] / length,
+                 z = model.x_ref.z[id] / length;
+    model.u.x[id] = 1e-6 * (std::sin(3 * x + y) + 0.1 * unit(rng));
+    model.u.y[id] = 1e-6 * (std::cos(2 * y - z) * x + 0.1 * unit(rng));
+    model.u.z[id] = 1e-6 * (x * y * z + 0.1 * unit(rng));
+  }
+  model.stress.assign(6 * static_cast<std::size_t>(count), 0.0);
+}
+
 // A box of n^3 cubes of side h, nodes numbered x fastest (like a structured mesh generator).
 std::unique_ptr<Model> make_model(int n, Formulation formulation, bool distorted) {
   auto model = std::make_unique<Model>();
@@ -69,17 +86,7 @@ std::unique_ptr<Model> make_model(int n, Formulation formulation, bool distorted
   const auto steel = exdyn::material::elastic_constants(2.1e11, 0.3, 7800.0);
   model->block = element::make_element_block(formulation, steel, 0.05, 0, count, model->connectivity.data(),
                                              model->x_ref);
-  model->u.resize(node_count);
-  model->f_int.resize(node_count);
-  const double length = n * h;
-  for (std::size_t id = 0; id < node_count; ++id) {
-    const double x = model->x_ref.x[id] / length, y = model->x_ref.y[id] / length,
-                 z = model->x_ref.z[id] / length;
-    model->u.x[id] = 1e-6 * (std::sin(3 * x + y) + 0.1 * unit(rng));
-    model->u.y[id] = 1e-6 * (std::cos(2 * y - z) * x + 0.1 * unit(rng));
-    model->u.z[id] = 1e-6 * (x * y * z + 0.1 * unit(rng));
-  }
-  model->stress.assign(6 * static_cast<std::size_t>(count), 0.0);
+  load(*model, n * h, count, rng);
   return model;
 }
 
@@ -102,20 +109,8 @@ std::unique_ptr<Model> make_quadratic_model(int m, Formulation formulation, bool
   const auto steel = exdyn::material::elastic_constants(2.1e11, 0.3, 7800.0);
   model->block = element::make_element_block(formulation, steel, 0.0, 0, count, model->connectivity.data(),
                                              model->x_ref);
-  const std::size_t node_count = model->x_ref.size();
-  model->u.resize(node_count);
-  model->f_int.resize(node_count);
   std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  const double length = 2 * h * m;
-  for (std::size_t id = 0; id < node_count; ++id) {
-    const double x = model->x_ref.x[id] / length, y = model->x_ref.y[id] / length,
-                 z = model->x_ref.z[id] / length;
-    model->u.x[id] = 1e-6 * (std::sin(3 * x + y) + 0.1 * unit(rng));
-    model->u.y[id] = 1e-6 * (std::cos(2 * y - z) * x + 0.1 * unit(rng));
-    model->u.z[id] = 1e-6 * (x * y * z + 0.1 * unit(rng));
-  }
-  model->stress.assign(6 * static_cast<std::size_t>(count), 0.0);
+  load(*model, 2 * h * m, count, rng);
   return model;
 }
 

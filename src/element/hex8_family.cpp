@@ -114,28 +114,22 @@ ElementEnergies hex8_parallelepiped_loop(const ElementBlock& block, std::uint32_
                            });
 }
 
-ElementEnergies hex8r_general_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
-                                   const NodalVectors& u, NodalVectors& f_int, double* stress) {
+// The two hex8r loops: the same pair loop around the general or the
+// constant-Jacobian one-point kernel.
+template <bool Parallelepiped>
+ElementEnergies hex8r_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
+                           const NodalVectors& u, NodalVectors& f_int, double* stress) {
   const double lambda = block.material.lambda, mu = block.material.mu;
-  return element_pair_loop(block, begin, end, hex8r::reference_size, u, f_int, stress,
-                           [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
-                                        BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
-                             const hex8r::BasicEnergies<Pack2> e =
-                                 hex8r::internal_forces(reference, lambda, mu, u_local, f_local, s);
-                             return std::array<Pack2, 2>{e.strain, e.hourglass};
-                           });
-}
-
-ElementEnergies hex8r_parallelepiped_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
-                                          const NodalVectors& u, NodalVectors& f_int, double* stress) {
-  const double lambda = block.material.lambda, mu = block.material.mu;
-  return element_pair_loop(block, begin, end, hex8r::parallelepiped_reference_size, u, f_int, stress,
-                           [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
-                                        BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
-                             const hex8r::BasicEnergies<Pack2> e = hex8r::parallelepiped_internal_forces(
-                                 reference, lambda, mu, u_local, f_local, s);
-                             return std::array<Pack2, 2>{e.strain, e.hourglass};
-                           });
+  const std::size_t stride = Parallelepiped ? hex8r::parallelepiped_reference_size : hex8r::reference_size;
+  return element_pair_loop(
+      block, begin, end, stride, u, f_int, stress,
+      [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
+                   BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
+        const hex8r::BasicEnergies<Pack2> e =
+            Parallelepiped ? hex8r::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s)
+                           : hex8r::internal_forces(reference, lambda, mu, u_local, f_local, s);
+        return std::array<Pack2, 2>{e.strain, e.hourglass};
+      });
 }
 
 // Precomputes the reference data of every element with make(x, reference) (which
@@ -188,13 +182,13 @@ void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
   block.constant_jacobian = all_parallelepipeds(block, x_ref);
   const double mu = block.material.mu, coefficient = block.hourglass_coefficient;
   if (block.constant_jacobian) {
-    block.loop = hex8r_parallelepiped_loop;
+    block.loop = hex8r_loop<true>;
     fill_reference(block, x_ref, hex8r::parallelepiped_reference_size, true,
                    [mu, coefficient](const ElementVectors& x, double* r) {
                      return hex8r::make_parallelepiped_reference(x, mu, coefficient, r);
                    });
   } else {
-    block.loop = hex8r_general_loop;
+    block.loop = hex8r_loop<false>;
     fill_reference(block, x_ref, hex8r::reference_size, true,
                    [mu, coefficient](const ElementVectors& x, double* r) {
                      return hex8r::make_reference(x, mu, coefficient, r);
