@@ -35,15 +35,18 @@ void BM_BucketSearch(benchmark::State& state) {
   std::vector<exdyn::contact::CandidatePair> pairs;
   for (auto _ : state) {
     exdyn::contact::segment_boxes(
-        [&](std::uint32_t node) { return std::array<double, 3>{master.x[node], master.y[node], master.z[node]}; },
+        [&](std::uint32_t node) {
+          return std::array<double, 3>{master.x[node], master.y[node], master.z[node]};
+        },
         quads, 0.5 * h, boxes);
     exdyn::contact::bucket_search(slaves, boxes, 0.0, workspace, pairs);
     benchmark::DoNotOptimize(pairs.data());
   }
   state.counters["slave_nodes"] = static_cast<double>(slaves.size());
   state.counters["pairs_per_node"] = static_cast<double>(pairs.size()) / static_cast<double>(slaves.size());
-  state.counters["ns_per_slave_node"] = benchmark::Counter(
-      static_cast<double>(slaves.size()) * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_slave_node"] =
+      benchmark::Counter(static_cast<double>(slaves.size()) * 1e-9,
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 }  // namespace

@@ -9,7 +9,8 @@ namespace exdyn::contact {
 namespace {
 
 bool inside(const Box& box, double x, double y, double z) {
-  return x >= box.lo[0] && x <= box.hi[0] && y >= box.lo[1] && y <= box.hi[1] && z >= box.lo[2] && z <= box.hi[2];
+  return x >= box.lo[0] && x <= box.hi[0] && y >= box.lo[1] && y <= box.hi[1] && z >= box.lo[2] &&
+         z <= box.hi[2];
 }
 
 // The grid: origin, cell edge and cell counts per axis.
@@ -24,7 +25,8 @@ struct Grid {
     return std::min<std::int64_t>(static_cast<std::int64_t>(std::min(t, 9.0e18)), cells[axis] - 1);
   }
   std::uint32_t cell_of(double x, double y, double z) const {
-    return static_cast<std::uint32_t>(clamp_index(x, 0) + cells[0] * (clamp_index(y, 1) + cells[1] * clamp_index(z, 2)));
+    return static_cast<std::uint32_t>(clamp_index(x, 0) +
+                                      cells[0] * (clamp_index(y, 1) + cells[1] * clamp_index(z, 2)));
   }
 };
 
@@ -40,7 +42,8 @@ Grid make_grid(const NodalVectors& points, const std::vector<Box>& boxes, double
       hi[c] = std::max(hi[c], v);
     }
   double mean_extent = 0.0;
-  for (const Box& b : boxes) mean_extent += std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
+  for (const Box& b : boxes)
+    mean_extent += std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
   mean_extent /= static_cast<double>(std::max<std::size_t>(boxes.size(), 1));
   double edge = cell_size > 0.0 ? cell_size : mean_extent;
   const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 0.0});
@@ -55,7 +58,8 @@ Grid make_grid(const NodalVectors& points, const std::vector<Box>& boxes, double
   }
   grid.origin = lo;
   grid.inverse_cell = 1.0 / edge;
-  for (int c = 0; c < 3; ++c) grid.cells[c] = static_cast<std::int64_t>(std::floor((hi[c] - lo[c]) / edge)) + 1;
+  for (int c = 0; c < 3; ++c)
+    grid.cells[c] = static_cast<std::int64_t>(std::floor((hi[c] - lo[c]) / edge)) + 1;
   return grid;
 }
 
@@ -70,7 +74,8 @@ void bucket_search(const NodalVectors& points, const std::vector<Box>& boxes, do
   const std::size_t n_cells = static_cast<std::size_t>(grid.cells[0] * grid.cells[1] * grid.cells[2]);
 
   // The cells a box overlaps (clamped to the grid; none if the box misses it).
-  auto cell_range = [&](const Box& box, std::array<std::int64_t, 3>& first, std::array<std::int64_t, 3>& last) {
+  auto cell_range = [&](const Box& box, std::array<std::int64_t, 3>& first,
+                        std::array<std::int64_t, 3>& last) {
     for (int c = 0; c < 3; ++c) {
       const double grid_lo = grid.origin[c];
       const double grid_hi = grid_lo + static_cast<double>(grid.cells[c]) / grid.inverse_cell;
@@ -115,7 +120,8 @@ void bucket_search(const NodalVectors& points, const std::vector<Box>& boxes, do
   }
 }
 
-void brute_force_search(const NodalVectors& points, const std::vector<Box>& boxes, std::vector<CandidatePair>& pairs) {
+void brute_force_search(const NodalVectors& points, const std::vector<Box>& boxes,
+                        std::vector<CandidatePair>& pairs) {
   pairs.clear();
   for (std::size_t p = 0; p < points.size(); ++p)
     for (std::size_t s = 0; s < boxes.size(); ++s)

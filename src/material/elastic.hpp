@@ -35,8 +35,12 @@ inline ElasticConstants elastic_constants(double youngs_modulus, double poissons
 inline SymTensor stress_from_strain(const ElasticConstants& c, const SymTensor& eps) {
   const double lambda_trace = c.lambda * (eps[0] + eps[1] + eps[2]);
   const double two_mu = 2.0 * c.mu;
-  return {lambda_trace + two_mu * eps[0], lambda_trace + two_mu * eps[1], lambda_trace + two_mu * eps[2],
-          two_mu * eps[3],                two_mu * eps[4],                two_mu * eps[5]};
+  return {lambda_trace + two_mu * eps[0],
+          lambda_trace + two_mu * eps[1],
+          lambda_trace + two_mu * eps[2],
+          two_mu * eps[3],
+          two_mu * eps[4],
+          two_mu * eps[5]};
 }
 
 // Strain energy density W = sigma : eps / 2 (J/m^3).
@@ -48,7 +52,8 @@ inline double strain_energy_density(const SymTensor& sigma, const SymTensor& eps
 // von Mises equivalent stress sqrt(3 J2), Pa.
 inline double von_mises(const SymTensor& s) {
   const double dxy = s[0] - s[1], dyz = s[1] - s[2], dzx = s[2] - s[0];
-  return std::sqrt(0.5 * (dxy * dxy + dyz * dyz + dzx * dzx) + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+  return std::sqrt(0.5 * (dxy * dxy + dyz * dyz + dzx * dzx) +
+                   3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
 }
 
 }  // namespace exdyn::material

@@ -15,7 +15,9 @@
 
 namespace {
 
-exdyn::testing::CommandResult exdyn(const std::string& arguments) { return exdyn::testing::run_exdyn(arguments); }
+exdyn::testing::CommandResult exdyn(const std::string& arguments) {
+  return exdyn::testing::run_exdyn(arguments);
+}
 
 std::string deck(const std::string& name) { return std::string(EXDYN_SOURCE_DIR) + "/input/" + name; }
 
@@ -42,7 +44,8 @@ TEST(Cli, CheckPrintsTheResolvedDeckWithDefaultsAndOverrides) {
   const auto result = exdyn("check " + deck("wave_bar.yaml") + " --set time.courant=0.25");
   ASSERT_EQ(result.status, 0) << result.output;
   EXPECT_NE(result.output.find("courant: 0.25"), std::string::npos) << result.output;
-  EXPECT_NE(result.output.find("formulation: hex8"), std::string::npos) << result.output;  // a default filled in
+  EXPECT_NE(result.output.find("formulation: hex8"), std::string::npos)
+      << result.output;  // a default filled in
   EXPECT_NE(result.output.find("history_every: 1"), std::string::npos) << result.output;
 }
 
@@ -61,7 +64,8 @@ TEST(Cli, CheckOutputIsAValidDeckThatChecksToTheSameText) {
 TEST(Cli, BadDeckExitsTwoNamesTheKeyAndWritesNothing) {
   exdyn::testing::TempDir directory;
   const std::string out = directory.file("out");
-  const auto result = exdyn("run " + deck("wave_bar.yaml") + " --set materials.steel.density=-7800 --output " + out);
+  const auto result =
+      exdyn("run " + deck("wave_bar.yaml") + " --set materials.steel.density=-7800 --output " + out);
   EXPECT_EQ(result.status, 2);
   EXPECT_NE(result.output.find("materials.steel.density"), std::string::npos) << result.output;
   EXPECT_FALSE(std::filesystem::exists(out));
@@ -89,15 +93,17 @@ TEST(Cli, SetOverridesTheOutputInterval) {
   std::ifstream xmf(directory.file("wave_bar.xmf"));
   const std::string text((std::istreambuf_iterator<char>(xmf)), std::istreambuf_iterator<char>());
   std::size_t grids = 0;
-  for (std::size_t at = text.find("<Time "); at != std::string::npos; at = text.find("<Time ", at + 1)) ++grids;
+  for (std::size_t at = text.find("<Time "); at != std::string::npos; at = text.find("<Time ", at + 1))
+    ++grids;
   EXPECT_EQ(grids, 2u);  // the first and the last step only
 }
 
 TEST(Cli, UnstableRunExitsOneNamesTheStepAndLeavesAFailedSummary) {
   exdyn::testing::TempDir directory;
   // Courant 1.5 is beyond the stable limit of 1.0: the energy grows until it overflows.
-  const auto result = exdyn("run " + deck("wave_bar.yaml") + " --quiet --set time.courant=1.5 --set time.end_time=1e-4" +
-                            " --output " + directory.path().string());
+  const auto result =
+      exdyn("run " + deck("wave_bar.yaml") + " --quiet --set time.courant=1.5 --set time.end_time=1e-4" +
+            " --output " + directory.path().string());
   EXPECT_EQ(result.status, 1) << result.output;
   EXPECT_NE(result.output.find("at step "), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("node"), std::string::npos) << result.output;

@@ -7,7 +7,9 @@
 
 namespace {
 
-exdyn::testing::CommandResult run(const std::string& arguments) { return exdyn::testing::run_exdyn(arguments); }
+exdyn::testing::CommandResult run(const std::string& arguments) {
+  return exdyn::testing::run_exdyn(arguments);
+}
 
 const std::string source = EXDYN_SOURCE_DIR;
 

@@ -92,8 +92,9 @@ TEST_F(PlateImpact, TwoPassContactKeepsThePlatesMirrorImages) {
       for (int c : {0, 2, 5}) {
         // xz shear changes sign under the mirror x -> -x
         const double sign = c == 5 ? -1.0 : 1.0;
-        worst = std::max(worst, std::abs(s[6 * std::size_t(i + n * k) + std::size_t(c)] -
-                                         sign * s[6 * std::size_t(n * n + (n - 1 - i) + n * k) + std::size_t(c)]));
+        worst = std::max(worst,
+                         std::abs(s[6 * std::size_t(i + n * k) + std::size_t(c)] -
+                                  sign * s[6 * std::size_t(n * n + (n - 1 - i) + n * k) + std::size_t(c)]));
       }
   std::printf("largest mirror difference of the two plates: %.3e of the plateau\n", worst / plateau);
   EXPECT_LE(worst, 1e-6 * plateau);
@@ -229,17 +230,18 @@ class PlateImpactMethod : public ::testing::TestWithParam<const char*> {};
 TEST_P(PlateImpactMethod, RunsThePlateCaseToTheEnd) {
   const ContactRun run("plate_impact.yaml", {{"contact[0].local_search.method", GetParam()}});
   const auto& c = run.summary.contact;
-  std::printf("%-17s projections %ld, mean iterations %.3f, max %ld, not converged %ld, saddles %ld, "
-              "max penetration / h %.2e\n",
-              GetParam(), c.projections, c.mean_iterations, c.max_iterations, c.not_converged, c.saddle_points,
-              c.max_penetration_over_h);
+  std::printf(
+      "%-17s projections %ld, mean iterations %.3f, max %ld, not converged %ld, saddles %ld, "
+      "max penetration / h %.2e\n",
+      GetParam(), c.projections, c.mean_iterations, c.max_iterations, c.not_converged, c.saddle_points,
+      c.max_penetration_over_h);
   EXPECT_EQ(run.summary.status, "completed");
   EXPECT_EQ(run.summary.steps, plate_steps);
   EXPECT_LT(c.max_penetration_over_h, 0.01);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, PlateImpactMethod,
-                         ::testing::Values("newton", "lsp", "steepest_descent", "broyden", "bfgs", "dfp", "simplex",
-                                           "hybrid", "robust"));
+                         ::testing::Values("newton", "lsp", "steepest_descent", "broyden", "bfgs", "dfp",
+                                           "simplex", "hybrid", "robust"));
 
 }  // namespace

@@ -18,9 +18,9 @@ namespace {
 using exdyn::testing::read_dataset;
 using exdyn::testing::step_path;
 
-constexpr int n = 100;        // elements along x and along z
-constexpr long steps = 448;   // c1 t / d = 0.56 at Courant 0.125
-constexpr double v0 = 1.0;    // m/s
+constexpr int n = 100;       // elements along x and along z
+constexpr long steps = 448;  // c1 t / d = 0.56 at Courant 0.125
+constexpr double v0 = 1.0;   // m/s
 
 struct PlateRun {
   exdyn::testing::TempDir directory{"exdyn_plate"};
@@ -29,7 +29,7 @@ struct PlateRun {
   std::vector<double> stress;  // (E, 6) at step 448
   std::vector<double> chain;   // the chain's sigma_x, element 0 at the free end
   exdyn::material::ElasticConstants material;
-  double plateau = 0.0;        // |sigma_x| behind the front: rho c1 v0, Pa
+  double plateau = 0.0;  // |sigma_x| behind the front: rho c1 v0, Pa
 
   explicit PlateRun(const std::string& formulation) {
     deck = exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/plate_impact_reference.yaml",
@@ -54,7 +54,9 @@ struct PlateRun {
   // Stress component c of element (i along x from the free end, k along z from z = 0).
   double sigma(int i, int k, int c) const { return stress[6 * std::size_t(i + n * k) + std::size_t(c)]; }
   // sigma* = sigma c1 / (lambda v0)
-  double normalised(double s) const { return s * material.dilatational_wave_speed() / (material.lambda * v0); }
+  double normalised(double s) const {
+    return s * material.dilatational_wave_speed() / (material.lambda * v0);
+  }
 };
 
 class PlateReference : public ::testing::TestWithParam<const char*> {

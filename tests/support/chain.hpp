@@ -9,14 +9,14 @@
 namespace exdyn::testing {
 
 struct ChainOptions {
-  int elements = 100;        // node 0 is the free end, node `elements` the wall
-  double h = 0.0;            // element length, m
-  double density = 0.0;      // rho, kg/m^3
-  double modulus = 0.0;      // M = lambda + 2 mu (uniaxial strain), Pa
-  double velocity = 0.0;     // initial velocity of every node but the wall, m/s
-  double dt = 0.0;           // s
+  int elements = 100;     // node 0 is the free end, node `elements` the wall
+  double h = 0.0;         // element length, m
+  double density = 0.0;   // rho, kg/m^3
+  double modulus = 0.0;   // M = lambda + 2 mu (uniaxial strain), Pa
+  double velocity = 0.0;  // initial velocity of every node but the wall, m/s
+  double dt = 0.0;        // s
   long steps = 0;
-  bool wall_fixed = true;    // the last node held (rigid wall)
+  bool wall_fixed = true;  // the last node held (rigid wall)
 };
 
 // sigma_x of every element after `steps` steps (element 0 at the free end), Pa.
