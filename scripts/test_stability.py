@@ -15,7 +15,7 @@ Checks:
 - every local search failing (simplex, one iteration): counted, reported, no force;
 - SIGTERM during a run: the run finishes its step, writes it, exits 1 with
   "interrupted by SIGTERM"; the result is complete up to that step;
-- SIGKILL at random moments (--kills, default 20): every time, the files left are a
+- SIGKILL at random moments of the run's progress (--kills, default 20): every time, the files left are a
   result that h5py and ParaView read, holding every step the .xmf lists, with the
   same data as an uninterrupted run of the same deck at those steps.
 Prints `N passed, M failed`; exit 0 when all passed.
@@ -155,7 +155,7 @@ def test_failed_projections(exdyn, work):
 
 
 # A run long enough to be killed at any moment: the reference plate at 50 x 50,
-# 13440 steps, a step written every 96 (2 to 4 s on 1 or 2 threads, 141 steps of 0.2 MB).
+# 7225 steps, a step written every 96 (76 steps of 0.2 MB).
 EVERY = 96
 KILL_SETS = ["parts[0].elements=[50,1,50]", "parts[0].box={min: [-2.5e-3, 0, 0], max: [0, 5.0e-5, 2.5e-3]}",
              "time.end_time=7.5e-6", f"output.every={EVERY}"]
@@ -205,12 +205,34 @@ def test_sigterm(exdyn, work, reference):
     check("SIGTERM: ParaView reads the result", ok, detail)
 
 
+def wait_for_step(proc, xmf, step, timeout=120.0):
+    """Poll until the .xmf lists `step` (or the run ends): the kill moment is then set by the
+    run's progress, not by the wall clock, so a loaded machine cannot bunch the kills."""
+    deadline = time.monotonic() + timeout
+    marker = f":/steps/{step:06d}/"
+    while proc.poll() is None and time.monotonic() < deadline:
+        try:
+            with open(xmf) as f:
+                if marker in f.read():
+                    return
+        except OSError:
+            pass
+        time.sleep(0.002)
+
+
 def test_sigkill(exdyn, work, reference, kills, rng):
     killed_steps = []
     for k in range(kills):
         out = os.path.join(work, f"kill{k}")
         proc = start(exdyn, out, "kill")
-        time.sleep(rng.uniform(0.05, 2.0))
+        # Every fourth kill at a random early moment (often before the first output); the others
+        # after a random written step, a random fraction of an output interval later, so the kills
+        # fall at every phase of a step: computing, writing /steps, rewriting the .xmf.
+        if k % 4 == 0:
+            time.sleep(rng.uniform(0.0, 0.3))
+        else:
+            wait_for_step(proc, os.path.join(out, "kill.xmf"), EVERY * rng.randrange(0, 72))  # the run writes steps 0 to 7200, then 7225
+            time.sleep(rng.uniform(0.0, 0.03))
         proc.kill()
         proc.wait()
         xmf = os.path.join(out, "kill.xmf")
