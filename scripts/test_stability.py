@@ -231,7 +231,8 @@ def test_sigkill(exdyn, work, reference, kills, rng):
         if k % 4 == 0:
             time.sleep(rng.uniform(0.0, 0.3))
         else:
-            wait_for_step(proc, os.path.join(out, "kill.xmf"), EVERY * rng.randrange(0, 72))  # the run writes steps 0 to 7200, then 7225
+            # The run writes steps 0, 96, ..., 7200, then its last, 7225.
+            wait_for_step(proc, os.path.join(out, "kill.xmf"), EVERY * rng.randrange(0, 76))
             time.sleep(rng.uniform(0.0, 0.03))
         proc.kill()
         proc.wait()
