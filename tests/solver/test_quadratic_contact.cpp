@@ -162,23 +162,23 @@ TEST(Quad8Face, ConsistentNodalForcesOfAUniformPressureAreNegativeAtTheCorners) 
 // ---------------------------------------------------------------- hex20 patch test
 
 // input/contact_patch_hex20.yaml: every element touching the interface against
-// sigma_zz = -rho c1 v0, at every written step from t = 3.5e-7 s (the ringing of
-// the fronts' start has passed) to the end. Returns the worst relative difference.
-// Elements: lower 4 x 4 x 48 first (its top layer 752 ... 767), then upper
-// 3 x 3 x 36 (its bottom layer 768 ... 776).
+// sigma_zz = -rho c1 v0, at every written step from t = 9e-7 s (the start-up
+// ringing has died down) to the end. Returns the worst relative difference.
+// Elements: lower 4 x 4 x 144 first (its top layer the last 16), then upper
+// 3 x 3 x 108 (its bottom layer the next 9).
 double patch_worst(const std::vector<exdyn::input::Override>& overrides, int upper_face) {
   exdyn::input::Deck deck =
       exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/contact_patch_hex20.yaml", overrides);
   const PlateRun run(deck);
   const std::string h5 = run.directory.file(deck.name + ".h5");
   const auto times = read_dataset(h5, "/time").values;
-  const std::size_t lower_elements = 4 * 4 * 48;
+  const std::size_t lower_elements = 4 * 4 * 144;
   std::vector<std::size_t> interface;
   for (std::size_t e = lower_elements - 16; e < lower_elements; ++e) interface.push_back(e);
   for (std::size_t e = 0; e < std::size_t(upper_face * upper_face); ++e) interface.push_back(lower_elements + e);
   double worst = 0.0;
   for (double t : times) {
-    if (t < 3.5e-7) continue;
+    if (t < 9e-7) continue;
     const auto s = read_dataset(h5, step_path(std::lround(t / run.summary.dt), "stress")).values;
     for (std::size_t e : interface) worst = std::max(worst, std::abs(-s[6 * e + 2] / plateau - 1.0));
   }
@@ -187,17 +187,17 @@ double patch_worst(const std::vector<exdyn::input::Override>& overrides, int upp
   return worst;
 }
 
-// Issue 11 asked for 1 % with quadrature points; measured 2.28 % (open, see
-// docs/verification.md). The matching variant isolates the non-matching transfer.
+// Issue 11: with quadrature points every interface element within 1 % of rho c1 v0;
+// the slave-node variant beside it, and matching faces for what non-matching costs.
 TEST(ContactPatchHex20, QuadraturePointsCarryThePlaneWaveAcrossNonMatchingFaces) {
   const double non_matching = patch_worst({}, 3);
-  const double matching = patch_worst({{"parts[1].elements", "[4, 4, 48]"}}, 4);
+  const double matching = patch_worst({{"parts[1].elements", "[4, 4, 144]"}}, 4);
   const double nodes = patch_worst({{"contact[0].slave_points", "nodes"}}, 3);
-  std::printf("hex20 patch, worst interface element from rho c1 v0 for t >= 3.5e-7 s: quadrature %.2f %%, "
+  std::printf("hex20 patch, worst interface element from rho c1 v0 for t >= 9e-7 s: quadrature %.2f %%, "
               "matching faces %.2f %%, slave nodes %.2f %%\n",
               100 * non_matching, 100 * matching, 100 * nodes);
-  EXPECT_LE(non_matching, 0.025);
-  EXPECT_LE(matching, 0.005);
+  EXPECT_LE(non_matching, 0.01);
+  EXPECT_LE(matching, 0.002);
   EXPECT_LE(nodes, 0.06);
   EXPECT_LT(non_matching, nodes);
 }
