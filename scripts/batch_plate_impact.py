@@ -21,6 +21,14 @@ OUT/batch.csv (one row per case), DOCS/figures/results_*.png and the generated p
 of DOCS/results.md (between `<!-- batch:KEY -->` markers; the prose outside them is kept).
 Needs Debian's python3-numpy, python3-h5py, python3-matplotlib (/usr/bin/python3);
 the ParaView pictures need pvpython and xvfb (../shared/tools/paraview/run_pvpython.sh).
+
+--study formulations runs the other study of the page: every formulation (hex8, hex8r,
+hex20, hex20r) and both slave points at equal node counts, one method (--figure-method,
+bfgs), results in results/formulations; it writes docs/figures/results_formulations.png
+and only the `formulations_*` sections of results.md, so the method study's figures stay:
+
+    /usr/bin/python3 scripts/batch_plate_impact.py --study formulations --jobs 1
+
 Exit status: 0 every case completed, 1 some case failed, 2 bad usage.
 """
 
@@ -54,6 +62,7 @@ ALL_FORMULATIONS = ["hex8", "hex8r", "hex20", "hex20r"]
 DEFAULT_FORMULATIONS = ["hex8", "hex8r"]
 ALL_SLAVE_POINTS = ["nodes", "quadrature"]
 DEFAULT_MESHES = [25, 50, 100, 200]
+FORMULATION_MESHES = [20, 50, 100, 200]
 FIGURE_MESH = 100          # the paper's mesh: Fig. 8, Fig. 9 and the ParaView pictures
 FIGURE_METHOD = "bfgs"     # the deck's method
 PHASES = ["element_forces", "contact_global_search", "contact_local_search", "contact_forces",
@@ -148,7 +157,8 @@ def build_grid(args):
             cases.append(Case("reference", n, form, "", args.out))
             for m in args.methods:
                 for points in args.slave_points:
-                    pictures = (n == args.figure_mesh and form == args.formulations[0]
+                    pictures = (getattr(args, "study", "methods") == "methods"
+                                and n == args.figure_mesh and form == args.formulations[0]
                                 and m == args.figure_method and points == args.slave_points[0])
                     cases.append(Case("contact", n, form, m, args.out, pictures, points))
     return cases
@@ -283,7 +293,8 @@ def pareto(rows):
 # =============================================================================
 # Charts
 
-FORMULATION_COLOUR = {"hex8": "C0", "hex8r": "C3"}
+FORMULATION_COLOUR = {"hex8": "C0", "hex8r": "C3", "hex20": "C2", "hex20r": "C1"}
+POINTS_MARKER = {"nodes": "o", "quadrature": "s"}
 METHOD_MARKER = dict(zip(ALL_METHODS, ["o", "s", "v", "^", "D", "P", "X", "*", "h"]))
 
 
@@ -439,6 +450,89 @@ def make_charts(cases, rows, args, figdir):
         axes[0, 0].set_ylabel("contact phases / all phases (%)")
         save(fig, "results_contact_share.png")
     return written
+
+
+
+def chart_formulations(rows, args, figdir):
+    """Error against wall time at equal node counts: one line per formulation and slave
+    points through the meshes (finer to the right), the Pareto front in black."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    contact = [r for r in rows if r["kind"] == "contact" and r["status"] == "completed"]
+    if not contact:
+        return []
+    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    for form in args.formulations:
+        for points in args.slave_points:
+            sel = sorted((r for r in contact if r["formulation"] == form and r["slave_points"] == points),
+                         key=lambda r: int(r["mesh"]))
+            if not sel:
+                continue
+            ax.loglog([num(r["wall_seconds"]) for r in sel], [num(r["profile_error"]) for r in sel],
+                      "-" if points == "nodes" else "--", marker=POINTS_MARKER.get(points, "o"),
+                      color=FORMULATION_COLOUR.get(form, "k"), ms=5, lw=1.0,
+                      mfc="none" if form.endswith("r") else None, label=f"{form}, slave {points}")
+    front = pareto(contact)
+    ax.loglog([num(r["wall_seconds"]) for r in front], [num(r["profile_error"]) for r in front],
+              "k-", lw=0.8, alpha=0.6, drawstyle="steps-post", label="Pareto front")
+    for n in args.meshes:
+        sel = [r for r in contact if int(r["mesh"]) == n]
+        if sel:
+            t = min(num(r["wall_seconds"]) for r in sel)
+            e = min(num(r["profile_error"]) for r in sel)
+            ax.annotate(f"h = d/{n}", (t, e), textcoords="offset points", xytext=(-12, -12), fontsize=8)
+    ax.legend(fontsize=7, ncol=2, loc="upper right")
+    ax.set_xlabel("wall time of the run, one thread (s)")
+    ax.set_ylabel("profile error of $\\sigma_x^*$ along z = 0 (L1, fraction of the plateau)")
+    ax.set_title(f"Formulations at equal node counts, two plates with contact, {args.figure_method}",
+                 fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    path = os.path.join(figdir, "results_formulations.png")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return [path]
+
+
+def formulation_sections(cases, rows, args, stats, command):
+    """The `formulations_*` sections of results.md: the run and the table of every case."""
+    ran, skipped, failures, _ = stats
+    completed = [r for r in rows if r["status"] == "completed"]
+    now = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    sec = {"formulations_run": "\n".join(
+        [f"- machine: {cpu_model()}, {os.cpu_count()} cores visible; written {now} by `{command}` (ran {ran} "
+         f"cases, skipped {skipped}, {failures} failed); {len(cases)} cases, {len(completed)} completed; "
+         f"meshes {', '.join(str(n) for n in args.meshes)} node intervals per plate side; method "
+         f"{args.figure_method};"]
+        + [f"- {i['finished']}: ran {i['ran']} cases with {i['jobs']} job(s) in {i['seconds']:.0f} s; 1-minute "
+           f"load average {i['load_average'][0]:.1f} at the start, {i['load_average'][1]:.1f} at the end; "
+           f"{i.get('exdyn', '')}; repository at {i.get('repository', '')}" for i in invocations(args.out)])}
+    refs = {(r["mesh"], r["formulation"]): r for r in rows if r["kind"] == "reference"}
+    lines = []
+    for r in rows:
+        if r["kind"] != "contact":
+            continue
+        if r["status"] != "completed":
+            lines.append([r["mesh"], r["formulation"], r["slave_points"], r["status"]] + [""] * 10)
+            continue
+        ref = refs.get((r["mesh"], r["formulation"]), {})
+        lines.append([r["mesh"], r["formulation"], r["slave_points"], r["elements"], r["steps"],
+                      fmt(r["wall_seconds"], ".2f"), fmt(num(r["element_cycles_per_second"]) / 1e6, ".2f"),
+                      fmt(r["profile_error"], ".4f"), fmt(r["plateau_mean"], ".4f"),
+                      fmt(r["front_over_d"], ".4f"), fmt(100 * num(r["contact_vs_reference_row"]), ".3f"),
+                      fmt(r["mirror_symmetry"], ".1e"), fmt(r["energy_max_relative_error"], ".1e"),
+                      fmt(ref.get("profile_error"), ".4f")])
+    sec["formulations"] = table(["nodes/side", "form.", "slave points", "elements", "steps", "wall (s)",
+                                 "M el.-cycles/s", "profile err.", "plateau mean", "front x/d",
+                                 "contact - ref., z = 0 (%)", "mirror", "energy err.", "ref. profile err."],
+                                lines)
+    front = pareto([r for r in completed if r["kind"] == "contact"])
+    sec["formulations_pareto"] = table(["nodes/side", "form.", "slave points", "wall (s)", "profile err."],
+                                       [[r["mesh"], r["formulation"], r["slave_points"],
+                                         fmt(r["wall_seconds"], ".2f"), fmt(r["profile_error"], ".4f")]
+                                        for r in front])
+    return sec
 
 
 # =============================================================================
@@ -750,12 +844,16 @@ def main(argv):
                    help="contact slave points, comma separated among nodes, quadrature, or all")
     p.add_argument("--methods", default="all", help="local search methods, comma separated, or all")
     p.add_argument("--jobs", type=int, default=os.cpu_count() or 1, help="cases run at once (default: cores)")
-    p.add_argument("--out", default=os.path.join(REPO, "results", "batch"), help="results directory")
+    p.add_argument("--out", default=None,
+                   help="results directory (default results/batch, or results/formulations for that study)")
     p.add_argument("--docs", default=os.path.join(REPO, "docs"),
                    help="where results.md and figures/results_*.png go (default: the repository's docs)")
     p.add_argument("--exdyn", default=default_exdyn())
     p.add_argument("--figure-mesh", type=int, default=FIGURE_MESH)
     p.add_argument("--figure-method", default=FIGURE_METHOD)
+    p.add_argument("--study", choices=["methods", "formulations"], default="methods",
+                   help="methods (default): the grid options below; formulations: every formulation and "
+                        "slave points at equal node counts, one method, its own sections of results.md")
     p.add_argument("--no-plots", action="store_true", help="no charts, no document")
     p.add_argument("--skip-paraview", action="store_true")
     try:
@@ -766,6 +864,14 @@ def main(argv):
         args.slave_points = (ALL_SLAVE_POINTS if args.slave_points == "all"
                              else parse_list(args.slave_points, ALL_SLAVE_POINTS))
         args.methods = ALL_METHODS if args.methods == "all" else parse_list(args.methods, ALL_METHODS)
+        if args.study == "formulations":
+            if "--formulations" not in argv:
+                args.formulations = ALL_FORMULATIONS
+            if "--slave-points" not in argv:
+                args.slave_points = ALL_SLAVE_POINTS
+            if "--meshes" not in argv:   # even: the 20-node meshes take half as many elements
+                args.meshes = FORMULATION_MESHES
+            args.methods = [args.figure_method]
     except (argparse.ArgumentTypeError, ValueError) as e:
         print(f"batch_plate_impact: {e}", file=sys.stderr)
         return 2
@@ -779,7 +885,8 @@ def main(argv):
     if args.figure_method not in args.methods:
         args.figure_method = args.methods[0]
     args.command = "/usr/bin/python3 scripts/batch_plate_impact.py " + " ".join(_quote(a) for a in argv)
-    args.out = os.path.abspath(args.out)
+    args.out = os.path.abspath(args.out or os.path.join(REPO, "results",
+                                                         "formulations" if args.study == "formulations" else "batch"))
     args.exdyn = os.path.abspath(args.exdyn) if os.path.exists(args.exdyn) else args.exdyn
     try:
         exdyn_version = subprocess.run([args.exdyn, "--version"], capture_output=True, text=True).stdout.strip()
@@ -799,7 +906,15 @@ def main(argv):
     write_csv(rows, csv_path)
     log(f"batch: wrote {csv_path} ({len(rows)} rows)")
 
-    if not args.no_plots:
+    if not args.no_plots and args.study == "formulations":
+        figdir = os.path.join(args.docs, "figures")
+        os.makedirs(figdir, exist_ok=True)
+        for w in chart_formulations(rows, args, figdir):
+            log(f"batch: wrote {w} ({os.path.getsize(w) // 1024} kB)")
+        doc = os.path.join(args.docs, "results.md")
+        write_doc(doc, formulation_sections(cases, rows, args, stats, args.command.strip()))
+        log(f"batch: wrote {doc}")
+    elif not args.no_plots:
         figdir = os.path.join(args.docs, "figures")
         os.makedirs(figdir, exist_ok=True)
         written = make_charts(cases, rows, args, figdir)

@@ -144,6 +144,34 @@ def main():
     check("removed case reruns alone", rc == 0 and "ran 1 cases, skipped 5" in log
           and "contact_hex8_n10_newton" in log, log[-2000:])
 
+    # The formulation study: every formulation and slave points, its own sections and chart; the
+    # method study's sections of the same results.md stay as they were.
+    with open(os.path.join(docs, "results.md")) as f:
+        before = re.search(r"<!-- batch:cases -->\n(.*?)<!-- /batch:cases -->", f.read(), re.S).group(1)
+    study_out = os.path.join(work, "formulations")
+    proc = subprocess.run([sys.executable, os.path.join(HERE, "batch_plate_impact.py"), "--study", "formulations",
+                           "--meshes", "10", "--jobs", "2", "--exdyn", args.exdyn, "--out", study_out,
+                           "--docs", docs], capture_output=True, text=True)
+    check("formulation study: 12 cases (8 contact, 4 reference) ran", proc.returncode == 0
+          and "ran 12 cases, skipped 0, 0 failed" in proc.stdout, (proc.stdout + proc.stderr)[-2000:])
+    with open(os.path.join(study_out, "batch.csv")) as f:
+        study = [r for r in csv.DictReader(f) if r["kind"] == "contact"]
+    check("formulation study: every formulation with both slave points",
+          sorted((r["formulation"], r["slave_points"]) for r in study)
+          == sorted((f, p) for f in batch.ALL_FORMULATIONS for p in batch.ALL_SLAVE_POINTS), str(study))
+    check("formulation study: quadrature points keep the hex20 plates mirror images (1e-12)",
+          all(float(r["mirror_symmetry"]) < 1e-12 for r in study if r["slave_points"] == "quadrature"),
+          str([r["mirror_symmetry"] for r in study]))
+    p = os.path.join(docs, "figures", "results_formulations.png")
+    check("results_formulations.png written, < 200 kB", os.path.exists(p) and 0 < os.path.getsize(p) < 200_000)
+    with open(os.path.join(docs, "results.md")) as f:
+        doc = f.read()
+    for key in ("formulations_run", "formulations", "formulations_pareto"):
+        m = re.search(r"<!-- batch:%s -->\n(.*?)<!-- /batch:%s -->" % (key, key), doc, re.S)
+        check(f"results.md section {key} filled", m is not None and m.group(1).strip() != "")
+    after = re.search(r"<!-- batch:cases -->\n(.*?)<!-- /batch:cases -->", doc, re.S).group(1)
+    check("the method study's sections are kept", after == before)
+
     rc, log = run_batch(args.exdyn, out, docs, ("--methods", "nosuch"))
     check("unknown method: exit 2", rc == 2, f"exit {rc}")
 
