@@ -13,6 +13,8 @@
 #include "common/errors.hpp"
 #include "common/version.hpp"
 #include "input/deck_reader.hpp"
+#include "mesh/mesh.hpp"
+#include "solver/mesh_quality.hpp"
 #include "solver/simulation.hpp"
 
 namespace {
@@ -153,6 +155,15 @@ int main(int argc, char** argv) {
     if (*check) {
       const exdyn::input::Deck deck = exdyn::input::read_deck(check_deck, parse_overrides(check_sets));
       std::cout << exdyn::input::to_yaml(deck);
+      // The mesh, as YAML comments: a user sees a bad mapped mesh before running it.
+      const exdyn::mesh::Mesh mesh = exdyn::mesh::build_mesh(deck);
+      const auto quality = exdyn::solver::mesh_quality(mesh);
+      std::cout << "# mesh: " << mesh.node_count() << " nodes, " << mesh.element_count() << " elements\n";
+      for (std::size_t p = 0; p < quality.size(); ++p)
+        std::cout << "# part " << deck.parts[p].name << ": " << mesh.parts[p].element_count << " elements, "
+                  << mesh.parts[p].node_count << " nodes, volume " << quality[p].volume
+                  << " m^3, smallest scaled Jacobian " << quality[p].smallest_scaled_jacobian << " (element "
+                  << quality[p].worst_element << ")\n";
       return exit_success;
     }
     if (*project) {

@@ -56,35 +56,109 @@ std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, co
   return result;
 }
 
+std::array<int, 3> DeckValidator::keep_cuts(const YAML::Node& node, const std::string& path, int axis) const {
+  const std::string expected = "a list of half-spaces through the centre among x+, x-, y+, y-, z+, z-";
+  check_sequence(node, path, expected);
+  std::array<int, 3> keep{};
+  const std::vector<std::string> names{"x+", "x-", "y+", "y-", "z+", "z-"};
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string entry_path = child_path(path, i);
+    const std::size_t found = choice(node[i], entry_path, "half-space", names);
+    const std::size_t cut_axis = found / 2;
+    if (keep[cut_axis] != 0)
+      fail(node[i], entry_path, "the axis " + std::string(component_names[cut_axis]) + " is cut twice");
+    if (static_cast<int>(cut_axis) == axis)
+      fail(node[i], entry_path,
+           "a cut across the cylinder's axis would keep all of it or nothing (the axis starts at the centre); "
+           "set the length instead");
+    keep[cut_axis] = found % 2 == 0 ? 1 : -1;
+  }
+  return keep;
+}
+
 PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
                                 const std::vector<MaterialOptions>& materials) const {
   check_map(node, path,
-            {"name", "box", "elements", "material", "formulation", "hourglass", "initial_velocity",
-             "perturbation"});
+            {"name", "box", "cylinder", "sphere", "elements", "grading", "material", "formulation", "hourglass",
+             "initial_velocity", "perturbation"});
   PartOptions result;
   result.name = text(required(node, path, "name"), child_path(path, "name"), "a part name");
 
-  const std::string box_path = child_path(path, "box");
-  const YAML::Node box = required(node, path, "box");
-  check_map(box, box_path, {"min", "max"});
-  result.box_min = vector3(required(box, box_path, "min"), child_path(box_path, "min"));
-  const YAML::Node box_max = required(box, box_path, "max");
-  result.box_max = vector3(box_max, child_path(box_path, "max"));
-  for (std::size_t i = 0; i < 3; ++i) {
-    if (result.box_max[i] > result.box_min[i]) continue;
-    fail(box_max, child_path(box_path, "max"),
-         "expected max > min in every component, got " + std::string(component_names[i]) + ": max " +
-             format_number(result.box_max[i]) + " <= min " + format_number(result.box_min[i]));
+  // Exactly one geometry key.
+  std::vector<std::string> geometry_keys;
+  for (const Geometry geometry : all_geometries)
+    if (optional(node, name(geometry)).IsDefined()) geometry_keys.emplace_back(name(geometry));
+  if (geometry_keys.empty())
+    fail(node, path, "expected one geometry key: box, cylinder or sphere (docs/input.md)");
+  if (geometry_keys.size() > 1)
+    fail(node[geometry_keys[1]], child_path(path, geometry_keys[1]),
+         "a part has exactly one geometry key; this one has " + join(geometry_keys, " and "));
+  const std::string geometry_path = child_path(path, geometry_keys[0]);
+  const YAML::Node geometry = node[geometry_keys[0]];
+  if (geometry_keys[0] == "box") {
+    check_map(geometry, geometry_path, {"min", "max"});
+    result.box_min = vector3(required(geometry, geometry_path, "min"), child_path(geometry_path, "min"));
+    const YAML::Node box_max = required(geometry, geometry_path, "max");
+    result.box_max = vector3(box_max, child_path(geometry_path, "max"));
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (result.box_max[i] > result.box_min[i]) continue;
+      fail(box_max, child_path(geometry_path, "max"),
+           "expected max > min in every component, got " + std::string(component_names[i]) + ": max " +
+               format_number(result.box_max[i]) + " <= min " + format_number(result.box_min[i]));
+    }
+  } else {
+    result.geometry = geometry_keys[0] == "cylinder" ? Geometry::cylinder : Geometry::sphere;
+    const bool cylinder = result.geometry == Geometry::cylinder;
+    check_map(geometry, geometry_path,
+              cylinder ? std::vector<std::string>{"center", "axis", "radius", "length", "keep"}
+                       : std::vector<std::string>{"center", "radius", "keep"});
+    result.center = vector3(required(geometry, geometry_path, "center"), child_path(geometry_path, "center"));
+    result.radius = number_where(required(geometry, geometry_path, "radius"), child_path(geometry_path, "radius"),
+                                 "a number > 0", positive);
+    if (cylinder) {
+      const std::vector<std::string> axes(component_names.begin(), component_names.end());
+      result.axis = static_cast<int>(choice(required(geometry, geometry_path, "axis"),
+                                            child_path(geometry_path, "axis"), "axis", axes));
+      result.length = number_where(required(geometry, geometry_path, "length"),
+                                   child_path(geometry_path, "length"), "a number > 0", positive);
+    }
+    if (const YAML::Node keep = optional(geometry, "keep"); keep.IsDefined() && !keep.IsNull())
+      result.keep = keep_cuts(keep, child_path(geometry_path, "keep"), cylinder ? result.axis : -1);
   }
 
   const std::string elements_path = child_path(path, "elements");
   const YAML::Node elements = required(node, path, "elements");
-  const std::string expected = "a list of 3 integers >= 1 [nx, ny, nz]";
+  const std::size_t counts = result.geometry == Geometry::sphere ? 2 : 3;
+  const std::string expected = result.geometry == Geometry::box        ? "a list of 3 integers >= 1 [nx, ny, nz]"
+                               : result.geometry == Geometry::cylinder ? "a list of 3 integers >= 1 [n_around, "
+                                                                         "n_radius, n_axis]"
+                                                                       : "a list of 2 integers >= 1 [n_around, "
+                                                                         "n_radius]";
   check_sequence(elements, elements_path, expected);
-  if (elements.size() != 3)
-    fail(elements, elements_path, "expected " + expected + ", got " + describe(elements));
-  for (std::size_t i = 0; i < 3; ++i)
+  if (elements.size() != counts) fail(elements, elements_path, "expected " + expected + ", got " + describe(elements));
+  for (std::size_t i = 0; i < counts; ++i)
     result.elements[i] = integer_where(elements[i], child_path(elements_path, i), "an integer >= 1", 1);
+  const bool cut = result.keep != std::array<int, 3>{};
+  if (cut && result.elements[0] % 2 != 0)
+    fail(elements[0], child_path(elements_path, 0),
+         "n_around must be even when `keep` cuts the part: a cut runs along the middle grid line of the "
+         "square core (docs/input.md), got " +
+             std::to_string(result.elements[0]));
+
+  if (const YAML::Node grading = optional(node, "grading"); grading.IsDefined() && !grading.IsNull()) {
+    const std::string grading_path = child_path(path, "grading");
+    const std::string grading_expected =
+        "a list of " + std::to_string(counts) + " numbers > 0, one per count of `elements`";
+    check_sequence(grading, grading_path, grading_expected);
+    if (grading.size() != counts)
+      fail(grading, grading_path, "expected " + grading_expected + ", got " + describe(grading));
+    for (std::size_t i = 0; i < counts; ++i)
+      result.grading[i] = number_where(grading[i], child_path(grading_path, i), "a number > 0", positive);
+    if (result.geometry != Geometry::box && result.grading[0] != 1.0)
+      fail(grading[0], child_path(grading_path, 0),
+           "the elements around a cylinder or ball are equal: the grading along n_around must be 1, got " +
+               format_number(result.grading[0]));
+  }
 
   const std::string material_path = child_path(path, "material");
   const YAML::Node material = required(node, path, "material");
@@ -125,6 +199,9 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
   if (const YAML::Node perturbation = optional(node, "perturbation");
       perturbation.IsDefined() && !perturbation.IsNull()) {
     const std::string perturbation_path = child_path(path, "perturbation");
+    if (result.geometry != Geometry::box)
+      fail(perturbation, perturbation_path,
+           std::string("perturbation distorts the grid of a box part; this part is a ") + name(result.geometry));
     check_map(perturbation, perturbation_path, {"fraction", "seed"});
     if (const YAML::Node fraction = optional(perturbation, "fraction"); fraction.IsDefined()) {
       const std::string fraction_path = child_path(perturbation_path, "fraction");
@@ -167,15 +244,14 @@ std::vector<PartOptions> DeckValidator::parts(const YAML::Node& node, const std:
 
 FaceRef DeckValidator::face(const YAML::Node& node, const std::string& path,
                             const std::vector<PartOptions>& parts) const {
-  const std::vector<std::string> sides = names_of(all_box_sides);
   const std::string value = text(node, path, "a face name <part>.<side>");
   std::vector<std::string> part_names;
   std::vector<std::string> face_names;
   for (const PartOptions& known : parts) {
     part_names.push_back(known.name);
-    for (const std::string& side : sides) face_names.push_back(known.name + "." + side);
+    for (const PartFace side : faces_of(known)) face_names.push_back(known.name + "." + name(side));
   }
-  std::string hint = "; the parts are " + join(part_names, ", ") + " and the sides " + join(sides, ", ");
+  std::string hint = "; the faces are " + join(face_names, ", ");
   if (const std::optional<std::string> nearest = nearest_name(value, face_names))
     hint = "; did you mean '" + *nearest + "'?";
   // The side follows the last point, so part names may contain points.
@@ -187,11 +263,15 @@ FaceRef DeckValidator::face(const YAML::Node& node, const std::string& path,
   const auto part_found = std::find(part_names.begin(), part_names.end(), part_name);
   if (part_found == part_names.end())
     fail(node, path, "unknown part '" + part_name + "' in face '" + value + "'" + hint);
-  const auto side_found = std::find(sides.begin(), sides.end(), side_name);
+  const PartOptions& part = parts[static_cast<std::size_t>(part_found - part_names.begin())];
+  const std::vector<PartFace> sides = faces_of(part);
+  const auto side_found =
+      std::find_if(sides.begin(), sides.end(), [&](PartFace side) { return side_name == name(side); });
   if (side_found == sides.end())
-    fail(node, path, "unknown side '" + side_name + "' in face '" + value + "'" + hint);
-  return FaceRef{static_cast<int>(part_found - part_names.begin()),
-                 all_box_sides[static_cast<std::size_t>(side_found - sides.begin())]};
+    fail(node, path,
+         "unknown side '" + side_name + "' of the " + name(part.geometry) + " part '" + part.name + "' in face '" +
+             value + "'" + hint);
+  return FaceRef{static_cast<int>(part_found - part_names.begin()), *side_found};
 }
 
 std::vector<FaceRef> DeckValidator::face_list(const YAML::Node& node, const std::string& path,

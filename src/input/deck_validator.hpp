@@ -30,8 +30,10 @@ inline constexpr std::array<MaterialModel, 1> all_material_models{MaterialModel:
 inline constexpr std::array<Formulation, 4> all_formulations{Formulation::hex8, Formulation::hex8r,
                                                              Formulation::hex20, Formulation::hex20r};
 inline constexpr std::array<SlavePoints, 2> all_slave_points{SlavePoints::nodes, SlavePoints::quadrature};
-inline constexpr std::array<BoxSide, 6> all_box_sides{BoxSide::xmin, BoxSide::xmax, BoxSide::ymin,
-                                                      BoxSide::ymax, BoxSide::zmin, BoxSide::zmax};
+inline constexpr std::array<PartFace, 6> box_faces{PartFace::xmin, PartFace::xmax, PartFace::ymin,
+                                                   PartFace::ymax, PartFace::zmin, PartFace::zmax};
+inline constexpr std::array<Geometry, 3> all_geometries{Geometry::box, Geometry::cylinder, Geometry::sphere};
+inline constexpr std::array<PartFace, 3> cut_faces{PartFace::cut_x, PartFace::cut_y, PartFace::cut_z};
 inline constexpr std::array<std::string_view, 3> component_names{"x", "y", "z"};
 
 std::vector<std::string> top_level_keys();
@@ -130,6 +132,7 @@ class DeckValidator {
   std::vector<MaterialOptions> materials(const YAML::Node& node, const std::string& path) const;
   std::vector<PartOptions> parts(const YAML::Node& node, const std::string& path,
                                  const std::vector<MaterialOptions>& materials) const;
+  std::array<int, 3> keep_cuts(const YAML::Node& node, const std::string& path, int axis) const;
   PartOptions part(const YAML::Node& node, const std::string& path,
                    const std::vector<MaterialOptions>& materials) const;
   FaceRef face(const YAML::Node& node, const std::string& path, const std::vector<PartOptions>& parts) const;

@@ -36,20 +36,62 @@ const char* name(SlavePoints points) {
   return "?";
 }
 
-const char* name(BoxSide side) {
+const char* name(PartFace side) {
   switch (side) {
-    case BoxSide::xmin:
+    case PartFace::xmin:
       return "xmin";
-    case BoxSide::xmax:
+    case PartFace::xmax:
       return "xmax";
-    case BoxSide::ymin:
+    case PartFace::ymin:
       return "ymin";
-    case BoxSide::ymax:
+    case PartFace::ymax:
       return "ymax";
-    case BoxSide::zmin:
+    case PartFace::zmin:
       return "zmin";
-    case BoxSide::zmax:
+    case PartFace::zmax:
       return "zmax";
+    case PartFace::surface:
+      return "surface";
+    case PartFace::start:
+      return "start";
+    case PartFace::end:
+      return "end";
+    case PartFace::cut_x:
+      return "cut_x";
+    case PartFace::cut_y:
+      return "cut_y";
+    case PartFace::cut_z:
+      return "cut_z";
+  }
+  return "?";
+}
+
+std::vector<PartFace> faces_of(const PartOptions& part) {
+  std::vector<PartFace> faces;
+  switch (part.geometry) {
+    case Geometry::box:
+      return {PartFace::xmin, PartFace::xmax, PartFace::ymin, PartFace::ymax, PartFace::zmin, PartFace::zmax};
+    case Geometry::cylinder:
+      faces = {PartFace::surface, PartFace::start, PartFace::end};
+      break;
+    case Geometry::sphere:
+      faces = {PartFace::surface};
+      break;
+  }
+  const std::array<PartFace, 3> cuts{PartFace::cut_x, PartFace::cut_y, PartFace::cut_z};
+  for (int axis = 0; axis < 3; ++axis)
+    if (part.keep[static_cast<std::size_t>(axis)] != 0) faces.push_back(cuts[static_cast<std::size_t>(axis)]);
+  return faces;
+}
+
+const char* name(Geometry geometry) {
+  switch (geometry) {
+    case Geometry::box:
+      return "box";
+    case Geometry::cylinder:
+      return "cylinder";
+    case Geometry::sphere:
+      return "sphere";
   }
   return "?";
 }

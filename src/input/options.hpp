@@ -39,11 +39,28 @@ constexpr bool is_quadratic(Formulation formulation) {
   return formulation == Formulation::hex20 || formulation == Formulation::hex20r;
 }
 
+// The shape of a part (docs/input.md): a box, or a mapped cylinder or ball.
+enum class Geometry { box, cylinder, sphere };
+
 struct PartOptions {
   std::string name;
-  Vec3 box_min{};
+  Geometry geometry = Geometry::box;
+  Vec3 box_min{};  // box
   Vec3 box_max{};
-  std::array<int, 3> elements{};  // nx, ny, nz >= 1
+  // cylinder and sphere: the centre (a cylinder's axis starts there), radius R (m); a
+  // cylinder's axis (0 x, 1 y, 2 z) and length L (m).
+  Vec3 center{};
+  double radius = 0.0;
+  int axis = 2;
+  double length = 0.0;
+  // `keep`: for each axis, 0 both halves, +1 the half-space >= centre, -1 <= centre.
+  std::array<int, 3> keep{};
+  // box: nx, ny, nz; cylinder: n_around (a quarter circumference), n_radius, n_axis;
+  // sphere: n_around (a quarter of the equator), n_radius, and 0. Each >= 1.
+  std::array<int, 3> elements{};
+  // Ratio of the last element's size to the first's along each count (box: x, y, z;
+  // cylinder: around, radius (towards the surface), axis; sphere: around, radius, -).
+  std::array<double, 3> grading{1.0, 1.0, 1.0};
   std::string material;           // a key of `materials`
   int material_index = -1;        // index into Deck::materials
   Formulation formulation = Formulation::hex8;
@@ -57,13 +74,14 @@ struct PartOptions {
   bool operator==(const PartOptions&) const = default;
 };
 
-// The six faces of a structured box part.
-enum class BoxSide { xmin, xmax, ymin, ymax, zmin, zmax };
+// The named faces of a part: a box's six sides; a cylinder's curved side (surface) and its
+// flat ends (start, end); a ball's surface; the flat face a `keep` cut leaves (cut_x ...).
+enum class PartFace { xmin, xmax, ymin, ymax, zmin, zmax, surface, start, end, cut_x, cut_y, cut_z };
 
 // A named face `<part>.<side>`.
 struct FaceRef {
   int part = -1;  // index into Deck::parts
-  BoxSide side = BoxSide::xmin;
+  PartFace side = PartFace::xmin;
 
   bool operator==(const FaceRef&) const = default;
 };
@@ -180,7 +198,11 @@ struct Deck {
 const char* name(MaterialModel model);
 const char* name(Formulation formulation);
 const char* name(SlavePoints points);
-const char* name(BoxSide side);
+const char* name(PartFace side);
+const char* name(Geometry geometry);
+// The face names a part has: a box's six sides; cylinder: surface, start, end; sphere:
+// surface; and cut_x, cut_y, cut_z for each axis `keep` cuts.
+std::vector<PartFace> faces_of(const PartOptions& part);
 const char* name(OutputField field);
 // "<part>.<side>"
 std::string face_name(const Deck& deck, const FaceRef& face);

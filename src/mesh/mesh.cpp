@@ -1,10 +1,13 @@
 #include "mesh/mesh.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "common/errors.hpp"
+#include "mesh/mapped.hpp"
 
 namespace exdyn::mesh {
 
@@ -89,14 +92,6 @@ void check_perturbed_part(const Mesh& mesh, const input::Deck& deck, std::size_t
         }
 }
 
-// Lattice offsets (along x, y, z, in units of half an element for order 2) of the
-// nodes of a brick from its lowest corner, in VTK order: the 8 corners, then for 20
-// nodes the mid-edge points of the bottom, the top and the vertical edges.
-constexpr std::array<std::array<int, 3>, 20> brick_offsets{
-    {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 2}, {2, 2, 2},
-     {0, 2, 2}, {1, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 1, 0}, {1, 0, 2}, {2, 1, 2},
-     {1, 2, 2}, {0, 1, 2}, {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}}};
-
 // Nodes of a part of this order with these element counts.
 std::uint64_t part_node_count(const std::array<int, 3>& n, int order) {
   const std::uint64_t nx = std::uint64_t(n[0]), ny = std::uint64_t(n[1]), nz = std::uint64_t(n[2]);
@@ -117,15 +112,25 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
   part.first_element = static_cast<std::uint32_t>(mesh.element_count());
   part.element_count = static_cast<std::uint32_t>(n[0] * n[1] * n[2]);
   part.first_connectivity = mesh.connectivity.size();
-  for (int axis = 0; axis < 3; ++axis) part.lattice_size[axis] = order * n[axis] + 1;
+  for (int axis = 0; axis < 3; ++axis) {
+    part.lattice_size[axis] = order * n[axis] + 1;
+    const double length = options.box_max[axis] - options.box_min[axis];
+    const double grading = options.grading[axis];
+    part.normal_lengths[std::size_t(2 * axis)] =
+        grading == 1.0 ? length / n[axis] : length * graded_fraction(1, n[axis], grading);
+    part.normal_lengths[std::size_t(2 * axis + 1)] =
+        grading == 1.0 ? length / n[axis] : length * (1.0 - graded_fraction(n[axis] - 1, n[axis], grading));
+  }
   const auto& size = part.lattice_size;
   part.lattice.assign(std::size_t(size[0]) * std::size_t(size[1]) * std::size_t(size[2]), no_node);
 
   // Grid coordinates x_i = min + (max - min) i / n, written so that the last
-  // node lands exactly on max.
+  // node lands exactly on max; graded: x_i = min + (max - min) tau_i (graded_fraction).
   auto coordinate = [&](int axis, int index) {
     const double lo = options.box_min[axis], hi = options.box_max[axis];
-    return index == n[axis] ? hi : lo + (hi - lo) * static_cast<double>(index) / static_cast<double>(n[axis]);
+    if (index == n[axis]) return hi;
+    if (options.grading[axis] != 1.0) return lo + (hi - lo) * graded_fraction(index, n[axis], options.grading[axis]);
+    return lo + (hi - lo) * static_cast<double>(index) / static_cast<double>(n[axis]);
   };
   // The corner grid point (i, j, k), with the optional distortion (parts[i].perturbation):
   // x_c += fraction h_c r_c, with h_c = (max_c - min_c) / n_c the element length along c
@@ -193,13 +198,24 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
 
 }  // namespace
 
+double graded_fraction(int i, int n, double grading) {
+  if (i <= 0) return 0.0;
+  if (i >= n) return 1.0;
+  if (grading == 1.0 || n == 1) return static_cast<double>(i) / static_cast<double>(n);
+  const double r = std::pow(grading, 1.0 / static_cast<double>(n - 1));
+  return (std::pow(r, i) - 1.0) / (std::pow(r, n) - 1.0);
+}
+
 Mesh build_mesh(const input::Deck& deck) {
   std::uint64_t nodes = 0, elements = 0, connectivity = 0;
   for (const auto& part : deck.parts) {
     const auto& n = part.elements;
     const int order = input::is_quadratic(part.formulation) ? 2 : 1;
-    const std::uint64_t count = std::uint64_t(n[0]) * std::uint64_t(n[1]) * std::uint64_t(n[2]);
-    nodes += part_node_count(n, order);
+    const std::uint64_t count = part.geometry == input::Geometry::box
+                                    ? std::uint64_t(n[0]) * std::uint64_t(n[1]) * std::uint64_t(n[2])
+                                    : mapped_element_count(part);
+    // A mapped part's nodes: at most its elements' nodes (shared ones counted again).
+    nodes += part.geometry == input::Geometry::box ? part_node_count(n, order) : (order == 2 ? 20 : 8) * count;
     elements += count;
     connectivity += (order == 2 ? 20 : 8) * count;
   }
@@ -216,37 +232,53 @@ Mesh build_mesh(const input::Deck& deck) {
   mesh.connectivity.reserve(connectivity);
   mesh.element_part.reserve(elements);
   for (std::size_t p = 0; p < deck.parts.size(); ++p) {
+    if (deck.parts[p].geometry != input::Geometry::box) {
+      add_mapped_part(mesh, deck.parts[p], static_cast<int>(p));
+      continue;
+    }
     add_part(mesh, deck.parts[p], static_cast<int>(p));
     if (deck.parts[p].perturbation_fraction > 0.0) check_perturbed_part(mesh, deck, p);
   }
   return mesh;
 }
 
-Face face_of(const Mesh& mesh, int part_index, input::BoxSide side) {
+Face face_of(const Mesh& mesh, int part_index, input::PartFace side) {
   const PartRange& part = mesh.parts.at(static_cast<std::size_t>(part_index));
+  if (part.lattice.empty()) {  // a mapped part: its faces were built with it
+    for (const auto& [name, face] : part.faces)
+      if (name == side) return face;
+    throw std::logic_error("face_of: part " + std::to_string(part_index) + " has no face " + input::name(side));
+  }
   const auto& n = part.elements;
   // The face is the grid plane axis = fixed; (p, q) are its in-plane axes,
   // ordered so that e_p x e_q is the outward normal.
   int axis = 0, p = 0, q = 0, fixed = 0;
   switch (side) {
-    case input::BoxSide::xmin:
+    case input::PartFace::xmin:
       axis = 0, p = 2, q = 1, fixed = 0;
       break;
-    case input::BoxSide::xmax:
+    case input::PartFace::xmax:
       axis = 0, p = 1, q = 2, fixed = n[0];
       break;
-    case input::BoxSide::ymin:
+    case input::PartFace::ymin:
       axis = 1, p = 0, q = 2, fixed = 0;
       break;
-    case input::BoxSide::ymax:
+    case input::PartFace::ymax:
       axis = 1, p = 2, q = 0, fixed = n[1];
       break;
-    case input::BoxSide::zmin:
+    case input::PartFace::zmin:
       axis = 2, p = 1, q = 0, fixed = 0;
       break;
-    case input::BoxSide::zmax:
+    case input::PartFace::zmax:
       axis = 2, p = 0, q = 1, fixed = n[2];
       break;
+    case input::PartFace::surface:
+    case input::PartFace::start:
+    case input::PartFace::end:
+    case input::PartFace::cut_x:
+    case input::PartFace::cut_y:
+    case input::PartFace::cut_z:
+      throw std::logic_error(std::string("face_of: a box part has no face ") + input::name(side));
   }
   // Lattice point (a, b) of the face plane, in lattice units along p and q.
   const int order = part.order;
@@ -258,6 +290,8 @@ Face face_of(const Mesh& mesh, int part_index, input::BoxSide side) {
     return part.node_at(ijk[0], ijk[1], ijk[2]);
   };
   Face face;
+  // The element length normal to the face: (max - min) / n, or the graded first or last one.
+  face.normal_length = part.normal_lengths[static_cast<std::size_t>(2 * axis + (fixed == 0 ? 0 : 1))];
   for (int b = 0; b <= order * n[q]; ++b)
     for (int a = 0; a <= order * n[p]; ++a)
       if (const std::uint32_t node = node_at(a, b); node != no_node) face.nodes.push_back(node);

@@ -1,5 +1,6 @@
-// Structured hexahedral meshes of box parts, and their named faces.
-// Each part is its own body: parts share no nodes.
+// Structured hexahedral meshes of box parts, mapped meshes of cylinders and balls
+// (mesh/mapped.hpp), and their named faces. Each part is its own body: parts share no
+// nodes.
 //
 // A part is a lattice of grid points: (order n_x + 1) x (order n_y + 1) x (order n_z + 1)
 // with order 1 for the 8-node formulations and 2 for the 20-node ones. With order 1
@@ -15,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "common/nodal_vectors.hpp"
@@ -23,6 +25,23 @@
 namespace exdyn::mesh {
 
 inline constexpr std::uint32_t no_node = 0xffffffffu;
+
+// A face segment: 4 corner nodes counter-clockwise seen from outside the body, so
+// (y1 - y0) x (y3 - y0) points out of it; for 8 nodes then the mid-sides of the edges
+// 0-1, 1-2, 2-3, 3-0 (the order of contact::Segment and `exdyn project`).
+struct FaceSegment {
+  std::array<std::uint32_t, 8> nodes{};
+  int node_count = 4;  // 4 or 8
+};
+
+// A named face of a part: its nodes (a box: sorted along the face's lattice; a mapped
+// part: ascending) and its segments, and the mean length (m) of the elements under it
+// normal to it (for the automatic penalty stiffness).
+struct Face {
+  std::vector<std::uint32_t> nodes;
+  std::vector<FaceSegment> segments;
+  double normal_length = 0.0;
+};
 
 struct PartRange {
   std::uint32_t first_node = 0;
@@ -35,6 +54,10 @@ struct PartRange {
   std::size_t first_connectivity = 0;  // offset of the part's first element in Mesh::connectivity
   std::vector<std::uint32_t> lattice;  // node id of each lattice point (no_node: none), x fastest
   std::array<int, 3> lattice_size{};   // order n + 1 along each axis
+  // A box: the element length (m) normal to each side, xmin, xmax, ... zmax.
+  std::array<double, 6> normal_lengths{};
+  // A mapped part (cylinder, sphere) has no lattice: its named faces are built with it.
+  std::vector<std::pair<input::PartFace, Face>> faces;
 
   // Node id at lattice point (I, J, K); no_node where the lattice has no node.
   std::uint32_t node_at(int i, int j, int k) const {
@@ -69,25 +92,24 @@ struct Mesh {
   }
 };
 
-// A face segment: 4 corner nodes counter-clockwise seen from outside the body, so
-// (y1 - y0) x (y3 - y0) points out of it; for 8 nodes then the mid-sides of the edges
-// 0-1, 1-2, 2-3, 3-0 (the order of contact::Segment and `exdyn project`).
-struct FaceSegment {
-  std::array<std::uint32_t, 8> nodes{};
-  int node_count = 4;  // 4 or 8
-};
-
-// A named face of a part: its nodes (sorted along the face's lattice) and its segments.
-struct Face {
-  std::vector<std::uint32_t> nodes;
-  std::vector<FaceSegment> segments;
-};
-
 // Builds every part of the deck (checks the node count fits 32-bit indices, and that
 // a perturbed part has no element with a non-positive corner Jacobian).
 Mesh build_mesh(const input::Deck& deck);
 
 // The nodes and outward-oriented segments of one face of a part.
-Face face_of(const Mesh& mesh, int part, input::BoxSide side);
+Face face_of(const Mesh& mesh, int part, input::PartFace side);
+
+// Lattice offsets (along x, y, z, in units of half an element) of the nodes of a brick
+// from its lowest corner, in VTK order: the 8 corners, then for 20 nodes the mid-edge
+// points of the bottom, the top and the vertical edges.
+inline constexpr std::array<std::array<int, 3>, 20> brick_offsets{
+    {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 2}, {2, 2, 2},
+     {0, 2, 2}, {1, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 1, 0}, {1, 0, 2}, {2, 1, 2},
+     {1, 2, 2}, {0, 1, 2}, {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}}};
+
+// Grid fraction tau_i in [0, 1] of grid point i of n elements whose lengths change
+// geometrically from the first to the last by the ratio `grading` (last / first):
+// lengths r^k, r = grading^(1 / (n - 1)), so tau_i = (r^i - 1) / (r^n - 1).
+double graded_fraction(int i, int n, double grading);
 
 }  // namespace exdyn::mesh

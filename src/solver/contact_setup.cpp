@@ -14,12 +14,6 @@ namespace exdyn::solver {
 
 namespace {
 
-// Element length normal to a face of a structured box part (m).
-double normal_element_length(const input::PartOptions& part, input::BoxSide side) {
-  const int axis = static_cast<int>(side) / 2;
-  return (part.box_max[axis] - part.box_min[axis]) / part.elements[axis];
-}
-
 double dilatational_modulus(const input::Deck& deck, int part) {
   const auto& m =
       deck.materials[static_cast<std::size_t>(deck.parts[static_cast<std::size_t>(part)].material_index)];
@@ -113,8 +107,7 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
   g.area.assign(s.slave_nodes.size(), 0.0);
   g.spring_area.assign(s.slave_nodes.size(), 0.0);
   for (std::size_t i = 0; i < slave.size(); ++i) {
-    const double length =
-        normal_element_length(deck.parts[static_cast<std::size_t>(slave[i].part)], slave[i].side);
+    const double length = slave_faces[i].normal_length;
     g.smallest_length = std::min(g.smallest_length, length);
     for (std::uint32_t node : slave_faces[i].nodes) {
       double& l = node_length[slave_index(node)];
@@ -158,8 +151,7 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
     const mesh::Face face = mesh::face_of(model.mesh, f.part, f.side);
     for (const auto& face_segment : face.segments) s.segments.push_back(segment_nodes(face_segment));
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
-    g.smallest_length = std::min(g.smallest_length,
-                                 normal_element_length(deck.parts[static_cast<std::size_t>(f.part)], f.side));
+    g.smallest_length = std::min(g.smallest_length, face.normal_length);
   }
   s.moving_nodes = s.slave_nodes;
   for (const auto& segment : s.segments)

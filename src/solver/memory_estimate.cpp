@@ -33,9 +33,11 @@ std::uint64_t bytes_per_element(const input::PartOptions& part) {
            20 * sizeof(std::int64_t) + sizeof(std::uint32_t) +
            8 * static_cast<std::uint64_t>(element::hex20::reference_size(gauss_points));
   }
-  // The layouts hex8_family.cpp chooses: a regular box is made of parallelepipeds.
+  // The layouts hex8_family.cpp chooses: a regular box is made of parallelepipeds; a
+  // distorted box and a mapped part are not.
   const bool hex8 = part.formulation == input::Formulation::hex8;
-  const int reference_doubles = part.perturbation_fraction > 0.0
+  const bool general = part.perturbation_fraction > 0.0 || part.geometry != input::Geometry::box;
+  const int reference_doubles = general
                                     ? (hex8 ? element::hex8::reference_size : element::hex8r::reference_size)
                                     : std::max(element::hex8::parallelepiped_reference_size,
                                                element::hex8r::parallelepiped_reference_size);
@@ -60,9 +62,19 @@ std::uint64_t sum(std::uint64_t a, std::uint64_t b) {
 
 // A part's element counts; the deck reader gives 1 <= n <= INT_MAX, a negative n
 // (a deck not from the reader) counts as 0.
+// A cylinder or sphere counts as the box of its bounding grid: (n_around + 2 n_radius)
+// across the section (at least the n_around^2 + 4 n_around n_radius elements of the
+// O-grid, docs/input.md), n_axis along a cylinder, halved per `keep` cut: an upper
+// bound, which is what a refusal needs.
 std::array<int, 3> element_counts(const input::PartOptions& part) {
   std::array<int, 3> n = part.elements;
   for (int& value : n) value = std::max(value, 0);
+  if (part.geometry == input::Geometry::box) return n;
+  const long long across = std::min<long long>(std::numeric_limits<int>::max(), n[0] + 2LL * n[1]);
+  n = {static_cast<int>(across), static_cast<int>(across),
+       part.geometry == input::Geometry::cylinder ? n[2] : static_cast<int>(across)};
+  for (const int keep : part.keep)
+    if (keep != 0) n[0] = (n[0] + 1) / 2;
   return n;
 }
 

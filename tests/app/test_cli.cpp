@@ -61,6 +61,28 @@ TEST(Cli, CheckOutputIsAValidDeckThatChecksToTheSameText) {
   EXPECT_EQ(body(second.output), body(first.output));
 }
 
+// A mapped part: check reports the mesh (a quarter ball's cube-sphere: its smallest
+// scaled Jacobian is 1/sqrt(3), at the cube's corners) and echoes the sphere keys.
+TEST(Cli, CheckReportsTheMeshOfAMappedPartAndEchoesItsKeys) {
+  exdyn::testing::TempDir directory;
+  std::ofstream(directory.file("ball.yaml"))
+      << "name: ball\nmaterials:\n  steel: {model: linear_elastic, density: 7800, youngs_modulus: 2.1e11, "
+         "poissons_ratio: 0.3}\nparts:\n  - name: ball\n    sphere: {center: [0, 0, 0], radius: 0.01, keep: "
+         "[x+, y+]}\n    elements: [4, 2]\n    grading: [1, 0.5]\n    material: steel\n    formulation: "
+         "hex20\nboundary_conditions:\n  - {faces: [ball.cut_x], fix: [x]}\ntime:\n  end_time: 1.0e-6\n";
+  const auto first = exdyn("check " + directory.file("ball.yaml"));
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_NE(first.output.find("sphere: {center: [0, 0, 0], radius: 0.01, keep: [x+, y+]}"), std::string::npos)
+      << first.output;
+  EXPECT_NE(first.output.find("# part ball: 64 elements"), std::string::npos) << first.output;
+  EXPECT_NE(first.output.find("smallest scaled Jacobian 0.57735"), std::string::npos) << first.output;
+  std::ofstream(directory.file("echo.yaml")) << first.output;
+  const auto second = exdyn("check " + directory.file("echo.yaml"));
+  ASSERT_EQ(second.status, 0) << second.output;
+  auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
+  EXPECT_EQ(body(second.output), body(first.output));
+}
+
 TEST(Cli, BadDeckExitsTwoNamesTheKeyAndWritesNothing) {
   exdyn::testing::TempDir directory;
   const std::string out = directory.file("out");

@@ -76,6 +76,15 @@ const BadDeck bad_decks[] = {
     {"unknown_slave_points.yaml", "contact[0].slave_points", 20,
      "unknown slave points 'gauss'; expected nodes, quadrature"},
     {"contact_name_with_slash.yaml", "contact[0].name", 17, "expected a contact pair name without '/'"},
+    {"keep_unknown_half_space.yaml", "parts[0].sphere.keep[1]", 7, "unknown half-space 'w-'"},
+    {"cylinder_zero_radius.yaml", "parts[0].cylinder.radius", 7, "expected a number > 0, got 0"},
+    {"keep_with_odd_around.yaml", "parts[0].elements[0]", 8, "n_around must be even when `keep` cuts the part"},
+    {"grading_zero.yaml", "parts[0].grading[2]", 9, "expected a number > 0, got 0"},
+    {"sphere_three_counts.yaml", "parts[0].elements", 8, "expected a list of 2 integers >= 1 [n_around, n_radius]"},
+    {"two_geometry_keys.yaml", "parts[0].sphere", 8, "a part has exactly one geometry key; this one has box and sphere"},
+    {"keep_across_cylinder_axis.yaml", "parts[0].cylinder.keep[0]", 7, "a cut across the cylinder's axis"},
+    {"face_of_sphere_xmin.yaml", "boundary_conditions[0].faces[0]", 11,
+     "unknown side 'xmin' of the sphere part 'ball'"},
 };
 
 class BadDeckTest : public ::testing::TestWithParam<BadDeck> {};

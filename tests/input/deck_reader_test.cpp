@@ -46,22 +46,22 @@ TEST(DeckReader, SpecExamplePlateImpactReadsToItsValues) {
   ASSERT_EQ(deck.boundary_conditions.size(), 2u);
   const BoundaryConditionOptions& plane_strain = deck.boundary_conditions[0];
   ASSERT_EQ(plane_strain.faces.size(), 4u);
-  EXPECT_EQ(plane_strain.faces[0], (FaceRef{0, BoxSide::ymin}));
-  EXPECT_EQ(plane_strain.faces[1], (FaceRef{0, BoxSide::ymax}));
-  EXPECT_EQ(plane_strain.faces[2], (FaceRef{1, BoxSide::ymin}));
-  EXPECT_EQ(plane_strain.faces[3], (FaceRef{1, BoxSide::ymax}));
+  EXPECT_EQ(plane_strain.faces[0], (FaceRef{0, PartFace::ymin}));
+  EXPECT_EQ(plane_strain.faces[1], (FaceRef{0, PartFace::ymax}));
+  EXPECT_EQ(plane_strain.faces[2], (FaceRef{1, PartFace::ymin}));
+  EXPECT_EQ(plane_strain.faces[3], (FaceRef{1, PartFace::ymax}));
   EXPECT_EQ(plane_strain.fix, (std::array<bool, 3>{false, true, false}));
   const BoundaryConditionOptions& symmetry = deck.boundary_conditions[1];
   ASSERT_EQ(symmetry.faces.size(), 2u);
-  EXPECT_EQ(symmetry.faces[0], (FaceRef{0, BoxSide::zmin}));
-  EXPECT_EQ(symmetry.faces[1], (FaceRef{1, BoxSide::zmin}));
+  EXPECT_EQ(symmetry.faces[0], (FaceRef{0, PartFace::zmin}));
+  EXPECT_EQ(symmetry.faces[1], (FaceRef{1, PartFace::zmin}));
   EXPECT_EQ(symmetry.fix, (std::array<bool, 3>{false, false, true}));
 
   ASSERT_EQ(deck.contact.size(), 1u);
   const ContactOptions& interface = deck.contact[0];
   EXPECT_EQ(interface.name, "interface");
-  EXPECT_EQ(interface.slave, (std::vector<FaceRef>{{0, BoxSide::xmax}}));
-  EXPECT_EQ(interface.master, (std::vector<FaceRef>{{1, BoxSide::xmin}}));
+  EXPECT_EQ(interface.slave, (std::vector<FaceRef>{{0, PartFace::xmax}}));
+  EXPECT_EQ(interface.master, (std::vector<FaceRef>{{1, PartFace::xmin}}));
   EXPECT_TRUE(interface.two_pass);
   EXPECT_EQ(interface.penalty.scale, 1.0);
   EXPECT_FALSE(interface.penalty.stiffness.has_value());
@@ -162,7 +162,7 @@ output: {directory: "out dir", every: 3, fields: [gap, stress], history_every: 5
   EXPECT_EQ(block.initial_velocity, (Vec3{1.5, -2.0, 3.0}));
   EXPECT_EQ(deck.boundary_conditions[0].fix, (std::array<bool, 3>{true, false, true}));
   const ContactOptions& pair = deck.contact[0];
-  EXPECT_EQ(pair.slave, (std::vector<FaceRef>{{0, BoxSide::zmax}, {0, BoxSide::ymax}}));
+  EXPECT_EQ(pair.slave, (std::vector<FaceRef>{{0, PartFace::zmax}, {0, PartFace::ymax}}));
   EXPECT_FALSE(pair.two_pass);
   EXPECT_EQ(pair.penalty.stiffness, 1.0e9);
   EXPECT_EQ(pair.penalty.damping, 0.0);
@@ -222,13 +222,13 @@ TEST(Options, NamesAreTheDeckSpellings) {
   EXPECT_STREQ(name(MaterialModel::linear_elastic), "linear_elastic");
   EXPECT_STREQ(name(Formulation::hex8), "hex8");
   EXPECT_STREQ(name(Formulation::hex8r), "hex8r");
-  EXPECT_STREQ(name(BoxSide::xmin), "xmin");
-  EXPECT_STREQ(name(BoxSide::zmax), "zmax");
+  EXPECT_STREQ(name(PartFace::xmin), "xmin");
+  EXPECT_STREQ(name(PartFace::zmax), "zmax");
   EXPECT_STREQ(name(OutputField::von_mises), "von_mises");
   EXPECT_STREQ(name(OutputField::contact_force), "contact_force");
   const Deck deck = read_deck(test_deck_path("decks/plate_impact.yaml"));
   EXPECT_EQ(face_name(deck, deck.contact[0].master[0]), "plate_b.xmin");
-  EXPECT_EQ(face_name(deck, FaceRef{0, BoxSide::ymax}), "plate_a.ymax");
+  EXPECT_EQ(face_name(deck, FaceRef{0, PartFace::ymax}), "plate_a.ymax");
 }
 
 }  // namespace

@@ -11,7 +11,7 @@
 
 namespace {
 
-using exdyn::input::BoxSide;
+using exdyn::input::PartFace;
 
 exdyn::input::Deck two_part_deck() {
   exdyn::input::Deck deck;
@@ -56,7 +56,7 @@ TEST(Mesh, LastGridNodeLandsExactlyOnBoxMax) {
   deck.parts[0].box_max = {0, 2.5e-5, 2.5e-3};
   deck.parts[0].elements = {100, 1, 100};
   const auto mesh = exdyn::mesh::build_mesh(deck);
-  const auto face = exdyn::mesh::face_of(mesh, 0, BoxSide::xmax);
+  const auto face = exdyn::mesh::face_of(mesh, 0, PartFace::xmax);
   for (auto node : face.nodes) EXPECT_EQ(mesh.x_ref.x[node], 0.0);
 }
 
@@ -80,12 +80,12 @@ TEST(Mesh, ElementsFollowVtkHexahedronOrder) {
 
 TEST(Mesh, EveryFaceQuadNormalPointsOutOfThePart) {
   const auto mesh = exdyn::mesh::build_mesh(two_part_deck());
-  const std::array<std::pair<BoxSide, std::array<double, 3>>, 6> sides{{{BoxSide::xmin, {-1, 0, 0}},
-                                                                        {BoxSide::xmax, {1, 0, 0}},
-                                                                        {BoxSide::ymin, {0, -1, 0}},
-                                                                        {BoxSide::ymax, {0, 1, 0}},
-                                                                        {BoxSide::zmin, {0, 0, -1}},
-                                                                        {BoxSide::zmax, {0, 0, 1}}}};
+  const std::array<std::pair<PartFace, std::array<double, 3>>, 6> sides{{{PartFace::xmin, {-1, 0, 0}},
+                                                                        {PartFace::xmax, {1, 0, 0}},
+                                                                        {PartFace::ymin, {0, -1, 0}},
+                                                                        {PartFace::ymax, {0, 1, 0}},
+                                                                        {PartFace::zmin, {0, 0, -1}},
+                                                                        {PartFace::zmax, {0, 0, 1}}}};
   for (int part = 0; part < 2; ++part)
     for (const auto& [side, outward] : sides) {
       const auto face = exdyn::mesh::face_of(mesh, part, side);
@@ -208,7 +208,7 @@ TEST(PerturbedMesh, FacesStayPlaneAndTheBoxUnchanged) {
     for (int side = 0; side < 6; ++side) {
       const auto axis = static_cast<std::size_t>(side / 2);
       const double plane = side % 2 == 0 ? options.box_min[axis] : options.box_max[axis];
-      const auto face = exdyn::mesh::face_of(mesh, part, static_cast<BoxSide>(side));
+      const auto face = exdyn::mesh::face_of(mesh, part, static_cast<PartFace>(side));
       for (auto node : face.nodes) EXPECT_EQ(point(mesh, node)[axis], plane);
     }
     // Every node stays inside the box, and the eight corners do not move.

@@ -49,7 +49,7 @@ exdyn::input::Deck reference_deck() {
   for (auto& condition : deck.boundary_conditions)
     std::erase_if(condition.faces, [](const exdyn::input::FaceRef& face) { return face.part != 0; });
   exdyn::input::BoundaryConditionOptions wall;
-  wall.faces = {{0, exdyn::input::BoxSide::xmax}};
+  wall.faces = {{0, exdyn::input::PartFace::xmax}};
   wall.fix = {true, false, false};
   deck.boundary_conditions.push_back(wall);
   return deck;
