@@ -179,5 +179,9 @@ ProjectionResult simplex_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
 template <int Terms>
 ProjectionResult bfgs_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
                              const ProjectionSettings& settings);
+// True when f = |ys - y(xi)|^2 is proven strictly convex on the whole square
+// (robust.cpp: the fast path of `robust`).
+template <int Terms>
+bool strictly_convex_on_square(const Surface<Terms>& s, const Vec3& ys);
 
 }  // namespace exdyn::contact::detail

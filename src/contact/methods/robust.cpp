@@ -14,7 +14,11 @@
 //     best and far from every point found; (d) along an edge near an interior
 //     point found; (e) just inside an edge point found;
 //  5. the lowest f over all descents.
+// Fast path (0.): when a bound shows f strictly convex on the whole square, its one
+// minimum there is the closest point, and one constrained Newton descent from the
+// caller's guess finds it: no grid, no second chances.
 #include <algorithm>
+#include <cmath>
 
 #include "contact/methods/kernel_support.hpp"
 
@@ -230,6 +234,88 @@ class RobustSearch {
   int pinned_ = -1;  // a variable held at its bound by descend_on_edge, or -1
 };
 
+// True when f = |ys - y(xi)|^2 is strictly convex on the whole square [-1,1]^2, by a
+// bound that costs about 60 flops. H / 2 = J^T J - [r.y_ab] (r = ys - y, J = [a1 a2]):
+// - sigma_min(J(xi)) >= sigma_min(J(0)) - |J(xi) - J(0)|_F, and |J(xi) - J(0)|_F is
+//   bounded by the coefficients' norms (|u|, |v| <= 1 on the square):
+//   |a1 - a1(0)| <= |c3| + 2|c4| + 2|c6| + |c7|, |a2 - a2(0)| <= |c3| + 2|c5| + |c6| + 2|c7|;
+// - |r| <= |ys - c0| + sum_{k >= 1} |c_k|, and |[r.y_ab]|_2 <= |r| |[b_ab]|_F with
+//   |y11| <= 2(|c4| + |c6|), |y22| <= 2(|c5| + |c7|), |y12| <= |c3| + 2|c6| + 2|c7|.
+// So lambda_min(H / 2) >= s_lo^2 - |r|_max |b|_F on the square, and > 0 proves it.
+// Flat parallelograms (c3 = ... = c7 = 0) always pass; twisted or strongly curved
+// segments with the point far from them fail, and take the full search.
+template <int Terms>
+bool convex_bound(const Surface<Terms>& s, const Vec3& ys) {
+  const auto& c = s.c;
+  std::array<double, 8> n{};
+  for (int k = 0; k < Terms; ++k) n[std::size_t(k)] = norm(c[std::size_t(k)]);
+  const double d1 = n[3] + 2.0 * n[4] + 2.0 * n[6] + n[7];
+  const double d2 = n[3] + 2.0 * n[5] + n[6] + 2.0 * n[7];
+  const Sym2 A0{dot(c[1], c[1]), dot(c[1], c[2]), dot(c[2], c[2])};
+  const double sigma0 = std::sqrt(std::max(eigenvalues(A0)[0], 0.0));
+  const double s_lo = sigma0 - std::sqrt(d1 * d1 + d2 * d2);
+  if (!(s_lo > 0.0)) return false;
+  double r_max = norm(ys - c[0]);
+  for (int k = 1; k < Terms; ++k) r_max += n[std::size_t(k)];
+  const double b11 = 2.0 * (n[4] + n[6]), b22 = 2.0 * (n[5] + n[7]), b12 = n[3] + 2.0 * n[6] + 2.0 * n[7];
+  const double curvature = std::sqrt(b11 * b11 + 2.0 * b12 * b12 + b22 * b22);
+  // A margin of 1e-6 of J^T J's scale covers the rounding of the bound itself.
+  return s_lo * s_lo > r_max * curvature + 1.0e-6 * sigma0 * sigma0;
+}
+
+// Projected Newton on f strictly convex on the square (H positive definite there,
+// so every Newton step on the free variables is downhill and the one KKT point is the
+// closest point). A variable at a bound whose gradient points out of the square is
+// held. Each trial is evaluated once and, when f decreases (with the rounding
+// allowance), becomes the next iterate: as cheap per iteration as `newton`. Fills
+// `result` (xi, converged, on_boundary, counts) and returns true on convergence, a
+// full Newton step <= tolerance; returns false when a step must be cut to that length
+// (a projected step that does not descend) or max_iterations run out.
+template <int Terms>
+bool convex_newton(const Surface<Terms>& s, const Vec3& ys, Xi xi, const ProjectionSettings& settings,
+                   ProjectionResult& result) {
+  const double f_noise = 1.0e-14 * (size2(s) + dot(ys - s.c[0], ys - s.c[0]));
+  Local l = evaluate_local(s, ys, xi);
+  ++result.evaluations;
+  for (int k = 0; k < settings.max_iterations; ++k) {
+    ++result.iterations;
+    const bool free0 = !held(xi[0], l.g[0]), free1 = !held(xi[1], l.g[1]);
+    Xi p{0.0, 0.0};
+    if (free0 && free1) {
+      p = scaled(-1.0, inverse(l.H) * l.g);
+    } else if (free0) {
+      p[0] = -l.g[0] / l.H.xx;
+    } else if (free1) {
+      p[1] = -l.g[1] / l.H.yy;
+    }
+    for (double t = 1.0;; t *= 0.5) {
+      const Xi trial = clamp_box(xi + scaled(t, p));
+      if (!finite(trial)) return false;
+      if (norm2(trial - xi) <= settings.tolerance) {
+        if (t < 1.0) return false;
+        result.xi = trial;
+        result.converged = true;
+        result.failure = FailureReason::none;
+        // On an edge or a corner with the gradient pointing out of the square (g of
+        // the last iterate, within the tolerance of trial).
+        const double gradient_floor = stationary_gradient_tolerance * 2.0 * std::sqrt(l.A.xx + l.A.yy) *
+                                      (std::sqrt(l.f) + std::sqrt(size2(s)));
+        for (int a = 0; a < 2; ++a)
+          if (held(trial[a], l.g[a]) && std::fabs(l.g[a]) > gradient_floor) result.on_boundary = true;
+        return true;
+      }
+      const Local lt = evaluate_local(s, ys, trial);
+      ++result.evaluations;
+      if (lt.f <= l.f + f_noise) {
+        xi = trial;
+        l = lt;
+        break;
+      }
+    }
+  }
+  return false;
+}
+
 // f on the grid, row by row: y(u, v) = A(v) + u B(v) + u^2 C(v).
 template <int Terms>
 void grid_values(const Surface<Terms>& s, const Vec3& ys, std::array<double, grid_points * grid_points>& f) {
@@ -256,6 +342,25 @@ template <int Terms>
 ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
                                const ProjectionSettings& settings) {
   ProjectionResult result;
+  // Step 5's outcome from the best descent: converged, and on an edge or a corner
+  // with the gradient pointing out of the square.
+  const auto finish_with = [&](const Run& best) {
+    result.xi = best.xi;
+    result.converged = best.converged;
+    result.failure = best.converged ? FailureReason::none : FailureReason::max_iterations;
+    const Local l = evaluate_local(s, ys, best.xi);
+    const double gradient_floor = stationary_gradient_tolerance * 2.0 * std::sqrt(l.A.xx + l.A.yy) *
+                                  (std::sqrt(l.f) + std::sqrt(size2(s)));
+    for (int a = 0; a < 2; ++a)
+      if (held(best.xi[a], l.g[a]) && std::fabs(l.g[a]) > gradient_floor) result.on_boundary = true;
+    return result;
+  };
+  // 0. Fast path: f strictly convex on the square has one minimum there.
+  if (convex_bound(s, ys) &&
+      convex_newton(s, ys, finite(xi0) ? clamp_box(xi0) : Xi{0.0, 0.0}, settings, result))
+    return result;
+  // (Not proven convex, or the projected Newton stalled: the full search; its counts
+  // add to the fast path's.)
   std::array<double, grid_points * grid_points> f;  // every entry written by grid_values
   grid_values(s, ys, f);
   result.evaluations = grid_points * grid_points;
@@ -403,19 +508,19 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
       if (run.f < best.f) best = run;
     }
   }
-  result.xi = best.xi;
-  result.converged = best.converged;
-  result.failure = best.converged ? FailureReason::none : FailureReason::max_iterations;
-  // On an edge or a corner with the gradient pointing out of the square.
-  const Local l = evaluate_local(s, ys, best.xi);
-  const double gradient_floor = stationary_gradient_tolerance * 2.0 * std::sqrt(l.A.xx + l.A.yy) *
-                                (std::sqrt(l.f) + std::sqrt(size2(s)));
-  for (int a = 0; a < 2; ++a)
-    if (held(best.xi[a], l.g[a]) && std::fabs(l.g[a]) > gradient_floor) result.on_boundary = true;
-  return result;
+  return finish_with(best);
 }
 
 }  // namespace
+
+namespace detail {
+template <int Terms>
+bool strictly_convex_on_square(const Surface<Terms>& s, const Vec3& ys) {
+  return convex_bound(s, ys);
+}
+template bool strictly_convex_on_square<4>(const Surface<4>&, const Vec3&);
+template bool strictly_convex_on_square<8>(const Surface<8>&, const Vec3&);
+}  // namespace detail
 
 ProjectionResult project_robust(const Segment& segment, const Vec3& point, Xi xi0,
                                 const ProjectionSettings& settings) {
