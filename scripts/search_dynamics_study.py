@@ -1,0 +1,228 @@
+#!/usr/bin/python3
+"""The local search study inside dynamics (issue 12): every method and initial guess on
+curved 8-node segments in real runs, the runs where methods fail, and the chart of
+accuracy against cost over methods, meshes, formulations and slave points.
+
+    /usr/bin/python3 scripts/search_dynamics_study.py [--jobs 2] [--exdyn PATH]
+        [--out results/search_dynamics] [--docs docs] [--hertz-levels coarse,medium,fine]
+
+One command does it all:
+1. methods: input/hertz_ball.yaml on its coarse mesh (ball [8, 2], block [6, 6, 5],
+   hex20, slave quadrature points) and input/cylinders.yaml on its coarse mesh
+   (n_around 32), each with every method (newton, lsp, steepest_descent, broyden,
+   bfgs, dfp, simplex, hybrid, robust) and initial guess (lsp, center, previous):
+   54 runs. From each run's summary (contact.pairs.NAME): projections, mean and largest
+   iterations, not converged, saddles, the local search's wall time; from its result:
+   F_max and the contact time, and how far they and the stress field (largest
+   difference over the written steps, relative to the largest stress) move from the
+   robust method's run with the same guess;
+2. failures: the same methods and guesses where the projection is hard: the cylinders
+   at n_around 4 (a quarter circle in four 8-node segments, 22.5 degrees each) meeting
+   at +-100 m/s with a soft penalty (scale 0.05), so slave points sink two thirds of an
+   element deep into strongly curved master segments (the penetration guard is lifted);
+3. the Hertz grid (scripts/hertz_study.py: three meshes, hex8 and hex20, slave nodes
+   and quadrature points, BFGS): run or resumed here.
+Writes OUT/methods.csv and the tables between the `<!-- batch:dyn_* -->` markers of
+DOCS/local-search.md, and the Pareto chart DOCS/figures/results_hertz_pareto.png with
+its table in DOCS/results.md (`<!-- batch:hertz_pareto -->`): error against Hertz
+(the larger of the F_max and contact time errors) against wall time, every run of
+steps 1 and 3 on the ball, the non-dominated ones joined. A case whose summary says
+`completed` is not run again.
+"""
+
+import argparse
+import concurrent.futures
+import csv
+import json
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+import batch_plate_impact as batch  # noqa: E402
+import hertz_study  # noqa: E402
+
+METHODS = ["newton", "lsp", "steepest_descent", "broyden", "bfgs", "dfp", "simplex", "hybrid", "robust"]
+GUESSES = ["lsp", "center", "previous"]
+BALL_COARSE = ["parts[0].elements=[8, 2]", "parts[1].elements=[6, 6, 5]"]
+SCENES = {
+    # name: (deck, pair, force factor (quarter or half model), --set overrides)
+    "ball": ("hertz_ball.yaml", "impact", 4.0, BALL_COARSE),
+    "cylinders": ("cylinders.yaml", "line", 2.0,
+                  ["parts[0].elements=[32, 8, 1]", "parts[1].elements=[32, 8, 1]"]),
+    "hard_cylinders": ("cylinders.yaml", "line", 2.0,
+                       ["parts[0].elements=[4, 2, 1]", "parts[1].elements=[4, 2, 1]",
+                        "parts[0].initial_velocity=[0, 0, -100]", "parts[1].initial_velocity=[0, 0, 100]",
+                        "contact[0].penalty={scale: 0.05}", "time.end_time=1.5e-5",
+                        "guards.max_penetration=10.0"]),
+}
+
+
+class Case:
+    def __init__(self, scene, method, guess, out):
+        self.scene, self.method, self.guess = scene, method, guess
+        self.deck, self.pair, self.factor, self.sets = SCENES[scene]
+        self.name = f"{scene}_{method}_{guess}"
+        self.dir = os.path.join(out, "cases", self.name)
+        self.stem = os.path.splitext(self.deck)[0]
+
+    def summary(self):
+        try:
+            with open(os.path.join(self.dir, self.stem + ".json")) as f:
+                return json.load(f)
+        except (OSError, ValueError):
+            return None
+
+
+def run(case, exdyn):
+    if (case.summary() or {}).get("status") == "completed":
+        return "skipped"
+    os.makedirs(case.dir, exist_ok=True)
+    cmd = [exdyn, "run", os.path.join(REPO, "input", case.deck), "--quiet", "--threads", "1",
+           "--output", case.dir, "--set", f"contact[0].local_search.method={case.method}",
+           "--set", f"contact[0].local_search.initial_guess={case.guess}", "--set", "output.every=200",
+           "--set", "output.fields=[stress]"]
+    for s in case.sets:
+        cmd += ["--set", s]
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    return "ran" if proc.returncode == 0 else f"exit {proc.returncode}: {proc.stderr.strip()[-300:]}"
+
+
+def history(case):
+    with h5py.File(os.path.join(case.dir, case.stem + ".h5"), "r") as f:
+        t = f["history/time"][...]
+        force = case.factor * np.abs(f[f"history/contact/{case.pair}/force"][...][:, 2])
+        stress = {k: f["steps"][k]["stress"][...] for k in f["steps"]}
+    peak = force.max()
+    on = np.where(force > 1e-3 * peak)[0] if peak > 0 else np.array([0])
+    return peak, t[on[-1]] - t[on[0]], stress
+
+
+def row(case, reference):
+    s = case.summary() or {}
+    pair = (s.get("contact") or {}).get("pairs", {}).get(case.pair, {})
+    r = {"scene": case.scene, "method": case.method, "guess": case.guess, "status": s.get("status", "not run"),
+         "message": (s.get("message") or "")[:120], "wall_seconds": s.get("wall_seconds", float("nan")),
+         "steps": s.get("steps", 0), "projections": pair.get("projections", 0),
+         "mean_iterations": pair.get("mean_iterations", float("nan")),
+         "max_iterations": pair.get("max_iterations", 0), "not_converged": pair.get("not_converged", 0),
+         "saddle_points": pair.get("saddle_points", 0),
+         "local_search_seconds": pair.get("local_search_seconds", float("nan")),
+         "f_max": float("nan"), "contact_time": float("nan"), "f_max_vs_robust": float("nan"),
+         "time_vs_robust": float("nan"), "stress_vs_robust": float("nan")}
+    if not s or not os.path.exists(os.path.join(case.dir, case.stem + ".h5")):
+        return r
+    r["f_max"], r["contact_time"], stress = history(case)
+    if reference is not None and reference.summary() and reference.summary().get("status") == "completed":
+        f0, t0, s0 = history(reference)
+        r["f_max_vs_robust"] = r["f_max"] / f0 - 1
+        r["time_vs_robust"] = r["contact_time"] / t0 - 1
+        common = [k for k in stress if k in s0]
+        scale = max(np.abs(s0[k]).max() for k in common)
+        r["stress_vs_robust"] = max(np.abs(stress[k] - s0[k]).max() for k in common) / scale
+    return r
+
+
+def rel(x):
+    return "" if not np.isfinite(x) else ("0" if x == 0 else f"{x:+.1e}")
+
+
+def methods_table(rows, scene):
+    body = []
+    for r in rows:
+        if r["scene"] != scene:
+            continue
+        state = "completed" if r["status"] == "completed" else f"**{r['status']}**: {r['message']}"
+        body.append([r["method"], r["guess"], r["projections"], f"{r['mean_iterations']:.2f}", r["max_iterations"],
+                     r["not_converged"], r["saddle_points"], f"{r['local_search_seconds']:.2f}",
+                     f"{r['wall_seconds']:.1f}", f"{r['f_max'] / 1e3:.3f}", rel(r["f_max_vs_robust"]),
+                     f"{r['contact_time'] * 1e6:.2f}", rel(r["time_vs_robust"]),
+                     "" if not np.isfinite(r["stress_vs_robust"]) else f"{r['stress_vs_robust']:.1e}", state])
+    return batch.table(["method", "guess", "projections", "mean it.", "max it.", "not conv.", "saddles",
+                        "local search (s)", "wall (s)", "F_max (kN)", "vs robust", "contact (us)", "vs robust",
+                        "stress vs robust", "run"], body)
+
+
+def pareto_chart(method_rows, hertz_rows, docs):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    _, f_exact, t_exact, _, _ = hertz_study.hertz()
+    points = []   # (wall, error, label, group)
+    for r in method_rows:
+        if r["scene"] == "ball" and r["status"] == "completed":
+            err = max(abs(r["f_max"] / f_exact - 1), abs(r["contact_time"] / t_exact - 1))
+            points.append((r["wall_seconds"], err, f"coarse hex20 quadrature, {r['method']} / {r['guess']}",
+                           "methods (coarse hex20, quadrature)"))
+    for r in hertz_rows:
+        err = max(abs(float(r["f_max_error"])), abs(float(r["contact_time_error"])))
+        points.append((float(r["wall_seconds"]), err, f"{r['level']} {r['formulation']} {r['slave_points']}, bfgs",
+                       f"{r['formulation']}, slave {r['slave_points']}"))
+    front, best = [], float("inf")
+    for p in sorted(points):
+        if p[1] < best * (1.0 - 1e-6):   # equal errors (the same answer to round-off) are one point
+            front.append(p)
+            best = p[1]
+    fig, ax = plt.subplots(figsize=(8, 5))
+    groups = sorted({p[3] for p in points})
+    for k, g in enumerate(groups):
+        sel = [p for p in points if p[3] == g]
+        ax.scatter([p[0] for p in sel], [100 * p[1] for p in sel], s=22, color=f"C{k}", label=g, alpha=0.8)
+    ax.plot([p[0] for p in front], [100 * p[1] for p in front], "k-", lw=1, alpha=0.6, label="Pareto front")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time of the run, one thread (s)")
+    ax.set_ylabel("error against Hertz: max(|F_max err.|, |contact time err.|) (%)")
+    ax.set_title("Hertz impact: accuracy against cost over methods, meshes, formulations, slave points",
+                 fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(docs, "figures", "results_hertz_pareto.png"), dpi=100)
+    return batch.table(["case", "wall (s)", "error against Hertz"],
+                       [[p[2], f"{p[0]:.1f}", f"{100 * p[1]:.2f} %"] for p in front])
+
+
+def main(argv):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    p.add_argument("--exdyn", default=batch.default_exdyn())
+    p.add_argument("--out", default=os.path.join(REPO, "results", "search_dynamics"))
+    p.add_argument("--docs", default=os.path.join(REPO, "docs"))
+    p.add_argument("--hertz-out", default=os.path.join(REPO, "results", "hertz"))
+    p.add_argument("--hertz-levels", default="coarse,medium,fine")
+    p.add_argument("--scenes", default=",".join(SCENES))
+    args = p.parse_args(argv)
+    scenes = args.scenes.split(",")
+    cases = [Case(s, m, g, args.out) for s in scenes for g in GUESSES for m in METHODS]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
+        for case, status in zip(cases, pool.map(lambda c: run(c, args.exdyn), cases)):
+            print(f"{case.name}: {status}", flush=True)
+    by_name = {c.name: c for c in cases}
+    rows = [row(c, by_name.get(f"{c.scene}_robust_{c.guess}")) for c in cases]
+    os.makedirs(args.out, exist_ok=True)
+    with open(os.path.join(args.out, "methods.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    sections = {f"dyn_{s}": methods_table(rows, s) for s in scenes}
+    batch.write_doc(os.path.join(args.docs, "local-search.md"), sections)
+
+    if hertz_study.main(["--levels", args.hertz_levels, "--jobs", str(args.jobs), "--exdyn", args.exdyn,
+                         "--out", args.hertz_out, "--docs", args.docs]) != 0:
+        return 1
+    with open(os.path.join(args.hertz_out, "hertz.csv")) as f:
+        hertz_rows = list(csv.DictReader(f))
+    front = pareto_chart(rows, hertz_rows, args.docs)
+    batch.write_doc(os.path.join(args.docs, "results.md"), {"hertz_pareto": front})
+    print(f"search_dynamics_study: wrote {args.out}/methods.csv, the tables and the Pareto chart")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
