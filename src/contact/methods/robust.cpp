@@ -338,10 +338,10 @@ void grid_values(const Surface<Terms>& s, const Vec3& ys, std::array<double, gri
   }
 }
 
+// Steps 1-5 (kept out of line: its frame of grids and seeds would slow the fast path).
 template <int Terms>
-ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
-                               const ProjectionSettings& settings) {
-  ProjectionResult result;
+[[gnu::noinline]] ProjectionResult full_search(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
+                                               const ProjectionSettings& settings, ProjectionResult result) {
   // Step 5's outcome from the best descent: converged, and on an edge or a corner
   // with the gradient pointing out of the square.
   const auto finish_with = [&](const Run& best) {
@@ -355,12 +355,6 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
       if (held(best.xi[a], l.g[a]) && std::fabs(l.g[a]) > gradient_floor) result.on_boundary = true;
     return result;
   };
-  // 0. Fast path: f strictly convex on the square has one minimum there.
-  if (convex_bound(s, ys) &&
-      convex_newton(s, ys, finite(xi0) ? clamp_box(xi0) : Xi{0.0, 0.0}, settings, result))
-    return result;
-  // (Not proven convex, or the projected Newton stalled: the full search; its counts
-  // add to the fast path's.)
   std::array<double, grid_points * grid_points> f;  // every entry written by grid_values
   grid_values(s, ys, f);
   result.evaluations = grid_points * grid_points;
@@ -509,6 +503,19 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
     }
   }
   return finish_with(best);
+}
+
+template <int Terms>
+ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
+                               const ProjectionSettings& settings) {
+  ProjectionResult result;
+  // 0. Fast path: f strictly convex on the square has one minimum there.
+  if (convex_bound(s, ys) &&
+      convex_newton(s, ys, finite(xi0) ? clamp_box(xi0) : Xi{0.0, 0.0}, settings, result))
+    return result;
+  // Not proven convex, or the projected Newton stalled: the full search (its counts
+  // add to the fast path's).
+  return full_search(s, ys, xi0, settings, result);
 }
 
 }  // namespace
