@@ -93,22 +93,33 @@ class Case:
                        if self.points == "nodes" else [])
 
     def summary(self):
-        try:
-            with open(os.path.join(self.dir, "hertz_ball.json")) as f:
-                return json.load(f)
-        except (OSError, ValueError):
-            return None
+        return read_summary(os.path.join(self.dir, "hertz_ball.json"))
+
+
+def read_summary(path):
+    """A run's NAME.json, or None when it is missing or unreadable."""
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def run_deck(exdyn, deck, directory, sets, summary_path):
+    """One `exdyn run` of the deck with --set overrides on one thread, unless the
+    summary there already says `completed` (a study resumes)."""
+    if (read_summary(summary_path) or {}).get("status") == "completed":
+        return "skipped"
+    os.makedirs(directory, exist_ok=True)
+    cmd = [exdyn, "run", deck, "--quiet", "--threads", "1", "--output", directory]
+    for s in sets:
+        cmd += ["--set", s]
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    return "ran" if proc.returncode == 0 else f"exit {proc.returncode}: {proc.stderr.strip()[-300:]}"
 
 
 def run(case, exdyn):
-    if (case.summary() or {}).get("status") == "completed":
-        return "skipped"
-    os.makedirs(case.dir, exist_ok=True)
-    cmd = [exdyn, "run", DECK, "--quiet", "--threads", "1", "--output", case.dir]
-    for s in case.sets():
-        cmd += ["--set", s]
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    return "ran" if proc.returncode == 0 else f"failed: {proc.stderr[-400:]}"
+    return run_deck(exdyn, DECK, case.dir, case.sets(), os.path.join(case.dir, "hertz_ball.json"))
 
 
 def measure(case):

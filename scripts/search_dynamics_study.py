@@ -33,9 +33,7 @@ steps 1 and 3 on the ball, the non-dominated ones joined. A case whose summary s
 import argparse
 import concurrent.futures
 import csv
-import json
 import os
-import subprocess
 import sys
 
 import h5py
@@ -72,25 +70,14 @@ class Case:
         self.stem = os.path.splitext(self.deck)[0]
 
     def summary(self):
-        try:
-            with open(os.path.join(self.dir, self.stem + ".json")) as f:
-                return json.load(f)
-        except (OSError, ValueError):
-            return None
+        return hertz_study.read_summary(os.path.join(self.dir, self.stem + ".json"))
 
 
 def run(case, exdyn):
-    if (case.summary() or {}).get("status") == "completed":
-        return "skipped"
-    os.makedirs(case.dir, exist_ok=True)
-    cmd = [exdyn, "run", os.path.join(REPO, "input", case.deck), "--quiet", "--threads", "1",
-           "--output", case.dir, "--set", f"contact[0].local_search.method={case.method}",
-           "--set", f"contact[0].local_search.initial_guess={case.guess}", "--set", "output.every=200",
-           "--set", "output.fields=[stress]"]
-    for s in case.sets:
-        cmd += ["--set", s]
-    proc = subprocess.run(cmd, capture_output=True, text=True)
-    return "ran" if proc.returncode == 0 else f"exit {proc.returncode}: {proc.stderr.strip()[-300:]}"
+    sets = [f"contact[0].local_search.method={case.method}", f"contact[0].local_search.initial_guess={case.guess}",
+            "output.every=200", "output.fields=[stress]"] + case.sets
+    return hertz_study.run_deck(exdyn, os.path.join(REPO, "input", case.deck), case.dir, sets,
+                                os.path.join(case.dir, case.stem + ".json"))
 
 
 def history(case):
