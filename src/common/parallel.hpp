@@ -51,7 +51,7 @@ inline std::size_t chunk_count(std::size_t n, std::size_t chunk = node_chunk) {
 template <class Body>
 void for_each_chunk(std::size_t n, Body&& body, std::size_t chunk = node_chunk) {
   const auto chunks = static_cast<std::ptrdiff_t>(chunk_count(n, chunk));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (chunks > 1)
   for (std::ptrdiff_t k = 0; k < chunks; ++k) {
     const std::size_t begin = static_cast<std::size_t>(k) * chunk;
     body(begin, std::min(n, begin + chunk), static_cast<std::size_t>(k));

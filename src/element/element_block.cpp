@@ -81,7 +81,9 @@ ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVector
   EXDYN_ASSERT(block.chunk_energies.size() + 1 == block.chunk_begin.size());
   for (const std::vector<std::uint32_t>& colour : block.colours) {
     const auto chunks = static_cast<std::ptrdiff_t>(colour.size());
-#pragma omp parallel for schedule(dynamic, 1)
+    // One chunk is serial work: no parallel region (whose barrier costs milliseconds
+    // when another process holds the other core).
+#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
     for (std::ptrdiff_t k = 0; k < chunks; ++k) {
       const std::uint32_t c = colour[static_cast<std::size_t>(k)];
       block.chunk_energies[c] =
