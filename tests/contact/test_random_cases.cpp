@@ -189,8 +189,9 @@ TEST(RandomCases, TheConvexityBoundOfRobustIsSoundAndTakenOnSmoothSegments) {
         const Segment s = testing::random_segment(rng, type, d);
         const Vec3 point = testing::random_point(rng, s, 1.5, 1.0);
         ++tried;
-        const bool convex = type == SegmentType::quad4 ? detail::strictly_convex_on_square(make_surface<4>(s), point)
-                                                       : detail::strictly_convex_on_square(make_surface<8>(s), point);
+        const bool convex = type == SegmentType::quad4
+                                ? detail::strictly_convex_on_square(make_surface<4>(s), point)
+                                : detail::strictly_convex_on_square(make_surface<8>(s), point);
         if (!convex) continue;
         ++proven[type == SegmentType::quad8][int(d)];
         double lowest = std::numeric_limits<double>::infinity();
@@ -220,16 +221,18 @@ TEST(RandomCases, TheConvexityBoundOfRobustIsSoundAndTakenOnSmoothSegments) {
     }
     for (int k = 0; k < 1000; ++k) {
       const double angle = rng.uniform(-half, half), radius = 1.0 + 0.1 * size * rng.uniform(-1.0, 1.0);
-      const Vec3 point{radius * std::cos(angle), radius * std::sin(angle), 0.5 * size * rng.uniform(-1.0, 1.0)};
+      const Vec3 point{radius * std::cos(angle), radius * std::sin(angle),
+                       0.5 * size * rng.uniform(-1.0, 1.0)};
       count += detail::strictly_convex_on_square(make_surface<8>(s), point) ? 1 : 0;
     }
     return count;
   };
   const int proven_16 = cylinder_proven(16), proven_4 = cylinder_proven(4);
-  std::printf("convexity proven: quad4 mild %d, moderate %d, strong %d; quad8 mild %d, moderate %d, strong %d "
-              "(of 1000 each); cylinder quad8 n_around 16: %d, n_around 4: %d of 1000\n",
-              proven[0][0], proven[0][1], proven[0][2], proven[1][0], proven[1][1], proven[1][2], proven_16,
-              proven_4);
+  std::printf(
+      "convexity proven: quad4 mild %d, moderate %d, strong %d; quad8 mild %d, moderate %d, strong %d "
+      "(of 1000 each); cylinder quad8 n_around 16: %d, n_around 4: %d of 1000\n",
+      proven[0][0], proven[0][1], proven[0][2], proven[1][0], proven[1][1], proven[1][2], proven_16,
+      proven_4);
   EXPECT_EQ(tried, 6000);
   EXPECT_GT(proven[0][0], 900);
   EXPECT_EQ(proven_16, 1000);
