@@ -30,17 +30,20 @@ inline ElementQuality element_quality(const std::array<double, 3>* x, int nodes)
       const auto d = hex8::shape_function_derivatives(xi, eta, zeta);
       for (int n = 0; n < 8; ++n)
         for (int c = 0; c < 3; ++c)
-          for (int a = 0; a < 3; ++a) j[std::size_t(3 * c + a)] += x[n][std::size_t(c)] * d[std::size_t(n)][std::size_t(a)];
+          for (int a = 0; a < 3; ++a)
+            j[std::size_t(3 * c + a)] += x[n][std::size_t(c)] * d[std::size_t(n)][std::size_t(a)];
     } else {
       const auto d = hex20::shape_function_derivatives(xi, eta, zeta);
       for (int n = 0; n < 20; ++n)
         for (int c = 0; c < 3; ++c)
-          for (int a = 0; a < 3; ++a) j[std::size_t(3 * c + a)] += x[n][std::size_t(c)] * d[std::size_t(n)][std::size_t(a)];
+          for (int a = 0; a < 3; ++a)
+            j[std::size_t(3 * c + a)] += x[n][std::size_t(c)] * d[std::size_t(n)][std::size_t(a)];
     }
     return j;
   };
   auto determinant = [](const std::array<double, 9>& j) {
-    return j[0] * (j[4] * j[8] - j[5] * j[7]) - j[1] * (j[3] * j[8] - j[5] * j[6]) + j[2] * (j[3] * j[7] - j[4] * j[6]);
+    return j[0] * (j[4] * j[8] - j[5] * j[7]) - j[1] * (j[3] * j[8] - j[5] * j[6]) +
+           j[2] * (j[3] * j[7] - j[4] * j[6]);
   };
   ElementQuality q;
   q.scaled_jacobian = std::numeric_limits<double>::infinity();
@@ -48,8 +51,9 @@ inline ElementQuality element_quality(const std::array<double, 3>* x, int nodes)
     const auto j = jacobian(xi, eta, zeta);
     double lengths = 1.0;
     for (int a = 0; a < 3; ++a)
-      lengths *= std::sqrt(j[std::size_t(a)] * j[std::size_t(a)] + j[std::size_t(3 + a)] * j[std::size_t(3 + a)] +
-                           j[std::size_t(6 + a)] * j[std::size_t(6 + a)]);
+      lengths *=
+          std::sqrt(j[std::size_t(a)] * j[std::size_t(a)] + j[std::size_t(3 + a)] * j[std::size_t(3 + a)] +
+                    j[std::size_t(6 + a)] * j[std::size_t(6 + a)]);
     q.scaled_jacobian = std::min(q.scaled_jacobian, lengths > 0.0 ? determinant(j) / lengths : 0.0);
   };
   if (nodes == 8) {

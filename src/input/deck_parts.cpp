@@ -68,9 +68,10 @@ std::array<int, 3> DeckValidator::keep_cuts(const YAML::Node& node, const std::s
     if (keep[cut_axis] != 0)
       fail(node[i], entry_path, "the axis " + std::string(component_names[cut_axis]) + " is cut twice");
     if (static_cast<int>(cut_axis) == axis)
-      fail(node[i], entry_path,
-           "a cut across the cylinder's axis would keep all of it or nothing (the axis starts at the centre); "
-           "set the length instead");
+      fail(
+          node[i], entry_path,
+          "a cut across the cylinder's axis would keep all of it or nothing (the axis starts at the centre); "
+          "set the length instead");
     keep[cut_axis] = found % 2 == 0 ? 1 : -1;
   }
   return keep;
@@ -79,8 +80,8 @@ std::array<int, 3> DeckValidator::keep_cuts(const YAML::Node& node, const std::s
 PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
                                 const std::vector<MaterialOptions>& materials) const {
   check_map(node, path,
-            {"name", "box", "cylinder", "sphere", "elements", "grading", "material", "formulation", "hourglass",
-             "initial_velocity", "perturbation"});
+            {"name", "box", "cylinder", "sphere", "elements", "grading", "material", "formulation",
+             "hourglass", "initial_velocity", "perturbation"});
   PartOptions result;
   result.name = text(required(node, path, "name"), child_path(path, "name"), "a part name");
 
@@ -113,12 +114,12 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
               cylinder ? std::vector<std::string>{"center", "axis", "radius", "length", "keep"}
                        : std::vector<std::string>{"center", "radius", "keep"});
     result.center = vector3(required(geometry, geometry_path, "center"), child_path(geometry_path, "center"));
-    result.radius = number_where(required(geometry, geometry_path, "radius"), child_path(geometry_path, "radius"),
-                                 "a number > 0", positive);
+    result.radius = number_where(required(geometry, geometry_path, "radius"),
+                                 child_path(geometry_path, "radius"), "a number > 0", positive);
     if (cylinder) {
       const std::vector<std::string> axes(component_names.begin(), component_names.end());
-      result.axis = static_cast<int>(choice(required(geometry, geometry_path, "axis"),
-                                            child_path(geometry_path, "axis"), "axis", axes));
+      result.axis = static_cast<int>(
+          choice(required(geometry, geometry_path, "axis"), child_path(geometry_path, "axis"), "axis", axes));
       result.length = number_where(required(geometry, geometry_path, "length"),
                                    child_path(geometry_path, "length"), "a number > 0", positive);
     }
@@ -129,13 +130,15 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
   const std::string elements_path = child_path(path, "elements");
   const YAML::Node elements = required(node, path, "elements");
   const std::size_t counts = result.geometry == Geometry::sphere ? 2 : 3;
-  const std::string expected = result.geometry == Geometry::box        ? "a list of 3 integers >= 1 [nx, ny, nz]"
-                               : result.geometry == Geometry::cylinder ? "a list of 3 integers >= 1 [n_around, "
-                                                                         "n_radius, n_axis]"
-                                                                       : "a list of 2 integers >= 1 [n_around, "
-                                                                         "n_radius]";
+  const std::string expected = result.geometry == Geometry::box ? "a list of 3 integers >= 1 [nx, ny, nz]"
+                               : result.geometry == Geometry::cylinder
+                                   ? "a list of 3 integers >= 1 [n_around, "
+                                     "n_radius, n_axis]"
+                                   : "a list of 2 integers >= 1 [n_around, "
+                                     "n_radius]";
   check_sequence(elements, elements_path, expected);
-  if (elements.size() != counts) fail(elements, elements_path, "expected " + expected + ", got " + describe(elements));
+  if (elements.size() != counts)
+    fail(elements, elements_path, "expected " + expected + ", got " + describe(elements));
   for (std::size_t i = 0; i < counts; ++i)
     result.elements[i] = integer_where(elements[i], child_path(elements_path, i), "an integer >= 1", 1);
   const bool cut = result.keep != std::array<int, 3>{};
@@ -201,7 +204,8 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
     const std::string perturbation_path = child_path(path, "perturbation");
     if (result.geometry != Geometry::box)
       fail(perturbation, perturbation_path,
-           std::string("perturbation distorts the grid of a box part; this part is a ") + name(result.geometry));
+           std::string("perturbation distorts the grid of a box part; this part is a ") +
+               name(result.geometry));
     check_map(perturbation, perturbation_path, {"fraction", "seed"});
     if (const YAML::Node fraction = optional(perturbation, "fraction"); fraction.IsDefined()) {
       const std::string fraction_path = child_path(perturbation_path, "fraction");
@@ -269,8 +273,8 @@ FaceRef DeckValidator::face(const YAML::Node& node, const std::string& path,
       std::find_if(sides.begin(), sides.end(), [&](PartFace side) { return side_name == name(side); });
   if (side_found == sides.end())
     fail(node, path,
-         "unknown side '" + side_name + "' of the " + name(part.geometry) + " part '" + part.name + "' in face '" +
-             value + "'" + hint);
+         "unknown side '" + side_name + "' of the " + name(part.geometry) + " part '" + part.name +
+             "' in face '" + value + "'" + hint);
   return FaceRef{static_cast<int>(part_found - part_names.begin()), *side_found};
 }
 

@@ -91,16 +91,18 @@ std::string to_yaml(const Deck& deck) {
     const bool sphere = part.geometry == Geometry::sphere;
     out << "  - name: " << yaml_text(part.name) << "\n";
     if (part.geometry == Geometry::box) {
-      out << "    box: {min: " << yaml_vector(part.box_min) << ", max: " << yaml_vector(part.box_max) << "}\n";
+      out << "    box: {min: " << yaml_vector(part.box_min) << ", max: " << yaml_vector(part.box_max)
+          << "}\n";
     } else {
       std::vector<std::string> keep;
       for (std::size_t axis = 0; axis < 3; ++axis)
-        if (part.keep[axis] != 0) keep.push_back(std::string(component_names[axis]) + (part.keep[axis] > 0 ? "+" : "-"));
+        if (part.keep[axis] != 0)
+          keep.push_back(std::string(component_names[axis]) + (part.keep[axis] > 0 ? "+" : "-"));
       out << "    " << name(part.geometry) << ": {center: " << yaml_vector(part.center)
           << (sphere ? std::string() : ", axis: " + std::string(component_names[std::size_t(part.axis)]))
           << ", radius: " << yaml_number(part.radius)
-          << (sphere ? std::string() : ", length: " + yaml_number(part.length)) << ", keep: [" << join(keep, ", ")
-          << "]}\n";
+          << (sphere ? std::string() : ", length: " + yaml_number(part.length)) << ", keep: ["
+          << join(keep, ", ") << "]}\n";
     }
     out << "    elements: [" << part.elements[0] << ", " << part.elements[1];
     if (!sphere) out << ", " << part.elements[2];
@@ -113,10 +115,10 @@ std::string to_yaml(const Deck& deck) {
                 ? std::string()
                 : "    hourglass: {coefficient: " + yaml_number(part.hourglass_coefficient) + "}\n")
         << "    initial_velocity: " << yaml_vector(part.initial_velocity) << "\n"
-        << (part.geometry == Geometry::box ? "    perturbation: {fraction: " +
-                                                  yaml_number(part.perturbation_fraction) +
-                                                  ", seed: " + std::to_string(part.perturbation_seed) + "}\n"
-                                            : std::string());
+        << (part.geometry == Geometry::box
+                ? "    perturbation: {fraction: " + yaml_number(part.perturbation_fraction) +
+                      ", seed: " + std::to_string(part.perturbation_seed) + "}\n"
+                : std::string());
   }
 
   out << "boundary_conditions:" << (deck.boundary_conditions.empty() ? " []" : "") << "\n";

@@ -61,8 +61,8 @@ struct PartOptions {
   // Ratio of the last element's size to the first's along each count (box: x, y, z;
   // cylinder: around, radius (towards the surface), axis; sphere: around, radius, -).
   std::array<double, 3> grading{1.0, 1.0, 1.0};
-  std::string material;           // a key of `materials`
-  int material_index = -1;        // index into Deck::materials
+  std::string material;     // a key of `materials`
+  int material_index = -1;  // index into Deck::materials
   Formulation formulation = Formulation::hex8;
   double hourglass_coefficient = 0.05;  // hex8 and hex8r only (an error on a 20-node part)
   Vec3 initial_velocity{};

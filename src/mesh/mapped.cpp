@@ -109,10 +109,12 @@ std::vector<Block> sphere_blocks(const input::PartOptions& o) {
                         // The point of the sphere along the grid lines of equal angle.
                         const double du = quarter_tan(u), dv = quarter_tan(v);
                         const double scale = R / std::sqrt(du * du + dv * dv + 1.0);
-                        const std::array<double, 3> x = blend({a * u, a * v, a}, {scale * du, scale * dv, scale},
-                                                              fraction_at(t, nr, radial_grading));
+                        const std::array<double, 3> x =
+                            blend({a * u, a * v, a}, {scale * du, scale * dv, scale},
+                                  fraction_at(t, nr, radial_grading));
                         Point result{};
-                        for (int c = 0; c < 3; ++c) result[std::size_t(frame.axis[c])] = frame.sign[c] * x[std::size_t(c)];
+                        for (int c = 0; c < 3; ++c)
+                          result[std::size_t(frame.axis[c])] = frame.sign[c] * x[std::size_t(c)];
                         return result;
                       }});
   return blocks;
@@ -123,7 +125,8 @@ class PointMerger {
  public:
   explicit PointMerger(double tolerance) : tolerance_(tolerance) {}
   std::uint32_t id(const Point& x) {
-    const std::array<long long, 3> cell{std::llround(x[0] / tolerance_ / 8.0), std::llround(x[1] / tolerance_ / 8.0),
+    const std::array<long long, 3> cell{std::llround(x[0] / tolerance_ / 8.0),
+                                        std::llround(x[1] / tolerance_ / 8.0),
                                         std::llround(x[2] / tolerance_ / 8.0)};
     for (long long dx = -1; dx <= 1; ++dx)
       for (long long dy = -1; dy <= 1; ++dy)
@@ -171,16 +174,17 @@ std::array<int, 20> mirror_xi() {
 
 // The six faces of a VTK brick, outward: corners (counter-clockwise seen from
 // outside), then the mid-edge nodes of the edges 0-1, 1-2, 2-3, 3-0 of the face.
-constexpr int brick_faces[6][8] = {{0, 3, 2, 1, 11, 10, 9, 8},  {4, 5, 6, 7, 12, 13, 14, 15},
-                                   {0, 1, 5, 4, 8, 17, 12, 16}, {1, 2, 6, 5, 9, 18, 13, 17},
+constexpr int brick_faces[6][8] = {{0, 3, 2, 1, 11, 10, 9, 8},   {4, 5, 6, 7, 12, 13, 14, 15},
+                                   {0, 1, 5, 4, 8, 17, 12, 16},  {1, 2, 6, 5, 9, 18, 13, 17},
                                    {2, 3, 7, 6, 10, 19, 14, 18}, {3, 0, 4, 7, 11, 16, 15, 19}};
 
 }  // namespace
 
 std::uint64_t mapped_element_count(const input::PartOptions& o) {
   const std::uint64_t na = std::uint64_t(o.elements[0]), nr = std::uint64_t(o.elements[1]);
-  std::uint64_t count = o.geometry == input::Geometry::cylinder ? (na * na + 4 * na * nr) * std::uint64_t(o.elements[2])
-                                                               : na * na * na + 6 * na * na * nr;
+  std::uint64_t count = o.geometry == input::Geometry::cylinder
+                            ? (na * na + 4 * na * nr) * std::uint64_t(o.elements[2])
+                            : na * na * na + 6 * na * na * nr;
   for (const int keep : o.keep)
     if (keep != 0) count /= 2;  // each cut runs through the middle of the symmetric layout
   return count;
@@ -192,12 +196,13 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
   const int nodes_per_element = order == 2 ? 20 : 8;
   // Local to global: a cylinder's (p, q, s) go to the axes after its axis, cyclically.
   const int ax = options.axis;
-  const std::array<int, 3> global_axis = cylinder ? std::array<int, 3>{(ax + 1) % 3, (ax + 2) % 3, ax}
-                                                  : std::array<int, 3>{0, 1, 2};
+  const std::array<int, 3> global_axis =
+      cylinder ? std::array<int, 3>{(ax + 1) % 3, (ax + 2) % 3, ax} : std::array<int, 3>{0, 1, 2};
   auto to_global = [&](const Point& local) {
     Point x{};
     for (int c = 0; c < 3; ++c)
-      x[std::size_t(global_axis[std::size_t(c)])] = options.center[std::size_t(global_axis[std::size_t(c)])] + local[std::size_t(c)];
+      x[std::size_t(global_axis[std::size_t(c)])] =
+          options.center[std::size_t(global_axis[std::size_t(c)])] + local[std::size_t(c)];
     return x;
   };
   const std::vector<Block> blocks = cylinder ? cylinder_blocks(options) : sphere_blocks(options);
@@ -210,15 +215,19 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
   for (const Block& block : blocks) {
     std::array<int, 3> size{};
     for (int c = 0; c < 3; ++c) size[std::size_t(c)] = order * block.n[std::size_t(c)] + 1;
-    std::vector<std::uint32_t> lattice(static_cast<std::size_t>(size[0]) * static_cast<std::size_t>(size[1]) * static_cast<std::size_t>(size[2]), no_node);
+    std::vector<std::uint32_t> lattice(static_cast<std::size_t>(size[0]) * static_cast<std::size_t>(size[1]) *
+                                           static_cast<std::size_t>(size[2]),
+                                       no_node);
     auto at = [&](int i, int j, int k) -> std::uint32_t& {
-      return lattice[std::size_t(i) + std::size_t(size[0]) * (std::size_t(j) + std::size_t(size[1]) * std::size_t(k))];
+      return lattice[std::size_t(i) +
+                     std::size_t(size[0]) * (std::size_t(j) + std::size_t(size[1]) * std::size_t(k))];
     };
     for (int k = 0; k < size[2]; ++k)
       for (int j = 0; j < size[1]; ++j)
         for (int i = 0; i < size[0]; ++i) {
           if ((i % order) + (j % order) + (k % order) > 1) continue;
-          at(i, j, k) = merger.id(to_global(block.at(double(i) / order, double(j) / order, double(k) / order)));
+          at(i, j, k) =
+              merger.id(to_global(block.at(double(i) / order, double(j) / order, double(k) / order)));
         }
     for (int k = 0; k < block.n[2]; ++k)
       for (int j = 0; j < block.n[1]; ++j)
@@ -226,8 +235,8 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
           std::array<std::uint32_t, 20> nodes{};
           for (int l = 0; l < nodes_per_element; ++l) {
             const auto& d = brick_offsets[std::size_t(l)];
-            nodes[std::size_t(l)] = at(order * i + d[0] * order / 2, order * j + d[1] * order / 2,
-                                       order * k + d[2] * order / 2);
+            nodes[std::size_t(l)] =
+                at(order * i + d[0] * order / 2, order * j + d[1] * order / 2, order * k + d[2] * order / 2);
           }
           // A left-handed block map gives a negative Jacobian: mirror the element.
           const auto& x = merger.points();
@@ -237,11 +246,13 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
             return Point{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
           };
           const Point e1 = edge(0, 1), e2 = edge(0, 3), e3 = edge(0, 4);
-          const double det = e1[0] * (e2[1] * e3[2] - e2[2] * e3[1]) - e1[1] * (e2[0] * e3[2] - e2[2] * e3[0]) +
+          const double det = e1[0] * (e2[1] * e3[2] - e2[2] * e3[1]) -
+                             e1[1] * (e2[0] * e3[2] - e2[2] * e3[0]) +
                              e1[2] * (e2[0] * e3[1] - e2[1] * e3[0]);
           if (det < 0.0) {
             std::array<std::uint32_t, 20> mirrored{};
-            for (int l = 0; l < nodes_per_element; ++l) mirrored[std::size_t(l)] = nodes[std::size_t(mirror[std::size_t(l)])];
+            for (int l = 0; l < nodes_per_element; ++l)
+              mirrored[std::size_t(l)] = nodes[std::size_t(mirror[std::size_t(l)])];
             nodes = mirrored;
           }
           elements.push_back(nodes);
@@ -255,7 +266,8 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
   for (const auto& nodes : elements) {
     Point centroid{};
     for (int l = 0; l < 8; ++l)
-      for (int c = 0; c < 3; ++c) centroid[std::size_t(c)] += points[nodes[std::size_t(l)]][std::size_t(c)] / 8.0;
+      for (int c = 0; c < 3; ++c)
+        centroid[std::size_t(c)] += points[nodes[std::size_t(l)]][std::size_t(c)] / 8.0;
     bool inside = true;
     for (int c = 0; c < 3; ++c)
       if (options.keep[std::size_t(c)] != 0 &&
@@ -304,8 +316,8 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
   std::map<std::array<std::uint32_t, 4>, int> shared;
   for (const auto& nodes : kept)
     for (const auto& f : brick_faces) {
-      std::array<std::uint32_t, 4> key{nodes[std::size_t(f[0])], nodes[std::size_t(f[1])], nodes[std::size_t(f[2])],
-                                       nodes[std::size_t(f[3])]};
+      std::array<std::uint32_t, 4> key{nodes[std::size_t(f[0])], nodes[std::size_t(f[1])],
+                                       nodes[std::size_t(f[2])], nodes[std::size_t(f[3])]};
       std::sort(key.begin(), key.end());
       ++shared[key];
     }
@@ -330,8 +342,8 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
   for (const auto& nodes : kept)
     for (int fi = 0; fi < 6; ++fi) {
       const int* f = brick_faces[fi];
-      std::array<std::uint32_t, 4> key{nodes[std::size_t(f[0])], nodes[std::size_t(f[1])], nodes[std::size_t(f[2])],
-                                       nodes[std::size_t(f[3])]};
+      std::array<std::uint32_t, 4> key{nodes[std::size_t(f[0])], nodes[std::size_t(f[1])],
+                                       nodes[std::size_t(f[2])], nodes[std::size_t(f[3])]};
       std::sort(key.begin(), key.end());
       if (shared[key] != 1) continue;
       auto all_at = [&](int c, double value) {

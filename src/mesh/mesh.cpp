@@ -129,7 +129,8 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
   auto coordinate = [&](int axis, int index) {
     const double lo = options.box_min[axis], hi = options.box_max[axis];
     if (index == n[axis]) return hi;
-    if (options.grading[axis] != 1.0) return lo + (hi - lo) * graded_fraction(index, n[axis], options.grading[axis]);
+    if (options.grading[axis] != 1.0)
+      return lo + (hi - lo) * graded_fraction(index, n[axis], options.grading[axis]);
     return lo + (hi - lo) * static_cast<double>(index) / static_cast<double>(n[axis]);
   };
   // The corner grid point (i, j, k), with the optional distortion (parts[i].perturbation):
@@ -215,7 +216,8 @@ Mesh build_mesh(const input::Deck& deck) {
                                     ? std::uint64_t(n[0]) * std::uint64_t(n[1]) * std::uint64_t(n[2])
                                     : mapped_element_count(part);
     // A mapped part's nodes: at most its elements' nodes (shared ones counted again).
-    nodes += part.geometry == input::Geometry::box ? part_node_count(n, order) : (order == 2 ? 20 : 8) * count;
+    nodes +=
+        part.geometry == input::Geometry::box ? part_node_count(n, order) : (order == 2 ? 20 : 8) * count;
     elements += count;
     connectivity += (order == 2 ? 20 : 8) * count;
   }
@@ -247,7 +249,8 @@ Face face_of(const Mesh& mesh, int part_index, input::PartFace side) {
   if (part.lattice.empty()) {  // a mapped part: its faces were built with it
     for (const auto& [name, face] : part.faces)
       if (name == side) return face;
-    throw std::logic_error("face_of: part " + std::to_string(part_index) + " has no face " + input::name(side));
+    throw std::logic_error("face_of: part " + std::to_string(part_index) + " has no face " +
+                           input::name(side));
   }
   const auto& n = part.elements;
   // The face is the grid plane axis = fixed; (p, q) are its in-plane axes,

@@ -22,7 +22,8 @@ using exdyn::input::Geometry;
 using exdyn::input::PartFace;
 using exdyn::input::PartOptions;
 
-PartOptions cylinder(int around, int radius, int axial, Formulation formulation, std::array<int, 3> keep = {}) {
+PartOptions cylinder(int around, int radius, int axial, Formulation formulation,
+                     std::array<int, 3> keep = {}) {
   PartOptions p;
   p.name = "c";
   p.geometry = Geometry::cylinder;
@@ -90,8 +91,10 @@ TEST(MappedMesh, EverySurfaceNodeLiesOnTheCircleOrSphereMidEdgeNodesIncluded) {
       const double round_off = 4 * std::numeric_limits<double>::epsilon() * (0.3 + p.radius);
       EXPECT_LE(worst, round_off) << exdyn::input::name(p.geometry) << " " << exdyn::input::name(f);
       // and no node of the part lies outside.
-      for (std::uint32_t n = 0; n < mesh.node_count(); ++n) EXPECT_LE(radius_of(mesh, p, n), p.radius + round_off);
-      for (const auto& segment : face.segments) EXPECT_EQ(segment.node_count, f == Formulation::hex20 ? 8 : 4);
+      for (std::uint32_t n = 0; n < mesh.node_count(); ++n)
+        EXPECT_LE(radius_of(mesh, p, n), p.radius + round_off);
+      for (const auto& segment : face.segments)
+        EXPECT_EQ(segment.node_count, f == Formulation::hex20 ? 8 : 4);
     }
 }
 
@@ -144,9 +147,11 @@ TEST(MappedMesh, SurfaceSegmentsFaceOutward) {
     for (const PartOptions& p : {cylinder(4, 2, 2, f, {-1, 0, 0}), sphere(4, 2, f, {0, 0, 1})}) {
       const auto mesh = build(p);
       for (const PartFace name : {PartFace::surface, PartFace::cut_x, PartFace::cut_z}) {
-        if ((name == PartFace::cut_x && p.keep[0] == 0) || (name == PartFace::cut_z && p.keep[2] == 0)) continue;
+        if ((name == PartFace::cut_x && p.keep[0] == 0) || (name == PartFace::cut_z && p.keep[2] == 0))
+          continue;
         for (const auto& s : exdyn::mesh::face_of(mesh, 0, name).segments) {
-          const auto x0 = mesh.x_ref.at(s.nodes[0]), x1 = mesh.x_ref.at(s.nodes[1]), x3 = mesh.x_ref.at(s.nodes[3]);
+          const auto x0 = mesh.x_ref.at(s.nodes[0]), x1 = mesh.x_ref.at(s.nodes[1]),
+                     x3 = mesh.x_ref.at(s.nodes[3]);
           const std::array<double, 3> a{x1[0] - x0[0], x1[1] - x0[1], x1[2] - x0[2]};
           const std::array<double, 3> b{x3[0] - x0[0], x3[1] - x0[1], x3[2] - x0[2]};
           const std::array<double, 3> normal{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
@@ -183,7 +188,8 @@ TEST(MappedMesh, NoElementIsInvertedOverARangeOfCountsAndGradings) {
             const auto quality = exdyn::solver::mesh_quality(mesh);
             smallest = std::min(smallest, quality[0].smallest_scaled_jacobian);
             EXPECT_GT(quality[0].smallest_scaled_jacobian, 0.5)
-                << exdyn::input::name(p.geometry) << " " << around << " x " << radial << " grading " << grading;
+                << exdyn::input::name(p.geometry) << " " << around << " x " << radial << " grading "
+                << grading;
             ++meshes;
           }
         }
@@ -197,7 +203,8 @@ TEST(MappedMesh, VolumeConvergesAtTheOrderOfTheElements) {
     for (const Formulation f : formulations) {
       std::vector<double> errors;
       for (int n : {2, 4, 8, 16}) {
-        const PartOptions p = g == Geometry::cylinder ? cylinder(n, n / 2, 1, f) : sphere(n, n / 2, f, {1, 1, 1});
+        const PartOptions p =
+            g == Geometry::cylinder ? cylinder(n, n / 2, 1, f) : sphere(n, n / 2, f, {1, 1, 1});
         const auto mesh = build(p);
         errors.push_back(std::abs(exdyn::solver::mesh_quality(mesh)[0].volume / exact_volume(p) - 1.0));
       }

@@ -81,11 +81,11 @@ TEST(Mesh, ElementsFollowVtkHexahedronOrder) {
 TEST(Mesh, EveryFaceQuadNormalPointsOutOfThePart) {
   const auto mesh = exdyn::mesh::build_mesh(two_part_deck());
   const std::array<std::pair<PartFace, std::array<double, 3>>, 6> sides{{{PartFace::xmin, {-1, 0, 0}},
-                                                                        {PartFace::xmax, {1, 0, 0}},
-                                                                        {PartFace::ymin, {0, -1, 0}},
-                                                                        {PartFace::ymax, {0, 1, 0}},
-                                                                        {PartFace::zmin, {0, 0, -1}},
-                                                                        {PartFace::zmax, {0, 0, 1}}}};
+                                                                         {PartFace::xmax, {1, 0, 0}},
+                                                                         {PartFace::ymin, {0, -1, 0}},
+                                                                         {PartFace::ymax, {0, 1, 0}},
+                                                                         {PartFace::zmin, {0, 0, -1}},
+                                                                         {PartFace::zmax, {0, 0, 1}}}};
   for (int part = 0; part < 2; ++part)
     for (const auto& [side, outward] : sides) {
       const auto face = exdyn::mesh::face_of(mesh, part, side);

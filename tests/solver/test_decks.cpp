@@ -46,11 +46,20 @@ struct DeckRun {
 // plate_impact_reference.yaml: test_plate_reference.cpp; the contact decks: test_contact.cpp;
 // plate_impact_hex20.yaml, contact_patch_hex20.yaml: test_quadratic_contact.cpp; hertz_ball.yaml:
 // test_hertz.cpp; cylinders.yaml: scripts/cylinders_study.py --check (ctest cylinders_hertz_line).
-const std::set<std::string> checked_decks{
-    "plate_impact_reference.yaml", "wave_bar.yaml",      "shear_wave.yaml",        "hourglass_block.yaml",
-    "plate_impact.yaml",           "bar_impact.yaml",    "contact_patch.yaml",     "block_drop.yaml",
-    "unstable_plate.yaml",         "inverting_bar.yaml", "plate_impact_hex20.yaml", "contact_patch_hex20.yaml",
-    "hertz_ball.yaml",             "cylinders.yaml"};
+const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
+                                          "wave_bar.yaml",
+                                          "shear_wave.yaml",
+                                          "hourglass_block.yaml",
+                                          "plate_impact.yaml",
+                                          "bar_impact.yaml",
+                                          "contact_patch.yaml",
+                                          "block_drop.yaml",
+                                          "unstable_plate.yaml",
+                                          "inverting_bar.yaml",
+                                          "plate_impact_hex20.yaml",
+                                          "contact_patch_hex20.yaml",
+                                          "hertz_ball.yaml",
+                                          "cylinders.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;

@@ -49,14 +49,16 @@ TEST(HertzBall, PeakForceAndContactTimeWithinTwoPercentOfHertz) {
   const auto time = read_dataset(h5, "/history/time").values;
   const auto force = read_dataset(h5, "/history/contact/impact/force").values;  // (H, 3) on the ball
   double peak = 0.0, first = -1.0, last = -1.0;
-  for (std::size_t i = 0; i < time.size(); ++i) peak = std::max(peak, 4.0 * force[3 * i + 2]);  // quarter model
+  for (std::size_t i = 0; i < time.size(); ++i)
+    peak = std::max(peak, 4.0 * force[3 * i + 2]);  // quarter model
   for (std::size_t i = 0; i < time.size(); ++i) {
     if (4.0 * force[3 * i + 2] <= 1e-3 * peak) continue;
     if (first < 0.0) first = time[i];
     last = time[i];
   }
-  std::printf("Hertz ball (8 x 2 on 6 x 6 x 5): F_max %.1f N (%+.2f %%), contact time %.2f us (%+.2f %%)\n", peak,
-              100 * (peak / exact.force - 1), 1e6 * (last - first), 100 * ((last - first) / exact.time - 1));
+  std::printf("Hertz ball (8 x 2 on 6 x 6 x 5): F_max %.1f N (%+.2f %%), contact time %.2f us (%+.2f %%)\n",
+              peak, 100 * (peak / exact.force - 1), 1e6 * (last - first),
+              100 * ((last - first) / exact.time - 1));
   EXPECT_NEAR(peak, exact.force, 0.02 * exact.force);
   EXPECT_NEAR(last - first, exact.time, 0.02 * exact.time);
   EXPECT_LT(last, time.back());  // the ball has left the block

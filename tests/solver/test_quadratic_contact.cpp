@@ -175,7 +175,8 @@ double patch_worst(const std::vector<exdyn::input::Override>& overrides, int upp
   const std::size_t lower_elements = 4 * 4 * 144;
   std::vector<std::size_t> interface;
   for (std::size_t e = lower_elements - 16; e < lower_elements; ++e) interface.push_back(e);
-  for (std::size_t e = 0; e < std::size_t(upper_face * upper_face); ++e) interface.push_back(lower_elements + e);
+  for (std::size_t e = 0; e < std::size_t(upper_face * upper_face); ++e)
+    interface.push_back(lower_elements + e);
   double worst = 0.0;
   for (double t : times) {
     if (t < 9e-7) continue;
@@ -193,9 +194,10 @@ TEST(ContactPatchHex20, QuadraturePointsCarryThePlaneWaveAcrossNonMatchingFaces)
   const double non_matching = patch_worst({}, 3);
   const double matching = patch_worst({{"parts[1].elements", "[4, 4, 144]"}}, 4);
   const double nodes = patch_worst({{"contact[0].slave_points", "nodes"}}, 3);
-  std::printf("hex20 patch, worst interface element from rho c1 v0 for t >= 9e-7 s: quadrature %.2f %%, "
-              "matching faces %.2f %%, slave nodes %.2f %%\n",
-              100 * non_matching, 100 * matching, 100 * nodes);
+  std::printf(
+      "hex20 patch, worst interface element from rho c1 v0 for t >= 9e-7 s: quadrature %.2f %%, "
+      "matching faces %.2f %%, slave nodes %.2f %%\n",
+      100 * non_matching, 100 * matching, 100 * nodes);
   EXPECT_LE(non_matching, 0.01);
   EXPECT_LE(matching, 0.002);
   EXPECT_LE(nodes, 0.06);
