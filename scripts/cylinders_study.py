@@ -102,19 +102,17 @@ class Surface:
             a, c = self.s[first], self.s[first + step]
             if a >= b:
                 break
-            # integrate piecewise: the kink at s = b is inside at most one element
-            pieces = [(a, min(c, b))]
-            for lo, hi in pieces:
-                s = 0.5 * (lo + hi) + 0.5 * (hi - lo) * xi
-                q = np.sqrt(np.maximum(0.0, 1.0 - (s / b) ** 2))
-                t = 2.0 * (s - a) / (c - a) - 1.0   # the element's coordinate
-                if self.quadratic:
-                    shapes = [0.5 * t * (t - 1.0), 1.0 - t * t, 0.5 * t * (t + 1.0)]
-                else:
-                    shapes = [0.5 * (1.0 - t), 0.5 * (1.0 + t)]
-                jac = 0.5 * (hi - lo)
-                for k, n in enumerate(shapes):
-                    g[first + k] += jac * np.sum(w * n * q)
+            # q is zero beyond b: integrate over [a, min(c, b)] only (the kink at b is an end)
+            hi = min(c, b)
+            s = 0.5 * (a + hi) + 0.5 * (hi - a) * xi
+            q = np.sqrt(np.maximum(0.0, 1.0 - (s / b) ** 2))
+            t = 2.0 * (s - a) / (c - a) - 1.0   # the element's coordinate
+            if self.quadratic:
+                shapes = [0.5 * t * (t - 1.0), 1.0 - t * t, 0.5 * t * (t + 1.0)]
+            else:
+                shapes = [0.5 * (1.0 - t), 0.5 * (1.0 + t)]
+            for k, n in enumerate(shapes):
+                g[first + k] += 0.5 * (hi - a) * np.sum(w * n * q)
         return g
 
 

@@ -234,6 +234,17 @@ class RobustSearch {
   int pinned_ = -1;  // a variable held at its bound by descend_on_edge, or -1
 };
 
+// On an edge or a corner with the gradient pointing out of the square beyond the
+// stationarity tolerance: the unconstrained closest point lies outside the segment.
+template <int Terms>
+bool pushed_out_of_square(const Surface<Terms>& s, Xi xi, const Local& l) {
+  const double gradient_floor = stationary_gradient_tolerance * 2.0 * std::sqrt(l.A.xx + l.A.yy) *
+                                (std::sqrt(l.f) + std::sqrt(size2(s)));
+  for (int a = 0; a < 2; ++a)
+    if (held(xi[a], l.g[a]) && std::fabs(l.g[a]) > gradient_floor) return true;
+  return false;
+}
+
 // True when f = |ys - y(xi)|^2 is strictly convex on the whole square [-1,1]^2, by a
 // bound that costs about 60 flops. H / 2 = J^T J - [r.y_ab] (r = ys - y, J = [a1 a2]):
 // - sigma_min(J(xi)) >= sigma_min(J(0)) - |J(xi) - J(0)|_F, and |J(xi) - J(0)|_F is
@@ -296,12 +307,8 @@ bool convex_newton(const Surface<Terms>& s, const Vec3& ys, Xi xi, const Project
         result.xi = trial;
         result.converged = true;
         result.failure = FailureReason::none;
-        // On an edge or a corner with the gradient pointing out of the square (g of
-        // the last iterate, within the tolerance of trial).
-        const double gradient_floor = stationary_gradient_tolerance * 2.0 * std::sqrt(l.A.xx + l.A.yy) *
-                                      (std::sqrt(l.f) + std::sqrt(size2(s)));
-        for (int a = 0; a < 2; ++a)
-          if (held(trial[a], l.g[a]) && std::fabs(l.g[a]) > gradient_floor) result.on_boundary = true;
+        // g of the last iterate, within the tolerance of trial.
+        result.on_boundary = pushed_out_of_square(s, trial, l);
         return true;
       }
       const Local lt = evaluate_local(s, ys, trial);
@@ -348,11 +355,7 @@ template <int Terms>
     result.xi = best.xi;
     result.converged = best.converged;
     result.failure = best.converged ? FailureReason::none : FailureReason::max_iterations;
-    const Local l = evaluate_local(s, ys, best.xi);
-    const double gradient_floor = stationary_gradient_tolerance * 2.0 * std::sqrt(l.A.xx + l.A.yy) *
-                                  (std::sqrt(l.f) + std::sqrt(size2(s)));
-    for (int a = 0; a < 2; ++a)
-      if (held(best.xi[a], l.g[a]) && std::fabs(l.g[a]) > gradient_floor) result.on_boundary = true;
+    result.on_boundary = pushed_out_of_square(s, best.xi, evaluate_local(s, ys, best.xi));
     return result;
   };
   std::array<double, grid_points * grid_points> f;  // every entry written by grid_values
