@@ -183,5 +183,9 @@ ProjectionResult bfgs_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
 // (robust.cpp: the fast path of `robust`).
 template <int Terms>
 bool strictly_convex_on_square(const Surface<Terms>& s, const Vec3& ys);
+// True when the closest point of the square is proven to lie within epsilon of xi, a
+// point of the square (robust.cpp: the certified Newton path of `robust`).
+template <int Terms>
+bool closest_point_proven(const Surface<Terms>& s, const Vec3& ys, Xi xi, double epsilon);
 
 }  // namespace exdyn::contact::detail

@@ -274,6 +274,162 @@ bool convex_bound(const Surface<Terms>& s, const Vec3& ys) {
   return s_lo * s_lo > r_max * curvature + 1.0e-6 * sigma0 * sigma0;
 }
 
+// A proof that the closest point of the whole square lies within `epsilon` of xi
+// (xi in the square; l the local values there), in about 150 flops (quad8). With
+// r* = ys - y(xi), d* = |r*|, w = y(xi + delta) - y(xi) and P the orthogonal projector
+// onto the tangent plane J* = [a1 a2] at xi:
+// - f(xi + delta) >= |P (r* - w)|^2, so f <= f(xi) needs |P w| <= d* + |P r*|.
+// - P w = J* K w with K = A*^-1 J*^T (A* = J*^T J*), |P w| >= sigma* |K w|, and
+//   K w = [mean over the path xi -> xi + delta of K J] delta = (I + X) delta with
+//   |X|_2 <= beta, bounded column by column from the coefficients K c_k (k >= 3) and the
+//   path means of the monomials' changes; so |P w| >= m |delta|, m = sigma* (1 - beta).
+//   Points with |delta| > rho = (d* + |P r*|) / m are farther than d* from ys.
+// - Within rho, exactly f(xi + delta) - f(xi) = |w|^2 + g.delta - 2 q(delta), where
+//   q = r*.(w - J* delta) = delta^T [r*.y_ab] delta / 2 + g6 du^2 dv + g7 du dv^2
+//   (g_k = r*.c_k) and |du^2 dv| <= 0.385 |delta|^3. So f - f(xi) >= |delta| (c |delta| - |g|)
+//   with c = m^2 - |[r*.y_ab]|_2 - 0.77 (|g6| + |g7|) rho, and c > 0 puts every point with
+//   f <= f(xi) within |g| / c of xi.
+// Curved or strongly distorted segments (beta >= 1, or the curvature term eats m^2) fail
+// the proof and take the other paths.
+template <int Terms>
+[[gnu::always_inline]] inline bool closest_within(const Surface<Terms>& s, Xi xi, const Local& l,
+                                                  double epsilon) {
+  if (!(l.f > 0.0)) return true;  // f >= 0 everywhere: on the surface is the closest there is
+  const auto& c = s.c;
+  const double detA = det(l.A);
+  const double sigma2 = eigenvalues(l.A)[0];
+  if (!(detA > 0.0 && sigma2 > 0.0)) return false;
+  const double inv = 1.0 / detA;
+  // K c_k = A*^-1 (a1.c_k, a2.c_k): the coefficient in the tangent plane's (a1, a2) basis.
+  const auto in_plane = [&](const Vec3& ck) {
+    const double p1 = dot(l.p.a1, ck), p2 = dot(l.p.a2, ck);
+    return Xi{inv * (l.A.yy * p1 - l.A.xy * p2), inv * (l.A.xx * p2 - l.A.xy * p1)};
+  };
+  const double u = xi[0], v = xi[1];
+  if constexpr (Terms == 4) {
+    // Bilinear: X = K c3 [dv, du] / 2, so on the square X11 >= -|k1| (1 + |v|) / 2,
+    // X22 >= -|k2| (1 + |u|) / 2 and |X12 + X21| <= (|k1| (1 + |u|) + |k2| (1 + |v|)) / 2;
+    // [r*.y_ab] = r*.c3 [[0, 1], [1, 0]], no cubic term.
+    const Xi k3 = in_plane(c[3]);
+    const double k1 = std::fabs(k3[0]), k2 = std::fabs(k3[1]);
+    const double du = 1.0 + std::fabs(u), dv = 1.0 + std::fabs(v);
+    const double mu =
+        eigenvalues(Sym2{1.0 - 0.5 * k1 * dv, 0.25 * (k1 * du + k2 * dv), 1.0 - 0.5 * k2 * du})[0];
+    const double m2 = sigma2 * mu * mu;
+    const double growth = m2 - std::fabs(dot(l.r, c[3]));
+    return mu > 0.0 && growth > 1.0e-6 * m2 && dot2(l.g, l.g) <= epsilon * epsilon * growth * growth;
+  }
+  std::array<Xi, 8> k{};  // K c_3 ... K c_7 (k[3] ... k[7])
+  for (int i = 3; i < Terms; ++i) k[std::size_t(i)] = in_plane(c[std::size_t(i)]);
+  // mu for du in [du0, du1], dv in [dv0, dv1]: delta^T (I + X) delta >= mu |delta|^2, X the
+  // path mean of K (J - J*), whose columns are
+  //   c3 dv / 2 + c4 du + c6 (u dv + v du + 2 du dv / 3) + c7 (v dv + dv^2 / 3),
+  //   c3 du / 2 + c5 dv + c6 (u du + du^2 / 3) + c7 (u dv + v du + 2 du dv / 3)
+  // (times K). Each monomial's range on the box (the bilinear one's at the corners, the
+  // quadratics' at the ends or the vertex) gives the ranges of X11, X22 and
+  // (X12 + X21) / 2; lambda_min grows with the diagonal, so mu is lambda_min at the
+  // smallest diagonal and the largest off-diagonal magnitude.
+  const auto mu = [&](double du0, double du1, double dv0, double dv1) {
+    struct Range {
+      double lo, hi;
+    };
+    const auto times = [](double a, Range r) {
+      return a >= 0.0 ? Range{a * r.lo, a * r.hi} : Range{a * r.hi, a * r.lo};
+    };
+    const auto plus = [](Range a, Range b) { return Range{a.lo + b.lo, a.hi + b.hi}; };
+    const Range du{du0, du1}, dv{dv0, dv1};
+    Range x11 = times(0.5 * k[3][0], dv), x22 = times(0.5 * k[3][1], du);
+    Range x12 = plus(times(0.5 * k[3][0], du), times(0.5 * k[3][1], dv));  // X12 + X21
+    if constexpr (Terms == 8) {
+      const auto cross = [u, v](double p, double q) { return u * q + v * p + 2.0 / 3.0 * p * q; };
+      const double c00 = cross(du0, dv0), c01 = cross(du0, dv1), c10 = cross(du1, dv0), c11 = cross(du1, dv1);
+      const Range cr{std::min(std::min(c00, c01), std::min(c10, c11)),
+                     std::max(std::max(c00, c01), std::max(c10, c11))};
+      const auto square = [](double w, Range d) {  // w d + d^2 / 3 on d
+        const double a = w * d.lo + d.lo * d.lo / 3.0, b = w * d.hi + d.hi * d.hi / 3.0;
+        Range r{std::min(a, b), std::max(a, b)};
+        const double vertex = -1.5 * w;
+        if (vertex > d.lo && vertex < d.hi) r.lo = -0.75 * w * w;
+        return r;
+      };
+      const Range sq_u = square(u, du), sq_v = square(v, dv);
+      x11 = plus(x11, plus(plus(times(k[4][0], du), times(k[6][0], cr)), times(k[7][0], sq_v)));
+      x22 = plus(x22, plus(plus(times(k[5][1], dv), times(k[6][1], sq_u)), times(k[7][1], cr)));
+      x12 = plus(x12, plus(plus(times(k[5][0], dv), times(k[6][0], sq_u)), times(k[7][0], cr)));
+      x12 = plus(x12, plus(plus(times(k[4][1], du), times(k[6][1], cr)), times(k[7][1], sq_v)));
+    }
+    const double off = 0.5 * std::max(-x12.lo, x12.hi);
+    return eigenvalues(Sym2{1.0 + x11.lo, off, 1.0 + x22.lo})[0];
+  };
+  // Each path from xi stays in one of the four quadrants around it, where the monomials'
+  // changes have one sign: the least of the quadrants' mu holds for the box too (sharper,
+  // four times the work: the second try).
+  const auto mu_quadrants = [&](double du0, double du1, double dv0, double dv1) {
+    return std::min(std::min(mu(du0, 0.0, dv0, 0.0), mu(0.0, du1, dv0, 0.0)),
+                    std::min(mu(du0, 0.0, 0.0, dv1), mu(0.0, du1, 0.0, dv1)));
+  };
+  const double sigma = std::sqrt(sigma2);
+  // |P r*|^2 = (g/2)^T A*^-1 (g/2).
+  const Xi h{0.5 * l.g[0], 0.5 * l.g[1]};
+  const double pr2 = inv * (l.A.yy * h[0] * h[0] - 2.0 * l.A.xy * h[0] * h[1] + l.A.xx * h[1] * h[1]);
+  const double reach = std::sqrt(l.f) + std::sqrt(std::max(pr2, 0.0));  // d* + |P r*|
+  // |[r*.y_ab]|_2 (quad4: [[0, r.c3], [r.c3, 0]]) and |g6| + |g7|.
+  double curvature_norm = std::fabs(dot(l.r, c[3])), cubic = 0.0;
+  if constexpr (Terms == 8) {
+    const Sym2 curvature{l.A.xx - 0.5 * l.H.xx, l.A.xy - 0.5 * l.H.xy, l.A.yy - 0.5 * l.H.yy};
+    const Xi kappa = eigenvalues(curvature);
+    curvature_norm = std::max(std::fabs(kappa[0]), std::fabs(kappa[1]));
+    cubic = std::fabs(dot(l.r, c[6])) + std::fabs(dot(l.r, c[7]));
+  }
+  // The proof with one way of bounding mu: over the square (du in [-1 - u, 1 - u], dv in
+  // [-1 - v, 1 - v]) for rho, then c > 0 with a margin of 1e-6 m^2 for the rounding of the
+  // bound itself; within rho the changes are smaller, so m there from mu on that box when
+  // the square's m falls short.
+  const auto proven = [&](auto mu_on) {
+    double m = sigma * mu_on(-1.0 - u, 1.0 - u, -1.0 - v, 1.0 - v);
+    if (!(m > 0.0)) return false;
+    const double rho = reach / m;
+    const auto growth = [&] { return m * m - curvature_norm - 0.77 * cubic * rho; };
+    if (!(growth() > 1.0e-6 * m * m)) {
+      m = sigma * mu_on(std::max(-rho, -1.0 - u), std::min(rho, 1.0 - u), std::max(-rho, -1.0 - v),
+                        std::min(rho, 1.0 - v));
+      if (!(m > 0.0 && growth() > 1.0e-6 * m * m)) return false;
+    }
+    const double c_growth = growth();
+    return dot2(l.g, l.g) <= epsilon * epsilon * c_growth * c_growth;
+  };
+  return proven(mu) || proven(mu_quadrants);
+}
+
+// Newton's iterations from the guess (as `newton`, at most max_iterations, left when
+// xi leaves [-2,2]^2), then the proof above at the point they converge to, when it is
+// inside the square. Fills `result` and returns true when the proof holds.
+template <int Terms>
+bool certified_newton(const Surface<Terms>& s, const Vec3& ys, Xi xi, const ProjectionSettings& settings,
+                      ProjectionResult& result) {
+  Local l = evaluate_local(s, ys, xi);
+  ++result.evaluations;
+  for (int k = 0; k < settings.max_iterations; ++k) {
+    ++result.iterations;
+    if (is_singular(l.H)) return false;
+    const Xi step = scaled(-1.0, inverse(l.H) * l.g);
+    xi = xi + step;
+    if (!(std::fabs(xi[0]) <= 2.0 && std::fabs(xi[1]) <= 2.0)) return false;  // NaN included
+    l = evaluate_local(s, ys, xi);
+    ++result.evaluations;
+    if (norm2(step) <= settings.tolerance) {
+      if (!(std::fabs(xi[0]) <= 1.0 && std::fabs(xi[1]) <= 1.0)) return false;
+      if (!closest_within(s, xi, l, settings.tolerance)) return false;
+      result.xi = xi;
+      result.converged = true;
+      result.failure = FailureReason::none;
+      result.on_boundary = false;  // |g| within epsilon growth: stationary, not pushed out
+      return true;
+    }
+  }
+  return false;
+}
+
 // Projected Newton on f strictly convex on the square (H positive definite there,
 // so every Newton step on the free variables is downhill and the one KKT point is the
 // closest point). A variable at a bound whose gradient points out of the square is
@@ -360,7 +516,7 @@ template <int Terms>
   };
   std::array<double, grid_points * grid_points> f;  // every entry written by grid_values
   grid_values(s, ys, f);
-  result.evaluations = grid_points * grid_points;
+  result.evaluations += grid_points * grid_points;
 
   // Seeds, (a): the grid's discrete local minima (no lower value among the up
   // to 8 neighbours; equal neighbours are both seeds).
@@ -512,7 +668,9 @@ template <int Terms>
 ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
                                const ProjectionSettings& settings) {
   ProjectionResult result;
-  // 0. Fast path: f strictly convex on the square has one minimum there.
+  // 0a. Fast path: Newton from the guess and a proof that its point is the closest.
+  if (certified_newton(s, ys, finite(xi0) ? xi0 : Xi{0.0, 0.0}, settings, result)) return result;
+  // 0b. f strictly convex on the square has one minimum there.
   if (convex_bound(s, ys) &&
       convex_newton(s, ys, finite(xi0) ? clamp_box(xi0) : Xi{0.0, 0.0}, settings, result))
     return result;
@@ -530,6 +688,12 @@ bool strictly_convex_on_square(const Surface<Terms>& s, const Vec3& ys) {
 }
 template bool strictly_convex_on_square<4>(const Surface<4>&, const Vec3&);
 template bool strictly_convex_on_square<8>(const Surface<8>&, const Vec3&);
+template <int Terms>
+bool closest_point_proven(const Surface<Terms>& s, const Vec3& ys, Xi xi, double epsilon) {
+  return closest_within(s, xi, evaluate_local(s, ys, xi), epsilon);
+}
+template bool closest_point_proven<4>(const Surface<4>&, const Vec3&, Xi, double);
+template bool closest_point_proven<8>(const Surface<8>&, const Vec3&, Xi, double);
 }  // namespace detail
 
 ProjectionResult project_robust(const Segment& segment, const Vec3& point, Xi xi0,
