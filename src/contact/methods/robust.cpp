@@ -275,22 +275,23 @@ bool convex_bound(const Surface<Terms>& s, const Vec3& ys) {
 }
 
 // A proof that the closest point of the whole square lies within `epsilon` of xi
-// (xi in the square; l the local values there), in about 150 flops (quad8). With
+// (xi in the square; l the local values there), in about 150 flops (quad8, one box). With
 // r* = ys - y(xi), d* = |r*|, w = y(xi + delta) - y(xi) and P the orthogonal projector
 // onto the tangent plane J* = [a1 a2] at xi:
-// - f(xi + delta) >= |P (r* - w)|^2, so f <= f(xi) needs |P w| <= d* + |P r*|.
+// - f(xi + delta) >= |P (r* - w)|^2, so f <= f(xi) needs |P w| <= reach = d* + |P r*|.
 // - P w = J* K w with K = A*^-1 J*^T (A* = J*^T J*), |P w| >= sigma* |K w|, and
-//   K w = [mean over the path xi -> xi + delta of K J] delta = (I + X) delta with
-//   |X|_2 <= beta, bounded column by column from the coefficients K c_k (k >= 3) and the
-//   path means of the monomials' changes; so |P w| >= m |delta|, m = sigma* (1 - beta).
-//   Points with |delta| > rho = (d* + |P r*|) / m are farther than d* from ys.
+//   K w = [mean over the path xi -> xi + delta of K J] delta = (I + X) delta. On a box of
+//   delta, delta^T (I + X) delta >= mu |delta|^2 from the ranges of X's entries (the
+//   coefficients K c_k times the ranges of the path means of the monomials' changes), so
+//   |P w| >= m |delta| with m = sigma* mu: points with |delta| > reach / m are farther than
+//   d* from ys. The box of candidates shrinks to that size, and mu is retaken on it.
 // - Within rho, exactly f(xi + delta) - f(xi) = |w|^2 + g.delta - 2 q(delta), where
 //   q = r*.(w - J* delta) = delta^T [r*.y_ab] delta / 2 + g6 du^2 dv + g7 du dv^2
 //   (g_k = r*.c_k) and |du^2 dv| <= 0.385 |delta|^3. So f - f(xi) >= |delta| (c |delta| - |g|)
-//   with c = m^2 - |[r*.y_ab]|_2 - 0.77 (|g6| + |g7|) rho, and c > 0 puts every point with
-//   f <= f(xi) within |g| / c of xi.
-// Curved or strongly distorted segments (beta >= 1, or the curvature term eats m^2) fail
-// the proof and take the other paths.
+//   with c = m^2 - lambda_max[r*.y_ab] - 0.77 (|g6| + |g7|) rho, and c > 0 puts every point
+//   with f <= f(xi) within |g| / c of xi.
+// Strongly curved or distorted segments (mu <= 0 over the square, or the curvature term
+// eats m^2) fail the proof and take the other paths.
 template <int Terms>
 [[gnu::always_inline]] inline bool closest_within(const Surface<Terms>& s, Xi xi, const Local& l,
                                                   double epsilon) {
@@ -373,30 +374,33 @@ template <int Terms>
   const Xi h{0.5 * l.g[0], 0.5 * l.g[1]};
   const double pr2 = inv * (l.A.yy * h[0] * h[0] - 2.0 * l.A.xy * h[0] * h[1] + l.A.xx * h[1] * h[1]);
   const double reach = std::sqrt(l.f) + std::sqrt(std::max(pr2, 0.0));  // d* + |P r*|
-  // |[r*.y_ab]|_2 (quad4: [[0, r.c3], [r.c3, 0]]) and |g6| + |g7|.
-  double curvature_norm = std::fabs(dot(l.r, c[3])), cubic = 0.0;
+  // lambda_max [r*.y_ab] (quad4: [[0, r.c3], [r.c3, 0]]; negative where the surface bends
+  // away from ys, which helps: -delta^T [r*.y_ab] delta >= -lambda_max |delta|^2) and |g6| + |g7|.
+  double curvature_max = std::fabs(dot(l.r, c[3])), cubic = 0.0;
   if constexpr (Terms == 8) {
     const Sym2 curvature{l.A.xx - 0.5 * l.H.xx, l.A.xy - 0.5 * l.H.xy, l.A.yy - 0.5 * l.H.yy};
-    const Xi kappa = eigenvalues(curvature);
-    curvature_norm = std::max(std::fabs(kappa[0]), std::fabs(kappa[1]));
+    curvature_max = eigenvalues(curvature)[1];
     cubic = std::fabs(dot(l.r, c[6])) + std::fabs(dot(l.r, c[7]));
   }
-  // The proof with one way of bounding mu: over the square (du in [-1 - u, 1 - u], dv in
-  // [-1 - v, 1 - v]) for rho, then c > 0 with a margin of 1e-6 m^2 for the rounding of the
-  // bound itself; within rho the changes are smaller, so m there from mu on that box when
-  // the square's m falls short.
+  // The proof with one way of bounding mu. Candidates (points with f <= f(xi)) start as the
+  // whole square, delta in the box |delta|_inf <= t; with m = sigma* mu on that box they lie
+  // within reach / m of xi, so they shrink to the box of that half-width, where mu is larger;
+  // until c = m^2 - |[r*.y_ab]|_2 - 0.77 (|g6| + |g7|) rho > 0, with a margin of 1e-6 m^2
+  // for the rounding of the bound itself (at most five boxes).
   const auto proven = [&](auto mu_on) {
-    double m = sigma * mu_on(-1.0 - u, 1.0 - u, -1.0 - v, 1.0 - v);
-    if (!(m > 0.0)) return false;
-    const double rho = reach / m;
-    const auto growth = [&] { return m * m - curvature_norm - 0.77 * cubic * rho; };
-    if (!(growth() > 1.0e-6 * m * m)) {
-      m = sigma * mu_on(std::max(-rho, -1.0 - u), std::min(rho, 1.0 - u), std::max(-rho, -1.0 - v),
-                        std::min(rho, 1.0 - v));
-      if (!(m > 0.0 && growth() > 1.0e-6 * m * m)) return false;
+    double t = std::max(1.0 + std::fabs(u), 1.0 + std::fabs(v));
+    for (int box = 0; box < 5; ++box) {
+      const double m = sigma * mu_on(std::max(-t, -1.0 - u), std::min(t, 1.0 - u), std::max(-t, -1.0 - v),
+                                     std::min(t, 1.0 - v));
+      if (!(m > 0.0)) return false;
+      const double rho = std::min(std::sqrt(2.0) * t, reach / m);
+      const double c_growth = m * m - curvature_max - 0.77 * cubic * rho;
+      if (c_growth > 1.0e-6 * m * m) return dot2(l.g, l.g) <= epsilon * epsilon * c_growth * c_growth;
+      const double next = reach / m * (1.0 + 1.0e-12);  // |delta|_inf > next: |P w| > reach
+      if (!(next < 0.95 * t)) return false;
+      t = next;
     }
-    const double c_growth = growth();
-    return dot2(l.g, l.g) <= epsilon * epsilon * c_growth * c_growth;
+    return false;
   };
   return proven(mu) || proven(mu_quadrants);
 }
