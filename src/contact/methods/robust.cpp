@@ -362,13 +362,6 @@ template <int Terms>
     const double off = 0.5 * std::max(-x12.lo, x12.hi);
     return eigenvalues(Sym2{1.0 + x11.lo, off, 1.0 + x22.lo})[0];
   };
-  // Each path from xi stays in one of the four quadrants around it, where the monomials'
-  // changes have one sign: the least of the quadrants' mu holds for the box too (sharper,
-  // four times the work: the second try).
-  const auto mu_quadrants = [&](double du0, double du1, double dv0, double dv1) {
-    return std::min(std::min(mu(du0, 0.0, dv0, 0.0), mu(0.0, du1, dv0, 0.0)),
-                    std::min(mu(du0, 0.0, 0.0, dv1), mu(0.0, du1, 0.0, dv1)));
-  };
   const double sigma = std::sqrt(sigma2);
   // |P r*|^2 = (g/2)^T A*^-1 (g/2).
   const Xi h{0.5 * l.g[0], 0.5 * l.g[1]};
@@ -402,7 +395,49 @@ template <int Terms>
     }
     return false;
   };
-  return proven(mu) || proven(mu_quadrants);
+  // Second try: cells of delta, from the four quadrants around xi, each split in four until
+  // it is farther than d* from ys (m |delta| > reach on the whole cell) or the growth holds on
+  // it (c > 0 with rho the cell's farthest |delta|, or reach / m); at most 32 cells. On a
+  // cell mu is sharper than on the square: the monomials' ranges are narrower.
+  const auto proven_cells = [&] {
+    struct Cell {
+      double du0, du1, dv0, dv1;
+    };
+    std::array<Cell, 64> stack;  // the first `top` entries are pending
+    int top = 0, budget = 32;
+    stack[top++] = {-1.0 - u, 0.0, -1.0 - v, 0.0};
+    stack[top++] = {0.0, 1.0 - u, -1.0 - v, 0.0};
+    stack[top++] = {-1.0 - u, 0.0, 0.0, 1.0 - v};
+    stack[top++] = {0.0, 1.0 - u, 0.0, 1.0 - v};
+    double c_least = std::numeric_limits<double>::infinity();
+    while (top > 0) {
+      const Cell cell = stack[--top];
+      if (!(cell.du1 > cell.du0 && cell.dv1 > cell.dv0)) continue;  // empty: xi on an edge
+      if (--budget < 0) return false;
+      const double m = sigma * mu(cell.du0, cell.du1, cell.dv0, cell.dv1);
+      if (m > 0.0) {
+        // The cell's nearest and farthest |delta|.
+        const double nu = cell.du0 > 0.0 ? cell.du0 : (cell.du1 < 0.0 ? -cell.du1 : 0.0);
+        const double nv = cell.dv0 > 0.0 ? cell.dv0 : (cell.dv1 < 0.0 ? -cell.dv1 : 0.0);
+        const double fu = std::max(-cell.du0, cell.du1), fv = std::max(-cell.dv0, cell.dv1);
+        if (m * m * (nu * nu + nv * nv) > reach * reach) continue;  // farther than d* from ys
+        const double rho = std::min(std::sqrt(fu * fu + fv * fv), reach / m);
+        const double c_growth = m * m - curvature_max - 0.77 * cubic * rho;
+        if (c_growth > 1.0e-6 * m * m) {
+          c_least = std::min(c_least, c_growth);
+          continue;
+        }
+      }
+      if (top + 4 > int(stack.size())) return false;
+      const double um = 0.5 * (cell.du0 + cell.du1), vm = 0.5 * (cell.dv0 + cell.dv1);
+      stack[top++] = {cell.du0, um, cell.dv0, vm};
+      stack[top++] = {um, cell.du1, cell.dv0, vm};
+      stack[top++] = {cell.du0, um, vm, cell.dv1};
+      stack[top++] = {um, cell.du1, vm, cell.dv1};
+    }
+    return dot2(l.g, l.g) <= epsilon * epsilon * c_least * c_least;
+  };
+  return proven(mu) || proven_cells();
 }
 
 // Newton's iterations from the guess (as `newton`, at most max_iterations, left when
@@ -410,7 +445,7 @@ template <int Terms>
 // inside the square. Fills `result` and returns true when the proof holds.
 template <int Terms>
 bool certified_newton(const Surface<Terms>& s, const Vec3& ys, Xi xi, const ProjectionSettings& settings,
-                      ProjectionResult& result) {
+                      ProjectionResult& result, Run& newton_point) {
   Local l = evaluate_local(s, ys, xi);
   ++result.evaluations;
   for (int k = 0; k < settings.max_iterations; ++k) {
@@ -423,7 +458,10 @@ bool certified_newton(const Surface<Terms>& s, const Vec3& ys, Xi xi, const Proj
     ++result.evaluations;
     if (norm2(step) <= settings.tolerance) {
       if (!(std::fabs(xi[0]) <= 1.0 && std::fabs(xi[1]) <= 1.0)) return false;
-      if (!closest_within(s, xi, l, settings.tolerance)) return false;
+      if (!closest_within(s, xi, l, settings.tolerance)) {
+        if (eigenvalues(l.H)[0] > 0.0) newton_point = {xi, l.f, true};  // a strict local minimum
+        return false;
+      }
       result.xi = xi;
       result.converged = true;
       result.failure = FailureReason::none;
@@ -508,7 +546,8 @@ void grid_values(const Surface<Terms>& s, const Vec3& ys, std::array<double, gri
 // Steps 1-5 (kept out of line: its frame of grids and seeds would slow the fast path).
 template <int Terms>
 [[gnu::noinline]] ProjectionResult full_search(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
-                                               const ProjectionSettings& settings, ProjectionResult result) {
+                                               const ProjectionSettings& settings, ProjectionResult result,
+                                               const Run& candidate) {
   // Step 5's outcome from the best descent: converged, and on an edge or a corner
   // with the gradient pointing out of the square.
   const auto finish_with = [&](const Run& best) {
@@ -609,9 +648,25 @@ template <int Terms>
 
   RobustSearch<Terms> search(s, ys, settings, result);
   Run best{seeds[0].xi, std::numeric_limits<double>::infinity(), false};
-  std::array<Xi, max_seeds + 2 * max_second_chances> found;  // the first found_count entries
+  std::array<Xi, max_seeds + 2 * max_second_chances + 1> found;  // the first found_count entries
   int found_count = 0;
+  // A candidate (Newton's point, a strict local minimum in the square) is the best so far. By (c)'s argument
+  // below, a better minimum has a grid point with f < f_known + margin near it, so seeds
+  // above that, or within 1.5 h of the candidate, need no descent of their own.
+  double skip_above = std::numeric_limits<double>::infinity();
+  constexpr double h = 2.0 / (n - 1);
+  if (candidate.converged) {
+    best = candidate;
+    found[found_count++] = candidate.xi;
+    const Local lc = evaluate_local(s, ys, candidate.xi);
+    ++result.evaluations;
+    skip_above = candidate.f + 0.5 * std::max(eigenvalues(lc.H)[1], lc.A.xx + lc.A.yy) * h * h;
+  }
   for (int k = 0; k < seed_count; ++k) {
+    if (candidate.converged &&
+        (seeds[k].f >= skip_above || (std::fabs(seeds[k].xi[0] - candidate.xi[0]) <= 1.5 * h &&
+                                      std::fabs(seeds[k].xi[1] - candidate.xi[1]) <= 1.5 * h)))
+      continue;
     const Run run = search.descend(seeds[k].xi);
     found[found_count++] = run.xi;
     if (run.f < best.f) best = run;
@@ -622,7 +677,6 @@ template <int Terms>
   // within 1.5 h of a point already found (lambda: twice the largest
   // eigenvalue of H at the best point, floored).
   {
-    constexpr double h = 2.0 / (n - 1);
     const Local lb = evaluate_local(s, ys, best.xi);
     ++result.evaluations;
     const double lambda = 2.0 * std::max(eigenvalues(lb.H)[1], lb.A.xx + lb.A.yy);
@@ -673,14 +727,16 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
                                const ProjectionSettings& settings) {
   ProjectionResult result;
   // 0a. Fast path: Newton from the guess and a proof that its point is the closest.
-  if (certified_newton(s, ys, finite(xi0) ? xi0 : Xi{0.0, 0.0}, settings, result)) return result;
+  Run newton_point{{0.0, 0.0}, std::numeric_limits<double>::infinity(), false};
+  if (certified_newton(s, ys, finite(xi0) ? xi0 : Xi{0.0, 0.0}, settings, result, newton_point))
+    return result;
   // 0b. f strictly convex on the square has one minimum there.
   if (convex_bound(s, ys) &&
       convex_newton(s, ys, finite(xi0) ? clamp_box(xi0) : Xi{0.0, 0.0}, settings, result))
     return result;
   // Not proven convex, or the projected Newton stalled: the full search (its counts
   // add to the fast path's).
-  return full_search(s, ys, xi0, settings, result);
+  return full_search(s, ys, xi0, settings, result, newton_point);
 }
 
 }  // namespace
