@@ -889,7 +889,7 @@ def main(argv):
                                                          "formulations" if args.study == "formulations" else "batch"))
     args.exdyn = os.path.abspath(args.exdyn) if os.path.exists(args.exdyn) else args.exdyn
     try:
-        exdyn_version = subprocess.run([args.exdyn, "--version"], capture_output=True, text=True).stdout.strip()
+        exdyn_version = subprocess.run([args.exdyn, "--version"], capture_output=True, text=True).stdout.strip().splitlines()[0]
         built = datetime.datetime.fromtimestamp(os.path.getmtime(shutil.which(args.exdyn) or args.exdyn),
                                                 datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
         args.exdyn_label = f"{exdyn_version} ({args.exdyn}, built {built})"

@@ -17,7 +17,7 @@ trap 'rm -rf "$out"' EXIT
 quick=0; [ "${1:-}" = "--quick" ] && quick=1
 
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) cores; $(date -u +%Y-%m-%dT%H:%MZ)"
-echo "exdyn $($exdyn --version | cut -d' ' -f2); load average at the start: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "exdyn $($exdyn --version | head -1 | cut -d' ' -f2), kernels $($exdyn --version | sed -n 's/.*a run uses \([^ ;]*\).*/\1/p'); load average at the start: $(cut -d' ' -f1-3 /proc/loadavg)"
 printf '%-34s %-6s %3s %10s %7s %12s %8s  %s\n' case form thr elements steps "Mcycles/s" speedup \
   "phase shares (element forces / integration / output / contact: global + local + forces)"
 
@@ -60,6 +60,27 @@ for form in hex8 hex8r; do
       --set "parts[0].elements=[100,100,100]" --set time.end_time=3.0e-7 --set output.every=100000 \
       --set "output.fields=[stress]"
   fi
+done
+
+# The instruction sets (docs/performance.md, "Vector kernels"): the element loops and
+# two whole runs on every ISA this CPU runs, one thread, the best of 3 runs each.
+echo; echo "== instruction sets (1 thread; whole runs: best of 3, element-cycles/s of the time loop)"
+for isa in x86-64-v2 x86-64-v3 x86-64-v4; do
+  "$exdyn" run input/wave_bar.yaml --isa $isa --quiet --output "$out" --set name=isa_probe \
+    --set time.end_time=1e-7 >/dev/null 2>&1 || { echo "$isa: not on this CPU"; continue; }
+  for deck in plate_impact plate_impact_hex20; do
+    best=0
+    for run in 1 2 3; do
+      "$exdyn" run input/$deck.yaml --isa $isa --quiet --threads 1 --output "$out" --set name=isa_$deck
+      rate=$(/usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['element_cycles_per_second'])" \
+        "$out/isa_$deck.json")
+      best=$(/usr/bin/python3 -c "print(max($best, $rate))")
+    done
+    printf '%-10s %-20s %12.3e element-cycles/s\n' $isa $deck $best
+  done
+  EXDYN_ISA=$isa build/release/bench/element/element_bench --benchmark_filter='threads:1' \
+    --benchmark_min_time=$([ $quick = 1 ] && echo 0.05 || echo 0.3) 2>/dev/null | grep -E '^hex' | \
+    sed "s/^/$isa /"
 done
 
 for b in build/release/bench/element/element_bench build/release/bench/contact/contact_local_search_bench \

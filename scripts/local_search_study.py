@@ -657,7 +657,7 @@ def cpu_model():
 
 def stamp_markdown(args, seconds, runner, exdyn):
     try:
-        version = subprocess.run([exdyn, "--version"], capture_output=True, text=True).stdout.strip()
+        version = subprocess.run([exdyn, "--version"], capture_output=True, text=True).stdout.strip().splitlines()[0]
     except OSError:
         version = "?"
     load = os.getloadavg()

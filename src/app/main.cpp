@@ -11,6 +11,7 @@
 
 #include "app/project_command.hpp"
 #include "common/errors.hpp"
+#include "common/isa.hpp"
 #include "common/version.hpp"
 #include "input/deck_reader.hpp"
 #include "mesh/mesh.hpp"
@@ -62,15 +63,34 @@ extern "C" void request_stop(int signal_number) {
   stop_signal = signal_number;
 }
 
+// exdyn --version: the version, and the instruction sets of the element kernels.
+std::string version_text() {
+  std::string text = std::string("exdyn ") + exdyn::version + "\nelement kernels: built for";
+  for (const exdyn::Isa isa : exdyn::all_isas)
+    text += std::string(isa == exdyn::all_isas.front() ? " " : ", ") + exdyn::isa_name(isa) + " (" +
+            exdyn::isa_description(isa) + ")";
+  const exdyn::Isa best = exdyn::best_available_isa();
+  text += std::string("; this CPU runs up to ") + exdyn::isa_name(best);
+  try {
+    const exdyn::Isa chosen = exdyn::selected_isa();
+    text += std::string("; a run uses ") + exdyn::isa_name(chosen) + (chosen == best ? "" : " (EXDYN_ISA)");
+  } catch (const exdyn::InputError& error) {
+    text += std::string("; ") + error.what();
+  }
+  return text;
+}
+
 struct RunArguments {
   std::string deck;
   std::string output;
   std::vector<std::string> sets;
   int threads = 0;
+  std::string isa;  // empty: EXDYN_ISA, else the best this CPU runs
   bool quiet = false;
 };
 
 int run_command(const RunArguments& arguments) {
+  if (!arguments.isa.empty()) exdyn::select_isa(exdyn::parse_isa(arguments.isa, "--isa"));
   const exdyn::input::Deck deck = exdyn::input::read_deck(arguments.deck, parse_overrides(arguments.sets));
   exdyn::solver::RunControls controls;
   controls.output_directory = arguments.output;
@@ -106,7 +126,7 @@ int run_command(const RunArguments& arguments) {
 
 int main(int argc, char** argv) {
   CLI::App app{"exdyn: explicit dynamics with penalty node-to-segment contact"};
-  app.set_version_flag("--version", std::string("exdyn ") + exdyn::version);
+  app.set_version_flag("--version", version_text());
   app.require_subcommand(1);
 
   RunArguments run_arguments;
@@ -118,6 +138,9 @@ int main(int argc, char** argv) {
   run->add_option("--threads", run_arguments.threads,
                   "Threads (default 0: every core); the results are the same bits for any number")
       ->check(CLI::Range(0, 4096));
+  run->add_option("--isa", run_arguments.isa,
+                  "Instruction set of the element kernels: x86-64-v2 (SSE4.2), x86-64-v3 (AVX2 + FMA) or "
+                  "x86-64-v4 (AVX-512); default: EXDYN_ISA, else the best this CPU runs");
   run->add_flag("--quiet", run_arguments.quiet, "No progress line and no summary line");
 
   std::string check_deck;

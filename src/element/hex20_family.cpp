@@ -22,6 +22,7 @@
 
 #include "common/errors.hpp"
 #include "element/element_family.hpp"
+#include "element/element_isa.hpp"
 #include "element/element_loop.hpp"
 #include "element/hex20.hpp"
 
@@ -218,11 +219,11 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
                      block.material.mu, block.shared.data() + std::size_t(matrix_size) * g);
     block.reference.clear();
     block.reference.shrink_to_fit();
-    block.loop = affine_loop;
+    block.loop = for_isa<affine_loop>(selected_isa());
   } else {
     block.reference_index.clear();
     block.shared = std::move(table);
-    block.loop = general_loop<gauss_points>;
+    block.loop = for_isa<general_loop<gauss_points>>(selected_isa());
   }
 }
 

@@ -20,24 +20,45 @@ namespace exdyn::element {
 using Vector3 = std::array<double, 3>;
 using Matrix3 = std::array<double, 9>;  // row-major
 
-// Two elements' values side by side, one per SSE lane. The kernels that are
-// templates on the value type (hex8 parallelepiped, hex8r) run on element pairs
+// Lanes elements' values side by side, one per vector lane: 2 under SSE (x86-64-v2),
+// 4 under AVX2 (x86-64-v3), 8 under AVX-512 (x86-64-v4). The kernels that are
+// templates on the value type (hex8 parallelepiped, hex8r) run on packs of elements
 // with it, and on single elements with double.
-using Pack2 = double __attribute__((vector_size(16)));
+// (One specialisation per width: g++ drops vector_size on a typedef whose size
+// depends on a template parameter.)
+template <int Lanes>
+struct PackOf;
+template <>
+struct PackOf<2> {
+  using type = double __attribute__((vector_size(16)));
+};
+template <>
+struct PackOf<4> {
+  using type = double __attribute__((vector_size(32)));
+};
+template <>
+struct PackOf<8> {
+  using type = double __attribute__((vector_size(64)));
+};
+template <int Lanes>
+using Pack = typename PackOf<Lanes>::type;
+using Pack2 = Pack<2>;
 
-// Value k of an element's reference data: data[k] for one element; for an
-// element pair, whose data are interleaved, the two values at data[2k].
+// Elements in one value: 1 for double, Lanes for Pack<Lanes>.
 template <class Real>
-inline Real load(const double* data, int k);
-template <>
-inline double load<double>(const double* data, int k) {
-  return data[k];
-}
-template <>
-inline Pack2 load<Pack2>(const double* data, int k) {
-  Pack2 value;
-  std::memcpy(&value, data + 2 * k, sizeof value);
-  return value;
+inline constexpr int lanes_of = static_cast<int>(sizeof(Real) / sizeof(double));
+
+// Value k of an element's reference data: data[k] for one element; for a pack of
+// elements, whose data are interleaved, the Lanes values at data[Lanes k].
+template <class Real>
+inline Real load(const double* data, int k) {
+  if constexpr (lanes_of<Real> == 1) {
+    return data[k];
+  } else {
+    Real value;
+    std::memcpy(&value, data + lanes_of<Real> * k, sizeof value);
+    return value;
+  }
 }
 
 // One vector per node of one element (or element pair), the components apart

@@ -2,17 +2,21 @@
 // hourglass stiffness), each with a general kernel and a constant-Jacobian one
 // for parallelepipeds (docs/theory.md, "Element library").
 //
-// Reference data layouts: every layout but the general hex8 one stores element
-// pairs (2p, 2p+1) interleaved value by value, [.., value k of 2p, value k of 2p+1, ..],
-// for the kernels that run on two elements at once (Pack2); an odd last element is
-// paired with zeros. (The general hex8 kernel vectorises over its 8 Gauss points instead.)
+// Reference data layouts: every layout but the general hex8 one stores packs of L
+// consecutive elements interleaved value by value, [.., value k of Lp, .., value k of
+// Lp + L - 1, ..], for the kernels that run on L elements at once (Pack<L>: L = 2, 4
+// or 8, one vector register of the ISA the block runs, element_isa.hpp); a last
+// partial pack is padded with zeros. (The general hex8 kernel vectorises over its 8
+// Gauss points instead.)
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "common/errors.hpp"
 #include "element/element_family.hpp"
+#include "element/element_isa.hpp"
 #include "element/element_loop.hpp"
 #include "element/hex8.hpp"
 #include "element/hex8r.hpp"
@@ -26,63 +30,77 @@ ElementVectors gather8(const NodalVectors& v, const std::uint32_t* nodes) {
   return local;
 }
 
-BasicElementVectors<Pack2> gather_pair(const NodalVectors& v, const std::uint32_t* nodes0,
-                                       const std::uint32_t* nodes1) {
-  BasicElementVectors<Pack2> local{BasicElementVectors<Pack2>::Uninitialized{}};  // every entry written below
+template <int Lanes>
+BasicElementVectors<Pack<Lanes>> gather_pack(const NodalVectors& v, const std::uint32_t* const (&nodes)[Lanes]) {
+  BasicElementVectors<Pack<Lanes>> local{
+      typename BasicElementVectors<Pack<Lanes>>::Uninitialized{}};  // every entry written below
   const double* x = v.x.data();
   const double* y = v.y.data();
   const double* z = v.z.data();
   for (int k = 0; k < 8; ++k) {
-    const std::uint32_t n0 = nodes0[k], n1 = nodes1[k];
-    local.x[k] = Pack2{x[n0], x[n1]};
-    local.y[k] = Pack2{y[n0], y[n1]};
-    local.z[k] = Pack2{z[n0], z[n1]};
+    for (int lane = 0; lane < Lanes; ++lane) {
+      const std::uint32_t n = nodes[lane][k];
+      local.x[k][lane] = x[n];
+      local.y[k][lane] = y[n];
+      local.z[k][lane] = z[n];
+    }
   }
   return local;
 }
 
-void scatter_add_lane(const BasicElementVectors<Pack2>& local, int lane, const std::uint32_t* nodes,
+template <class Real>
+double lane_value(const Real& pack, int lane) {
+  return pack[lane];
+}
+
+template <class Real>
+void scatter_add_lane(const BasicElementVectors<Real>& local, int lane, const std::uint32_t* nodes,
                       NodalVectors& v) {
   double* x = v.x.data();
   double* y = v.y.data();
   double* z = v.z.data();
   for (int k = 0; k < 8; ++k) {
     const std::uint32_t n = nodes[k];
-    x[n] += local.x[k][lane];
-    y[n] += local.y[k][lane];
-    z[n] += local.z[k][lane];
+    x[n] += lane_value(local.x[std::size_t(k)], lane);
+    y[n] += lane_value(local.y[std::size_t(k)], lane);
+    z[n] += lane_value(local.z[std::size_t(k)], lane);
   }
 }
 
-// The element loop over pairs: kernel(reference, u, f, stress) on two elements
-// at once returns their energies (strain, hourglass) as Pack2. Lanes outside
-// [begin, end) are computed but neither scattered nor counted.
-template <class Kernel>
-ElementEnergies element_pair_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
+// The element loop over packs of Lanes consecutive elements: kernel(reference, u, f,
+// stress) on the pack at once returns their energies (strain, hourglass). Lanes
+// outside [begin, end) are computed but neither scattered nor counted; the lanes past
+// the block's last element take its first lane's nodes (their reference data are zero).
+// The forces are added lane by lane, in element order: the same order for any pack width.
+template <int Lanes, class Kernel>
+ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
                                   std::size_t stride, const NodalVectors& u, NodalVectors& f_int,
                                   double* stress, Kernel kernel) {
+  using Real = Pack<Lanes>;
   ElementEnergies total;
   if (begin >= end) return total;
   const double* reference = block.reference.data();
-  for (std::uint32_t pair = begin / 2; pair <= (end - 1) / 2; ++pair) {
-    const std::uint32_t element[2] = {2 * pair, 2 * pair + 1};
-    const std::uint32_t* nodes[2] = {block.connectivity + 8 * static_cast<std::size_t>(element[0]),
-                                     block.connectivity + 8 * static_cast<std::size_t>(element[1])};
-    if (element[1] >= block.count) nodes[1] = nodes[0];  // the zero-padded partner of an odd last element
-    const BasicElementVectors<Pack2> u_local = gather_pair(u, nodes[0], nodes[1]);
-    BasicElementVectors<Pack2> f_local{
-        BasicElementVectors<Pack2>::Uninitialized{}};  // the kernel writes every entry
-    std::array<Pack2, 6> element_stress;
-    const std::array<Pack2, 2> energies =
-        kernel(reference + 2 * stride * pair, u_local, f_local, element_stress);
-    for (int lane = 0; lane < 2; ++lane) {
+  for (std::uint32_t pack = begin / Lanes; pack <= (end - 1) / Lanes; ++pack) {
+    std::uint32_t element[Lanes];
+    const std::uint32_t* nodes[Lanes];
+    for (int lane = 0; lane < Lanes; ++lane) {
+      element[lane] = Lanes * pack + std::uint32_t(lane);
+      const std::uint32_t present = element[lane] < block.count ? element[lane] : Lanes * pack;
+      nodes[lane] = block.connectivity + 8 * static_cast<std::size_t>(present);
+    }
+    const BasicElementVectors<Real> u_local = gather_pack<Lanes>(u, nodes);
+    BasicElementVectors<Real> f_local{typename BasicElementVectors<Real>::Uninitialized{}};  // written whole
+    std::array<Real, 6> element_stress;
+    const std::array<Real, 2> energies =
+        kernel(reference + Lanes * stride * pack, u_local, f_local, element_stress);
+    for (int lane = 0; lane < Lanes; ++lane) {
       if (element[lane] < begin || element[lane] >= end) continue;
       scatter_add_lane(f_local, lane, nodes[lane], f_int);
-      total.strain += energies[0][lane];
-      total.hourglass += energies[1][lane];
+      total.strain += lane_value(energies[0], lane);
+      total.hourglass += lane_value(energies[1], lane);
       if (stress != nullptr) {
         double* out = stress + 6 * (static_cast<std::size_t>(block.first_element) + element[lane]);
-        for (int k = 0; k < 6; ++k) out[k] = element_stress[k][lane];
+        for (int k = 0; k < 6; ++k) out[k] = lane_value(element_stress[std::size_t(k)], lane);
       }
     }
   }
@@ -102,42 +120,64 @@ ElementEnergies hex8_general_loop(const ElementBlock& block, std::uint32_t begin
       });
 }
 
+template <int Lanes>
 ElementEnergies hex8_parallelepiped_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
                                          const NodalVectors& u, NodalVectors& f_int, double* stress) {
+  using Real = Pack<Lanes>;
   const double lambda = block.material.lambda, mu = block.material.mu;
-  return element_pair_loop(block, begin, end, hex8::parallelepiped_reference_size, u, f_int, stress,
-                           [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
-                                        BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
-                             return std::array<Pack2, 2>{hex8::parallelepiped_internal_forces(
-                                                             reference, lambda, mu, u_local, f_local, s),
-                                                         Pack2{0.0, 0.0}};
-                           });
+  return element_pack_loop<Lanes>(block, begin, end, hex8::parallelepiped_reference_size, u, f_int, stress,
+                                  [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
+                                               BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+                                    return std::array<Real, 2>{hex8::parallelepiped_internal_forces(
+                                                                   reference, lambda, mu, u_local, f_local, s),
+                                                               Real{}};
+                                  });
 }
 
 // The two hex8r loops: the same pair loop around the general or the
 // constant-Jacobian one-point kernel.
-template <bool Parallelepiped>
+template <bool Parallelepiped, int Lanes>
 ElementEnergies hex8r_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
                            const NodalVectors& u, NodalVectors& f_int, double* stress) {
+  using Real = Pack<Lanes>;
   const double lambda = block.material.lambda, mu = block.material.mu;
   const std::size_t stride = Parallelepiped ? hex8r::parallelepiped_reference_size : hex8r::reference_size;
-  return element_pair_loop(
+  return element_pack_loop<Lanes>(
       block, begin, end, stride, u, f_int, stress,
-      [lambda, mu](const double* reference, const BasicElementVectors<Pack2>& u_local,
-                   BasicElementVectors<Pack2>& f_local, std::array<Pack2, 6>& s) {
-        const hex8r::BasicEnergies<Pack2> e =
+      [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
+                   BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+        const hex8r::BasicEnergies<Real> e =
             Parallelepiped ? hex8r::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s)
                            : hex8r::internal_forces(reference, lambda, mu, u_local, f_local, s);
-        return std::array<Pack2, 2>{e.strain, e.hourglass};
+        return std::array<Real, 2>{e.strain, e.hourglass};
       });
 }
 
+// The pack width of an ISA's loops: one 128-, 256- or 512-bit register of doubles.
+int lanes_for(Isa isa) { return isa == Isa::x86_64_v4 ? 8 : isa == Isa::x86_64_v3 ? 4 : 2; }
+
+// The loop for `isa`, from its versions for packs of 2, 4 and 8.
+template <ElementLoopFn Loop2, ElementLoopFn Loop4, ElementLoopFn Loop8>
+ElementLoopFn packed_for_isa(Isa isa) {
+  switch (isa) {
+    case Isa::x86_64_v4:
+      return for_isa<Loop8>(isa);
+    case Isa::x86_64_v3:
+      return for_isa<Loop4>(isa);
+    case Isa::x86_64_v2:
+      break;
+  }
+  return for_isa<Loop2>(isa);
+}
+
 // Precomputes the reference data of every element with make(x, reference) (which
-// returns the smallest det J), stride doubles each, pairs interleaved when `paired`.
+// returns the smallest det J), stride doubles each, interleaved by packs of `lanes`
+// elements value by value ([.., value k of element Lp, .., of element Lp + L - 1, ..];
+// lanes 1: one element after the other). A last partial pack is padded with zeros.
 template <class Make>
-void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t stride, bool paired,
-                    Make make) {
-  const std::size_t stored = paired ? 2 * ((static_cast<std::size_t>(block.count) + 1) / 2) : block.count;
+void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t stride, int lanes, Make make) {
+  const std::size_t width = static_cast<std::size_t>(lanes);
+  const std::size_t stored = width * ((static_cast<std::size_t>(block.count) + width - 1) / width);
   block.reference.assign(stride * stored, 0.0);
   static_assert(hex8::reference_size >= hex8r::reference_size &&
                 hex8::reference_size >= hex8r::parallelepiped_reference_size &&
@@ -145,12 +185,12 @@ void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t 
   std::array<double, hex8::reference_size> scratch{};  // one element's data, the largest layout
   for (std::uint32_t e = 0; e < block.count; ++e) {
     const ElementVectors x = gather8(x_ref, block.connectivity + 8 * static_cast<std::size_t>(e));
-    double* reference = paired ? scratch.data() : block.reference.data() + stride * e;
+    double* reference = lanes > 1 ? scratch.data() : block.reference.data() + stride * e;
     const double min_det_jacobian = make(x, reference);
     if (!(min_det_jacobian > 0.0)) throw_inverted(block.first_element + e, min_det_jacobian);
-    if (paired) {
-      double* pair_data = block.reference.data() + 2 * stride * (e / 2);
-      for (std::size_t k = 0; k < stride; ++k) pair_data[2 * k + e % 2] = scratch[k];
+    if (lanes > 1) {
+      double* pack_data = block.reference.data() + width * stride * (e / width);
+      for (std::size_t k = 0; k < stride; ++k) pack_data[width * k + e % width] = scratch[k];
     }
   }
 }
@@ -165,31 +205,34 @@ bool all_parallelepipeds(const ElementBlock& block, const NodalVectors& x_ref) {
 // The constant-Jacobian kernels when every element is a parallelepiped (the
 // structured boxes of this program), the general ones otherwise.
 void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
+  const Isa isa = selected_isa();
   block.constant_jacobian = all_parallelepipeds(block, x_ref);
   if (block.constant_jacobian) {
-    block.loop = hex8_parallelepiped_loop;
+    block.loop = packed_for_isa<hex8_parallelepiped_loop<2>, hex8_parallelepiped_loop<4>,
+                                hex8_parallelepiped_loop<8>>(isa);
     fill_reference(
-        block, x_ref, hex8::parallelepiped_reference_size, true,
+        block, x_ref, hex8::parallelepiped_reference_size, lanes_for(isa),
         [](const ElementVectors& x, double* r) { return hex8::make_parallelepiped_reference(x, r); });
   } else {
-    block.loop = hex8_general_loop;
-    fill_reference(block, x_ref, hex8::reference_size, false,
+    block.loop = for_isa<hex8_general_loop>(isa);
+    fill_reference(block, x_ref, hex8::reference_size, 1,
                    [](const ElementVectors& x, double* r) { return hex8::make_reference(x, r); });
   }
 }
 
 void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
+  const Isa isa = selected_isa();
   block.constant_jacobian = all_parallelepipeds(block, x_ref);
   const double mu = block.material.mu, coefficient = block.hourglass_coefficient;
   if (block.constant_jacobian) {
-    block.loop = hex8r_loop<true>;
-    fill_reference(block, x_ref, hex8r::parallelepiped_reference_size, true,
+    block.loop = packed_for_isa<hex8r_loop<true, 2>, hex8r_loop<true, 4>, hex8r_loop<true, 8>>(isa);
+    fill_reference(block, x_ref, hex8r::parallelepiped_reference_size, lanes_for(isa),
                    [mu, coefficient](const ElementVectors& x, double* r) {
                      return hex8r::make_parallelepiped_reference(x, mu, coefficient, r);
                    });
   } else {
-    block.loop = hex8r_loop<false>;
-    fill_reference(block, x_ref, hex8r::reference_size, true,
+    block.loop = packed_for_isa<hex8r_loop<false, 2>, hex8r_loop<false, 4>, hex8r_loop<false, 8>>(isa);
+    fill_reference(block, x_ref, hex8r::reference_size, lanes_for(isa),
                    [mu, coefficient](const ElementVectors& x, double* r) {
                      return hex8r::make_reference(x, mu, coefficient, r);
                    });

@@ -71,6 +71,7 @@ Json to_json(const RunSummary& s) {
   j["message"] = s.message;
   j["exdyn_version"] = s.exdyn_version;
   j["threads"] = s.threads;
+  j["isa"] = s.isa;
   j["mesh"] = std::move(mesh);
   j["steps"] = s.steps;
   j["dt"] = number(s.dt);

@@ -59,6 +59,7 @@ struct RunSummary {
   std::string message;
   std::string exdyn_version;
   int threads = 1;
+  std::string isa;  // the instruction set the element kernels ran with (common/isa.hpp)
   long nodes = 0;
   long elements = 0;
   long steps = 0;

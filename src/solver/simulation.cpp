@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "common/errors.hpp"
+#include "common/isa.hpp"
 #include "common/parallel.hpp"
 #include "common/timer.hpp"
 #include "common/version.hpp"
@@ -34,17 +35,20 @@ namespace {
 struct State {
   long step = 0;
   double time = 0.0;
-  NodalVectors displacement;                   // u^n, m
-  NodalVectors velocity;                       // v^{n-1/2}, then v^{n+1/2} after update_velocities, m/s
-  NodalVectors acceleration;                   // a^n, m/s^2
-  NodalVectors internal_force;                 // f_int(u^n), N
-  NodalVectors contact_force;                  // f_contact(x^n), N
-  NodalVectors previous_contact_force;         // f_contact(x^{n-1}), N (for the contact work)
+  NodalVectors displacement;       // u^n, m
+  NodalVectors next_displacement;  // u^{n+1} from update_nodes, m (swapped in at the step's end)
+  NodalVectors velocity;           // v^{n-1/2}, then v^{n+1/2} after update_nodes, m/s
+  NodalVectors other_velocity;     // update_nodes writes here; after the swap, v^{n-1/2}
+  std::array<std::vector<std::uint8_t>, 3> fixed;  // 1 where a component is fixed (a = 0)
+  NodalVectors acceleration;                       // a^n, m/s^2
+  NodalVectors internal_force;                     // f_int(u^n), N
+  NodalVectors contact_force;                      // f_contact(x^n), N
+  NodalVectors previous_contact_force;             // f_contact(x^{n-1}), N (for the contact work)
   std::vector<double> gap;                     // signed normal gap of each slave node, m (0: no candidate)
   std::vector<double> previous_gap;            // the gap of step n-1 (to step back after a non-finite step)
   std::vector<double> stress;                  // 6 per element: xx yy zz xy yz xz, Pa
   double contact_energy = 0.0;                 // work done against the contact forces, J
-  std::array<std::vector<double>, 3> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
+  std::array<std::vector<double>, 4> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
 };
 
 struct Energies {
@@ -130,10 +134,8 @@ std::vector<output::ContactHistoryRow> contact_history(const ContactModel& conta
   return rows;
 }
 
-// a = M^-1 (f_contact - f_int); the fixed components get a = 0 so that they keep v = 0.
-// Returns false when an acceleration is not finite: 0 x a stays 0 for every finite
-// a and becomes NaN for an infinite or NaN one, so the sum checks them all for the
-// price of one add per value (and its value does not depend on the order of the sum).
+// a^n = (f_contact - f_int) / m, 0 on fixed components: the accelerations alone (to
+// step back to the last finite state). False when some a is not finite.
 bool compute_accelerations(const Model& model, State& state) {
   for_each_chunk(model.mesh.node_count(), [&](std::size_t begin, std::size_t end, std::size_t k) {
     double non_finite = 0.0;
@@ -153,7 +155,8 @@ bool compute_accelerations(const Model& model, State& state) {
   return ordered_sum(state.partial[0]) == 0.0;
 }
 
-struct VelocityUpdate {
+struct NodalUpdate {
+  bool finite = true;    // every a^n finite (else velocity and displacement are untouched)
   double kinetic = 0.0;  // K^n = 1/2 sum m v^{n-1/2}.v^{n+1/2}, J
   // 1/8 sum m |a^n|^2, J/s^2: dt^2 times it turns K^n into 1/2 sum m |v^n|^2 with
   // v^n = (v^{n-1/2} + v^{n+1/2}) / 2, which is never negative (K^n can be: in an
@@ -162,28 +165,59 @@ struct VelocityUpdate {
   double largest_component = 0;  // max |v^{n+1/2}| over nodes and components, m/s
 };
 
-// v^{n+1/2} = v^{n-1/2} + dt a^n; the sums per chunk of nodes, added in chunk order.
-VelocityUpdate update_velocities(const Model& model, State& state, double dt) {
+// The nodal update of central differences, in one pass over the nodes
+// (docs/performance.md, "The fused nodal update"): per node and component
+//   a^n = (f_contact - f_int) / m, 0 where the component is fixed,
+//   v^{n+1/2} = v^{n-1/2} + dt a^n (at step 0 from v^{-1/2} = v^0 - dt/2 a^0),
+//   u^{n+1} = u^n + dt v^{n+1/2},
+// with the energy sums, each per chunk of nodes and added in chunk order (the same
+// bits on any number of threads). v^{n+1/2} and u^{n+1} go to other_velocity and
+// next_displacement: v^{n-1/2} and u^n stay for output, the guards and a step back.
+// On success the velocities are swapped (velocity = v^{n+1/2}); the displacements
+// are swapped at the end of the step. Three passes before (accelerations, velocities,
+// displacements); the same operations in the same order, so the same bits.
+NodalUpdate update_nodes(const Model& model, State& state, double dt, bool first_step) {
   for_each_chunk(model.mesh.node_count(), [&](std::size_t begin, std::size_t end, std::size_t k) {
-    double twice_kinetic = 0.0, largest = 0.0, m_a2 = 0.0;
+    double non_finite = 0.0, twice_kinetic = 0.0, largest = 0.0, m_a2 = 0.0;
+    const double* inverse_mass = model.inverse_mass.data();
+    const double* m = model.mass.data();
+    const double half_step_back = -0.5 * dt;
     for (int c = 0; c < 3; ++c) {
-      double* v = state.velocity.component(c).data();
-      const double* a = state.acceleration.component(c).data();
-      const double* m = model.mass.data();
+      const double* f = state.internal_force.component(c).data();
+      const double* f_contact = state.contact_force.component(c).data();
+      const std::uint8_t* fixed = state.fixed[std::size_t(c)].data();
+      const double* v = state.velocity.component(c).data();
+      const double* u = state.displacement.component(c).data();
+      double* a = state.acceleration.component(c).data();
+      double* v_next = state.other_velocity.component(c).data();
+      double* u_next = state.next_displacement.component(c).data();
       for (std::size_t i = begin; i < end; ++i) {
-        const double v_new = v[i] + dt * a[i];
-        twice_kinetic += m[i] * v[i] * v_new;
-        m_a2 += m[i] * a[i] * a[i];
+        const double raw = (f_contact[i] - f[i]) * inverse_mass[i];
+        non_finite += 0.0 * raw;
+        const double a_i = fixed[i] ? 0.0 : raw;
+        const double v_old = first_step ? v[i] + half_step_back * a_i : v[i];
+        const double v_new = v_old + dt * a_i;
+        twice_kinetic += m[i] * v_old * v_new;
+        m_a2 += m[i] * a_i * a_i;
         largest = std::max(largest, std::abs(v_new));
-        v[i] = v_new;
+        a[i] = a_i;
+        v_next[i] = v_new;
+        u_next[i] = u[i] + dt * v_new;
       }
     }
-    state.partial[0][k] = twice_kinetic;
-    state.partial[1][k] = m_a2;
-    state.partial[2][k] = largest;
+    state.partial[0][k] = non_finite;
+    state.partial[1][k] = twice_kinetic;
+    state.partial[2][k] = m_a2;
+    state.partial[3][k] = largest;
   });
-  return {0.5 * ordered_sum(state.partial[0]), 0.125 * ordered_sum(state.partial[1]),
-          *std::max_element(state.partial[2].begin(), state.partial[2].end())};
+  NodalUpdate update;
+  update.finite = ordered_sum(state.partial[0]) == 0.0;
+  if (!update.finite) return update;
+  std::swap(state.velocity, state.other_velocity);
+  update.kinetic = 0.5 * ordered_sum(state.partial[1]);
+  update.mass_acceleration_squared = 0.125 * ordered_sum(state.partial[2]);
+  update.largest_component = *std::max_element(state.partial[3].begin(), state.partial[3].end());
+  return update;
 }
 
 // y += scale x, componentwise over the nodes: u^{n+1} = u^n + dt v^{n+1/2};
@@ -328,6 +362,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   summary.name = deck.name;
   summary.exdyn_version = exdyn::version;
   summary.threads = set_threads(controls.threads);
+  summary.isa = isa_name(selected_isa());
   summary.end_time = deck.time.end_time;
 
   const Model model = build_model(deck);
@@ -355,6 +390,12 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   State state;
   const std::size_t node_count = model.mesh.node_count();
   state.displacement.resize(node_count);
+  state.next_displacement.resize(node_count);
+  state.other_velocity.resize(node_count);
+  for (int c = 0; c < 3; ++c) {
+    state.fixed[std::size_t(c)].assign(node_count, 0);
+    for (const std::uint32_t node : model.fixed_nodes[std::size_t(c)]) state.fixed[std::size_t(c)][node] = 1;
+  }
   state.acceleration.resize(node_count);
   state.internal_force.resize(node_count);
   state.contact_force.resize(node_count);
@@ -433,10 +474,8 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       }
       {
         ScopedTimer timer(phase.time_integration);
-        if (!compute_accelerations(model, state)) step_back_and_stop(describe_non_finite(state) + when());
-        if (state.step == 0)
-          add_scaled(state.velocity, -0.5 * dt, state.acceleration);  // v^{-1/2} = v^0 - dt/2 a^0
-        const VelocityUpdate update = update_velocities(model, state, dt);
+        const NodalUpdate update = update_nodes(model, state, dt, state.step == 0);
+        if (!update.finite) step_back_and_stop(describe_non_finite(state) + when());
         energy.kinetic = update.kinetic;
         mean_energy = energy.total() + dt * dt * update.mass_acceleration_squared;
         largest_speed = std::sqrt(3.0) * update.largest_component;  // >= |v^{n+1/2}|_2 of every node
@@ -444,8 +483,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       const double total = energy.total();
       if (!std::isfinite(total)) {
         const std::string message = describe_non_finite(state) + when();
-        add_scaled(state.velocity, -dt,
-                   state.acceleration);  // v^{n-1/2} = v^{n+1/2} - dt a^n (a^n is finite)
+        std::swap(state.velocity, state.other_velocity);  // back to v^{n-1/2}
         step_back_and_stop(message);
       }
       if (state.step == 0) initial_total = total, initial_mean_energy = mean_energy;
@@ -525,7 +563,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
                  when() + "; the results up to this step are written");
       {
         ScopedTimer timer(phase.time_integration);
-        add_scaled(state.displacement, dt, state.velocity);  // u^{n+1} = u^n + dt v^{n+1/2}
+        std::swap(state.displacement, state.next_displacement);  // u^{n+1}, from update_nodes
       }
     }
   } catch (const RunFailure& failure) {

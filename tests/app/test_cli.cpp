@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -133,6 +134,33 @@ TEST(Cli, UnstableRunExitsOneNamesTheStepAndLeavesAFailedSummary) {
   const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("\"status\": \"failed\""), std::string::npos) << text;
   EXPECT_TRUE(std::filesystem::exists(directory.file("wave_bar.xmf")));  // the steps written so far
+}
+
+// The element kernels' instruction set (common/isa.hpp): --version names it, the
+// summary records it, and a name that is unknown or that this CPU cannot run is bad
+// input (exit 2, nothing written), from --isa and from EXDYN_ISA alike.
+TEST(Cli, InstructionSetIsReportedAndBadNamesExitTwo) {
+  const auto version = exdyn("--version");
+  EXPECT_NE(version.output.find("a run uses x86-64-v"), std::string::npos) << version.output;
+  exdyn::testing::TempDir directory;
+  const std::string run = "run " + deck("wave_bar.yaml") + " --quiet --set time.end_time=2e-6 --output " +
+                          directory.path().string();
+  const auto unknown = exdyn(run + " --isa x86-64-v9");
+  EXPECT_EQ(unknown.status, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("--isa: unknown instruction set 'x86-64-v9'"), std::string::npos)
+      << unknown.output;
+  ::setenv("EXDYN_ISA", "avx9", 1);
+  const auto from_environment = exdyn(run);
+  ::unsetenv("EXDYN_ISA");
+  EXPECT_EQ(from_environment.status, 2) << from_environment.output;
+  EXPECT_NE(from_environment.output.find("EXDYN_ISA: unknown instruction set 'avx9'"), std::string::npos)
+      << from_environment.output;
+  EXPECT_FALSE(std::filesystem::exists(directory.file("wave_bar.json")));
+  const auto baseline = exdyn(run + " --isa x86-64-v2");
+  ASSERT_EQ(baseline.status, 0) << baseline.output;
+  std::ifstream json(directory.file("wave_bar.json"));
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"isa\": \"x86-64-v2\""), std::string::npos) << text;
 }
 
 }  // namespace

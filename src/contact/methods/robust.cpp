@@ -274,6 +274,120 @@ bool convex_bound(const Surface<Terms>& s, const Vec3& ys) {
   return s_lo * s_lo > r_max * curvature + 1.0e-6 * sigma0 * sigma0;
 }
 
+// The quad8 part of closest_within: the bound mu on boxes of delta, and the two ways
+// of covering the square with them. Kept out of the function so that the second way, a
+// loop over cells that few projections reach, does not weigh on the first.
+struct QuadraticProof {
+  double u = 0.0, v = 0.0;  // xi
+  std::array<Xi, 8> k{};    // K c_3 ... K c_7 (k[3] ... k[7])
+  double sigma = 0.0, reach = 0.0, curvature_max = 0.0, cubic = 0.0, g2 = 0.0, epsilon = 0.0;
+
+  // mu for du in [du0, du1], dv in [dv0, dv1]: delta^T (I + X) delta >= mu |delta|^2, X the
+  // path mean of K (J - J*), whose columns are
+  //   c3 dv / 2 + c4 du + c6 (u dv + v du + 2 du dv / 3) + c7 (v dv + dv^2 / 3),
+  //   c3 du / 2 + c5 dv + c6 (u du + du^2 / 3) + c7 (u dv + v du + 2 du dv / 3)
+  // (times K). Each monomial's range on the box (the bilinear one's at the corners, the
+  // quadratics' at the ends or the vertex) gives the ranges of X11, X22 and
+  // (X12 + X21) / 2; lambda_min grows with the diagonal, so mu is lambda_min at the
+  // smallest diagonal and the largest off-diagonal magnitude.
+  double mu(double du0, double du1, double dv0, double dv1) const {
+    struct Range {
+      double lo, hi;
+    };
+    const auto times = [](double a, Range r) {
+      return a >= 0.0 ? Range{a * r.lo, a * r.hi} : Range{a * r.hi, a * r.lo};
+    };
+    const auto plus = [](Range a, Range b) { return Range{a.lo + b.lo, a.hi + b.hi}; };
+    const Range du{du0, du1}, dv{dv0, dv1};
+    Range x11 = times(0.5 * k[3][0], dv), x22 = times(0.5 * k[3][1], du);
+    Range x12 = plus(times(0.5 * k[3][0], du), times(0.5 * k[3][1], dv));  // X12 + X21
+    const auto cross = [this](double p, double q) { return u * q + v * p + 2.0 / 3.0 * p * q; };
+    const double c00 = cross(du0, dv0), c01 = cross(du0, dv1), c10 = cross(du1, dv0), c11 = cross(du1, dv1);
+    const Range cr{std::min(std::min(c00, c01), std::min(c10, c11)),
+                   std::max(std::max(c00, c01), std::max(c10, c11))};
+    const auto square = [](double w, Range d) {  // w d + d^2 / 3 on d
+      const double a = w * d.lo + d.lo * d.lo / 3.0, b = w * d.hi + d.hi * d.hi / 3.0;
+      Range r{std::min(a, b), std::max(a, b)};
+      const double vertex = -1.5 * w;
+      if (vertex > d.lo && vertex < d.hi) r.lo = -0.75 * w * w;
+      return r;
+    };
+    const Range sq_u = square(u, du), sq_v = square(v, dv);
+    x11 = plus(x11, plus(plus(times(k[4][0], du), times(k[6][0], cr)), times(k[7][0], sq_v)));
+    x22 = plus(x22, plus(plus(times(k[5][1], dv), times(k[6][1], sq_u)), times(k[7][1], cr)));
+    x12 = plus(x12, plus(plus(times(k[5][0], dv), times(k[6][0], sq_u)), times(k[7][0], cr)));
+    x12 = plus(x12, plus(plus(times(k[4][1], du), times(k[6][1], cr)), times(k[7][1], sq_v)));
+    const double off = 0.5 * std::max(-x12.lo, x12.hi);
+    return eigenvalues(Sym2{1.0 + x11.lo, off, 1.0 + x22.lo})[0];
+  }
+
+  // The growth constant c = m^2 - lambda_max[r*.y_ab] - 0.77 (|g6| + |g7|) rho, and the
+  // last test: |g| <= epsilon c.
+  double growth(double m, double rho) const { return m * m - curvature_max - 0.77 * cubic * rho; }
+  bool within_epsilon(double c_growth) const { return g2 <= epsilon * epsilon * c_growth * c_growth; }
+
+  // Candidates (points with f <= f(xi)) start as the whole square, delta in the box
+  // |delta|_inf <= t; with m = sigma* mu on that box they lie within reach / m of xi, so
+  // they shrink to the box of that half-width, where mu is larger; until c > 0, with a
+  // margin of 1e-6 m^2 for the rounding of the bound itself (at most five boxes).
+  bool shrinking_boxes() const {
+    double t = std::max(1.0 + std::fabs(u), 1.0 + std::fabs(v));
+    for (int box = 0; box < 5; ++box) {
+      const double m = sigma * mu(std::max(-t, -1.0 - u), std::min(t, 1.0 - u), std::max(-t, -1.0 - v),
+                                  std::min(t, 1.0 - v));
+      if (!(m > 0.0)) return false;
+      const double c_growth = growth(m, std::min(std::sqrt(2.0) * t, reach / m));
+      if (c_growth > 1.0e-6 * m * m) return within_epsilon(c_growth);
+      const double next = reach / m * (1.0 + 1.0e-12);  // |delta|_inf > next: |P w| > reach
+      if (!(next < 0.95 * t)) return false;
+      t = next;
+    }
+    return false;
+  }
+
+  // Second try: cells of delta, from the four quadrants around xi, each split in four
+  // until it is farther than d* from ys (m |delta| > reach on the whole cell) or the
+  // growth holds on it (c > 0 with rho the cell's farthest |delta|, or reach / m); at most
+  // 32 cells. On a cell mu is sharper than on the square: the monomials' ranges are narrower.
+  [[gnu::noinline]] bool cells() const {
+    struct Cell {
+      double du0, du1, dv0, dv1;
+    };
+    std::array<Cell, 64> stack;  // the first `top` entries are pending
+    int top = 0, budget = 32;
+    stack[top++] = {-1.0 - u, 0.0, -1.0 - v, 0.0};
+    stack[top++] = {0.0, 1.0 - u, -1.0 - v, 0.0};
+    stack[top++] = {-1.0 - u, 0.0, 0.0, 1.0 - v};
+    stack[top++] = {0.0, 1.0 - u, 0.0, 1.0 - v};
+    double c_least = std::numeric_limits<double>::infinity();
+    while (top > 0) {
+      const Cell cell = stack[std::size_t(--top)];
+      if (!(cell.du1 > cell.du0 && cell.dv1 > cell.dv0)) continue;  // empty: xi on an edge
+      if (--budget < 0) return false;
+      const double m = sigma * mu(cell.du0, cell.du1, cell.dv0, cell.dv1);
+      if (m > 0.0) {
+        // The cell's nearest and farthest |delta|.
+        const double nu = cell.du0 > 0.0 ? cell.du0 : (cell.du1 < 0.0 ? -cell.du1 : 0.0);
+        const double nv = cell.dv0 > 0.0 ? cell.dv0 : (cell.dv1 < 0.0 ? -cell.dv1 : 0.0);
+        const double fu = std::max(-cell.du0, cell.du1), fv = std::max(-cell.dv0, cell.dv1);
+        if (m * m * (nu * nu + nv * nv) > reach * reach) continue;  // farther than d* from ys
+        const double c_growth = growth(m, std::min(std::sqrt(fu * fu + fv * fv), reach / m));
+        if (c_growth > 1.0e-6 * m * m) {
+          c_least = std::min(c_least, c_growth);
+          continue;
+        }
+      }
+      if (top + 4 > int(stack.size())) return false;
+      const double um = 0.5 * (cell.du0 + cell.du1), vm = 0.5 * (cell.dv0 + cell.dv1);
+      stack[std::size_t(top++)] = {cell.du0, um, cell.dv0, vm};
+      stack[std::size_t(top++)] = {um, cell.du1, cell.dv0, vm};
+      stack[std::size_t(top++)] = {cell.du0, um, vm, cell.dv1};
+      stack[std::size_t(top++)] = {um, cell.du1, vm, cell.dv1};
+    }
+    return within_epsilon(c_least);
+  }
+};
+
 // A proof that the closest point of the whole square lies within `epsilon` of xi
 // (xi in the square; l the local values there), in about 150 flops (quad8, one box). With
 // r* = ys - y(xi), d* = |r*|, w = y(xi + delta) - y(xi) and P the orthogonal projector
@@ -319,125 +433,25 @@ template <int Terms>
     const double m2 = sigma2 * mu * mu;
     const double growth = m2 - std::fabs(dot(l.r, c[3]));
     return mu > 0.0 && growth > 1.0e-6 * m2 && dot2(l.g, l.g) <= epsilon * epsilon * growth * growth;
-  }
-  std::array<Xi, 8> k{};  // K c_3 ... K c_7 (k[3] ... k[7])
-  for (int i = 3; i < Terms; ++i) k[std::size_t(i)] = in_plane(c[std::size_t(i)]);
-  // mu for du in [du0, du1], dv in [dv0, dv1]: delta^T (I + X) delta >= mu |delta|^2, X the
-  // path mean of K (J - J*), whose columns are
-  //   c3 dv / 2 + c4 du + c6 (u dv + v du + 2 du dv / 3) + c7 (v dv + dv^2 / 3),
-  //   c3 du / 2 + c5 dv + c6 (u du + du^2 / 3) + c7 (u dv + v du + 2 du dv / 3)
-  // (times K). Each monomial's range on the box (the bilinear one's at the corners, the
-  // quadratics' at the ends or the vertex) gives the ranges of X11, X22 and
-  // (X12 + X21) / 2; lambda_min grows with the diagonal, so mu is lambda_min at the
-  // smallest diagonal and the largest off-diagonal magnitude.
-  const auto mu = [&](double du0, double du1, double dv0, double dv1) {
-    struct Range {
-      double lo, hi;
-    };
-    const auto times = [](double a, Range r) {
-      return a >= 0.0 ? Range{a * r.lo, a * r.hi} : Range{a * r.hi, a * r.lo};
-    };
-    const auto plus = [](Range a, Range b) { return Range{a.lo + b.lo, a.hi + b.hi}; };
-    const Range du{du0, du1}, dv{dv0, dv1};
-    Range x11 = times(0.5 * k[3][0], dv), x22 = times(0.5 * k[3][1], du);
-    Range x12 = plus(times(0.5 * k[3][0], du), times(0.5 * k[3][1], dv));  // X12 + X21
-    if constexpr (Terms == 8) {
-      const auto cross = [u, v](double p, double q) { return u * q + v * p + 2.0 / 3.0 * p * q; };
-      const double c00 = cross(du0, dv0), c01 = cross(du0, dv1), c10 = cross(du1, dv0), c11 = cross(du1, dv1);
-      const Range cr{std::min(std::min(c00, c01), std::min(c10, c11)),
-                     std::max(std::max(c00, c01), std::max(c10, c11))};
-      const auto square = [](double w, Range d) {  // w d + d^2 / 3 on d
-        const double a = w * d.lo + d.lo * d.lo / 3.0, b = w * d.hi + d.hi * d.hi / 3.0;
-        Range r{std::min(a, b), std::max(a, b)};
-        const double vertex = -1.5 * w;
-        if (vertex > d.lo && vertex < d.hi) r.lo = -0.75 * w * w;
-        return r;
-      };
-      const Range sq_u = square(u, du), sq_v = square(v, dv);
-      x11 = plus(x11, plus(plus(times(k[4][0], du), times(k[6][0], cr)), times(k[7][0], sq_v)));
-      x22 = plus(x22, plus(plus(times(k[5][1], dv), times(k[6][1], sq_u)), times(k[7][1], cr)));
-      x12 = plus(x12, plus(plus(times(k[5][0], dv), times(k[6][0], sq_u)), times(k[7][0], cr)));
-      x12 = plus(x12, plus(plus(times(k[4][1], du), times(k[6][1], cr)), times(k[7][1], sq_v)));
-    }
-    const double off = 0.5 * std::max(-x12.lo, x12.hi);
-    return eigenvalues(Sym2{1.0 + x11.lo, off, 1.0 + x22.lo})[0];
-  };
-  const double sigma = std::sqrt(sigma2);
-  // |P r*|^2 = (g/2)^T A*^-1 (g/2).
-  const Xi h{0.5 * l.g[0], 0.5 * l.g[1]};
-  const double pr2 = inv * (l.A.yy * h[0] * h[0] - 2.0 * l.A.xy * h[0] * h[1] + l.A.xx * h[1] * h[1]);
-  const double reach = std::sqrt(l.f) + std::sqrt(std::max(pr2, 0.0));  // d* + |P r*|
-  // lambda_max [r*.y_ab] (quad4: [[0, r.c3], [r.c3, 0]]; negative where the surface bends
-  // away from ys, which helps: -delta^T [r*.y_ab] delta >= -lambda_max |delta|^2) and |g6| + |g7|.
-  double curvature_max = std::fabs(dot(l.r, c[3])), cubic = 0.0;
-  if constexpr (Terms == 8) {
+  } else {
+    QuadraticProof proof;
+    proof.u = u;
+    proof.v = v;
+    for (int i = 3; i < Terms; ++i) proof.k[std::size_t(i)] = in_plane(c[std::size_t(i)]);
+    proof.sigma = std::sqrt(sigma2);
+    // |P r*|^2 = (g/2)^T A*^-1 (g/2).
+    const Xi h{0.5 * l.g[0], 0.5 * l.g[1]};
+    const double pr2 = inv * (l.A.yy * h[0] * h[0] - 2.0 * l.A.xy * h[0] * h[1] + l.A.xx * h[1] * h[1]);
+    proof.reach = std::sqrt(l.f) + std::sqrt(std::max(pr2, 0.0));  // d* + |P r*|
+    // lambda_max [r*.y_ab] (negative where the surface bends away from ys, which helps:
+    // -delta^T [r*.y_ab] delta >= -lambda_max |delta|^2) and |g6| + |g7|.
     const Sym2 curvature{l.A.xx - 0.5 * l.H.xx, l.A.xy - 0.5 * l.H.xy, l.A.yy - 0.5 * l.H.yy};
-    curvature_max = eigenvalues(curvature)[1];
-    cubic = std::fabs(dot(l.r, c[6])) + std::fabs(dot(l.r, c[7]));
+    proof.curvature_max = eigenvalues(curvature)[1];
+    proof.cubic = std::fabs(dot(l.r, c[6])) + std::fabs(dot(l.r, c[7]));
+    proof.g2 = dot2(l.g, l.g);
+    proof.epsilon = epsilon;
+    return proof.shrinking_boxes() || proof.cells();
   }
-  // The proof with one way of bounding mu. Candidates (points with f <= f(xi)) start as the
-  // whole square, delta in the box |delta|_inf <= t; with m = sigma* mu on that box they lie
-  // within reach / m of xi, so they shrink to the box of that half-width, where mu is larger;
-  // until c = m^2 - |[r*.y_ab]|_2 - 0.77 (|g6| + |g7|) rho > 0, with a margin of 1e-6 m^2
-  // for the rounding of the bound itself (at most five boxes).
-  const auto proven = [&](auto mu_on) {
-    double t = std::max(1.0 + std::fabs(u), 1.0 + std::fabs(v));
-    for (int box = 0; box < 5; ++box) {
-      const double m = sigma * mu_on(std::max(-t, -1.0 - u), std::min(t, 1.0 - u), std::max(-t, -1.0 - v),
-                                     std::min(t, 1.0 - v));
-      if (!(m > 0.0)) return false;
-      const double rho = std::min(std::sqrt(2.0) * t, reach / m);
-      const double c_growth = m * m - curvature_max - 0.77 * cubic * rho;
-      if (c_growth > 1.0e-6 * m * m) return dot2(l.g, l.g) <= epsilon * epsilon * c_growth * c_growth;
-      const double next = reach / m * (1.0 + 1.0e-12);  // |delta|_inf > next: |P w| > reach
-      if (!(next < 0.95 * t)) return false;
-      t = next;
-    }
-    return false;
-  };
-  // Second try: cells of delta, from the four quadrants around xi, each split in four until
-  // it is farther than d* from ys (m |delta| > reach on the whole cell) or the growth holds on
-  // it (c > 0 with rho the cell's farthest |delta|, or reach / m); at most 32 cells. On a
-  // cell mu is sharper than on the square: the monomials' ranges are narrower.
-  const auto proven_cells = [&] {
-    struct Cell {
-      double du0, du1, dv0, dv1;
-    };
-    std::array<Cell, 64> stack;  // the first `top` entries are pending
-    int top = 0, budget = 32;
-    stack[top++] = {-1.0 - u, 0.0, -1.0 - v, 0.0};
-    stack[top++] = {0.0, 1.0 - u, -1.0 - v, 0.0};
-    stack[top++] = {-1.0 - u, 0.0, 0.0, 1.0 - v};
-    stack[top++] = {0.0, 1.0 - u, 0.0, 1.0 - v};
-    double c_least = std::numeric_limits<double>::infinity();
-    while (top > 0) {
-      const Cell cell = stack[--top];
-      if (!(cell.du1 > cell.du0 && cell.dv1 > cell.dv0)) continue;  // empty: xi on an edge
-      if (--budget < 0) return false;
-      const double m = sigma * mu(cell.du0, cell.du1, cell.dv0, cell.dv1);
-      if (m > 0.0) {
-        // The cell's nearest and farthest |delta|.
-        const double nu = cell.du0 > 0.0 ? cell.du0 : (cell.du1 < 0.0 ? -cell.du1 : 0.0);
-        const double nv = cell.dv0 > 0.0 ? cell.dv0 : (cell.dv1 < 0.0 ? -cell.dv1 : 0.0);
-        const double fu = std::max(-cell.du0, cell.du1), fv = std::max(-cell.dv0, cell.dv1);
-        if (m * m * (nu * nu + nv * nv) > reach * reach) continue;  // farther than d* from ys
-        const double rho = std::min(std::sqrt(fu * fu + fv * fv), reach / m);
-        const double c_growth = m * m - curvature_max - 0.77 * cubic * rho;
-        if (c_growth > 1.0e-6 * m * m) {
-          c_least = std::min(c_least, c_growth);
-          continue;
-        }
-      }
-      if (top + 4 > int(stack.size())) return false;
-      const double um = 0.5 * (cell.du0 + cell.du1), vm = 0.5 * (cell.dv0 + cell.dv1);
-      stack[top++] = {cell.du0, um, cell.dv0, vm};
-      stack[top++] = {um, cell.du1, cell.dv0, vm};
-      stack[top++] = {cell.du0, um, vm, cell.dv1};
-      stack[top++] = {um, cell.du1, vm, cell.dv1};
-    }
-    return dot2(l.g, l.g) <= epsilon * epsilon * c_least * c_least;
-  };
-  return proven(mu) || proven_cells();
 }
 
 // Newton's iterations from the guess (as `newton`, at most max_iterations, left when
