@@ -71,7 +71,6 @@ Json to_json(const RunSummary& s) {
   j["message"] = s.message;
   j["exdyn_version"] = s.exdyn_version;
   j["threads"] = s.threads;
-  j["isa"] = s.isa;
   j["mesh"] = std::move(mesh);
   j["steps"] = s.steps;
   j["dt"] = number(s.dt);
@@ -88,6 +87,7 @@ Json to_json(const RunSummary& s) {
   guards["inversion_passes"] = s.guard_checks.inversion_passes;
   guards["largest_energy_growth"] = number(s.guard_checks.largest_energy_growth);
   j["guards"] = std::move(guards);
+  j["isa"] = s.isa;  // after the spec's keys, as every addition
   return j;
 }
 

@@ -65,7 +65,7 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
   EXPECT_EQ(keys,
             (std::vector<std::string>{"name", "status", "message", "exdyn_version", "threads", "mesh",
                                       "steps", "dt", "end_time", "wall_seconds", "element_cycles_per_second",
-                                      "phase_seconds", "energy", "contact", "mpi", "guards"}));
+                                      "phase_seconds", "energy", "contact", "mpi", "guards", "isa"}));
   EXPECT_EQ(j["name"], "plate_impact");
   EXPECT_EQ(j["status"], "completed");
   EXPECT_EQ(j["message"], "");
