@@ -31,7 +31,8 @@ ElementVectors gather8(const NodalVectors& v, const std::uint32_t* nodes) {
 }
 
 template <int Lanes>
-BasicElementVectors<Pack<Lanes>> gather_pack(const NodalVectors& v, const std::uint32_t* const (&nodes)[Lanes]) {
+BasicElementVectors<Pack<Lanes>> gather_pack(const NodalVectors& v,
+                                             const std::uint32_t* const (&nodes)[Lanes]) {
   BasicElementVectors<Pack<Lanes>> local{
       typename BasicElementVectors<Pack<Lanes>>::Uninitialized{}};  // every entry written below
   const double* x = v.x.data();
@@ -125,13 +126,13 @@ ElementEnergies hex8_parallelepiped_loop(const ElementBlock& block, std::uint32_
                                          const NodalVectors& u, NodalVectors& f_int, double* stress) {
   using Real = Pack<Lanes>;
   const double lambda = block.material.lambda, mu = block.material.mu;
-  return element_pack_loop<Lanes>(block, begin, end, hex8::parallelepiped_reference_size, u, f_int, stress,
-                                  [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
-                                               BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
-                                    return std::array<Real, 2>{hex8::parallelepiped_internal_forces(
-                                                                   reference, lambda, mu, u_local, f_local, s),
-                                                               Real{}};
-                                  });
+  return element_pack_loop<Lanes>(
+      block, begin, end, hex8::parallelepiped_reference_size, u, f_int, stress,
+      [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
+                   BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+        return std::array<Real, 2>{
+            hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s), Real{}};
+      });
 }
 
 // The two hex8r loops: the same pair loop around the general or the
@@ -175,7 +176,8 @@ ElementLoopFn packed_for_isa(Isa isa) {
 // elements value by value ([.., value k of element Lp, .., of element Lp + L - 1, ..];
 // lanes 1: one element after the other). A last partial pack is padded with zeros.
 template <class Make>
-void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t stride, int lanes, Make make) {
+void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t stride, int lanes,
+                    Make make) {
   const std::size_t width = static_cast<std::size_t>(lanes);
   const std::size_t stored = width * ((static_cast<std::size_t>(block.count) + width - 1) / width);
   block.reference.assign(stride * stored, 0.0);
@@ -208,8 +210,9 @@ void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
   const Isa isa = selected_isa();
   block.constant_jacobian = all_parallelepipeds(block, x_ref);
   if (block.constant_jacobian) {
-    block.loop = packed_for_isa<hex8_parallelepiped_loop<2>, hex8_parallelepiped_loop<4>,
-                                hex8_parallelepiped_loop<8>>(isa);
+    block.loop =
+        packed_for_isa<hex8_parallelepiped_loop<2>, hex8_parallelepiped_loop<4>, hex8_parallelepiped_loop<8>>(
+            isa);
     fill_reference(
         block, x_ref, hex8::parallelepiped_reference_size, lanes_for(isa),
         [](const ElementVectors& x, double* r) { return hex8::make_parallelepiped_reference(x, r); });

@@ -122,7 +122,8 @@ TEST(MemoryEstimate, ASmallDeckPassesTheCheck) {
 }
 
 TEST(MemoryEstimate, ADeckLargerThanTheAvailableMemoryIsRefused) {
-  // 1000^3 elements: about 511 GiB (1003004332 nodes x 304 B + 1000001000 elements x 244 B), within the 32-bit limits.
+  // 1000^3 elements: about 511 GiB (1003004332 nodes x 304 B + 1000001000 elements x 244 B), within the
+  // 32-bit limits.
   const input::Deck deck = deck_of({"[10, 10, 10]", "[1000, 1000, 1000]"});
   try {
     check_mesh_size(deck, 16 * gib);
