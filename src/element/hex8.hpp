@@ -336,10 +336,10 @@ inline std::array<material::SymTensor, 8> gauss_point_stresses(const ElementVect
 
 // ---------------------------------------------------------------------------
 // Full integration, general hexahedron.
-// Reference data per element (reference_size doubles), Gauss-point-major so that
-// the kernel's loops over the 8 points vectorise: entry [8 k + g] is component k
-// (row-major a, j) of the inverse Jacobian dxi_a/dx_j at point g (k < 9), then
-// w det J_g / 8 at [72 + g], then 8 / V at [80]. (The 1/8 of the inverse mode
+// Reference data per element (reference_size doubles), point by point in the order
+// the kernel reads them (one stream for the prefetcher): entry [10 g + k] is component
+// k (row-major a, j) of the inverse Jacobian dxi_a/dx_j at point g (k < 9),
+// [10 g + 9] is w det J_g / 8; then 8 / V at [80]. (The 1/8 of the inverse mode
 // transform is folded into the stored weight.)
 // ---------------------------------------------------------------------------
 inline constexpr int reference_size = 81;
@@ -348,8 +348,8 @@ inline constexpr int reference_size = 81;
 inline double make_reference(const ElementVectors& x_ref, double* reference) {
   const GaussGeometry geometry = gauss_geometry(x_ref);
   for (int g = 0; g < 8; ++g) {
-    for (int k = 0; k < 9; ++k) reference[8 * k + g] = geometry.inverse_jacobian[g][k];
-    reference[72 + g] = 0.125 * geometry.det_jacobian[g];
+    for (int k = 0; k < 9; ++k) reference[10 * g + k] = geometry.inverse_jacobian[g][k];
+    reference[10 * g + 9] = 0.125 * geometry.det_jacobian[g];
   }
   reference[80] = 8.0 / geometry.volume;
   return geometry.min_det_jacobian;
@@ -365,84 +365,87 @@ inline constexpr double gauss_sign_zeta_xi[8] = {1, -1, -1, 1, -1, 1, 1, -1};
 inline constexpr double gauss_sign_xi_eta[8] = {1, -1, 1, -1, 1, -1, 1, -1};
 }  // namespace detail
 
-// f = K u for one element (f in N, u in m), the volume-averaged stress (Pa) and
-// the strain energy sum_g w det J sigma:eps / 2 = u.f / 2 (J).
+// f = K u for one element (Real = double) or a pack of elements (Real = Pack<L>,
+// their reference data interleaved value by value: load<Real>), in N for u in m;
+// the volume-averaged stress (Pa) and the strain energy
+// sum_g w det J sigma:eps / 2 = u.f / 2 (J).
 //   D_g = du/dxi at g (from the modes of u), H_g = D_g dxi/dx, sigma_g = C : sym(H_g),
 //   P_g = w det J sigma_g (dxi/dx)^T, and f = sum_g B_g^T sigma_g w det J assembled
 //   in mode space: F_m = sum_g sum_a P_g[:, a] d phi_m/dxi_a (g), f_I = sum_m phi_m(I) F_m / 8.
-// Every array below is indexed [..][g]: the loops over g are the vector loops.
-inline double internal_forces(const double* reference, double lambda, double mu, const ElementVectors& u,
-                              ElementVectors& f, material::SymTensor& mean_stress) {
+// One Gauss point after the other, each fully unrolled (the signs are constants):
+// the vector lanes are the elements of the pack, so every operation is a full-width
+// one (the single-element version's 8-point vectors fill only 2 or 4 lanes and need
+// reductions). Sums over g run in the order g = 0..7 for any Real.
+template <class Real>
+inline Real internal_forces(const double* reference, double lambda, double mu, const BasicElementVectors<Real>& u,
+                            BasicElementVectors<Real>& f, std::array<Real, 6>& mean_stress) {
   using namespace detail;
-  const ElementModes c = modes_from_nodal(u);
+  const BasicElementModes<Real> c = modes_from_nodal(u);
   constexpr double a = gauss_abscissa, a2 = gauss_abscissa * gauss_abscissa;
-  const double* r = reference;  // r[8 k + g]
-  const double* weight = reference + 72;
-  const std::array<const std::array<double, 8>*, 3> modes{&c.x, &c.y, &c.z};
-
-  // D[3 i + a][g] = du_i/dxi_a at g; the abscissa scales the mode coefficients.
-  alignas(16) double d[9][8];
+  const std::array<const std::array<Real, 8>*, 3> modes{&c.x, &c.y, &c.z};
+  // The mode coefficients that D needs, the abscissa folded into the higher ones.
+  Real m1[3], m2[3], m3[3], m4[3], m5[3], m6[3], m7[3];
   for (int i = 0; i < 3; ++i) {
-    const std::array<double, 8>& m = *modes[i];
-    const double m1 = m[1], m2 = m[2], m3 = m[3], m4 = a * m[4], m5 = a * m[5], m6 = a * m[6], m7 = a2 * m[7];
-    for (int g = 0; g < 8; ++g) {
-      d[3 * i + 0][g] = m1 + gauss_sign_zeta[g] * m5 + gauss_sign_eta[g] * m6 + gauss_sign_eta_zeta[g] * m7;
-      d[3 * i + 1][g] = m2 + gauss_sign_zeta[g] * m4 + gauss_sign_xi[g] * m6 + gauss_sign_zeta_xi[g] * m7;
-      d[3 * i + 2][g] = m3 + gauss_sign_eta[g] * m4 + gauss_sign_xi[g] * m5 + gauss_sign_xi_eta[g] * m7;
-    }
+    const std::array<Real, 8>& m = *modes[i];
+    m1[i] = m[1], m2[i] = m[2], m3[i] = m[3];
+    m4[i] = a * m[4], m5[i] = a * m[5], m6[i] = a * m[6], m7[i] = a2 * m[7];
   }
-  // H_ij = sum_a D_ia dxi_a/dx_j, then the weighted stress s = (w det J / 8) sigma.
-  alignas(16) double s[6][8];
-  for (int g = 0; g < 8; ++g) {
-    double h[9];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        h[3 * i + j] = d[3 * i][g] * r[8 * j + g] + d[3 * i + 1][g] * r[8 * (3 + j) + g] +
-                       d[3 * i + 2][g] * r[8 * (6 + j) + g];
-    const double w = weight[g];
-    const double lambda_trace = lambda * (h[0] + h[4] + h[8]);
-    s[0][g] = w * (lambda_trace + 2.0 * mu * h[0]);
-    s[1][g] = w * (lambda_trace + 2.0 * mu * h[4]);
-    s[2][g] = w * (lambda_trace + 2.0 * mu * h[8]);
-    s[3][g] = w * mu * (h[1] + h[3]);
-    s[4][g] = w * mu * (h[5] + h[7]);
-    s[5][g] = w * mu * (h[2] + h[6]);
-  }
-  const double inverse_volume_8 = reference[80];
-  for (int k = 0; k < 6; ++k) {
-    double sum = 0.0;
-    for (int g = 0; g < 8; ++g) sum += s[k][g];
-    mean_stress[k] = sum * inverse_volume_8;
-  }
-  // P_ia = sum_j s_ij dxi_a/dx_j; the mode forces are sums over g of P with signs.
-  std::array<double, 8> fx{}, fy{}, fz{};
-  const std::array<std::array<double, 8>*, 3> force_modes{&fx, &fy, &fz};
+  const double two_mu = 2.0 * mu;
+  std::array<Real, 6> stress_sum{};
+  // F_m per component i (m = 1..7, before the abscissa scaling of 4..7).
+  Real force[3][8] = {};
   constexpr int row[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};  // s_ij in SymTensor order
-  for (int i = 0; i < 3; ++i) {
-    alignas(16) double p[3][8];
-    for (int k = 0; k < 3; ++k)
-      for (int g = 0; g < 8; ++g)
-        p[k][g] = s[row[i][0]][g] * r[8 * (3 * k) + g] + s[row[i][1]][g] * r[8 * (3 * k + 1) + g] +
-                  s[row[i][2]][g] * r[8 * (3 * k + 2) + g];
-    double f1 = 0, f2 = 0, f3 = 0, f4 = 0, f5 = 0, f6 = 0, f7 = 0;
-    for (int g = 0; g < 8; ++g) {
-      f1 += p[0][g];
-      f2 += p[1][g];
-      f3 += p[2][g];
-      f4 += gauss_sign_zeta[g] * p[1][g] + gauss_sign_eta[g] * p[2][g];
-      f5 += gauss_sign_zeta[g] * p[0][g] + gauss_sign_xi[g] * p[2][g];
-      f6 += gauss_sign_eta[g] * p[0][g] + gauss_sign_xi[g] * p[1][g];
-      f7 +=
-          gauss_sign_eta_zeta[g] * p[0][g] + gauss_sign_zeta_xi[g] * p[1][g] + gauss_sign_xi_eta[g] * p[2][g];
+#pragma GCC unroll 8
+  for (int g = 0; g < 8; ++g) {
+    const double sx = gauss_sign_xi[g], se = gauss_sign_eta[g], sz = gauss_sign_zeta[g];
+    const double sez = gauss_sign_eta_zeta[g], szx = gauss_sign_zeta_xi[g], sxe = gauss_sign_xi_eta[g];
+    // D[3 i + a] = du_i/dxi_a at g.
+    Real d[9];
+    for (int i = 0; i < 3; ++i) {
+      d[3 * i + 0] = m1[i] + sz * m5[i] + se * m6[i] + sez * m7[i];
+      d[3 * i + 1] = m2[i] + sz * m4[i] + sx * m6[i] + szx * m7[i];
+      d[3 * i + 2] = m3[i] + se * m4[i] + sx * m5[i] + sxe * m7[i];
     }
-    std::array<double, 8>& fm = *force_modes[i];
-    fm = {0.0, f1, f2, f3, a * f4, a * f5, a * f6, a2 * f7};
+    Real r[9];  // dxi_a/dx_j at g, row-major (a, j)
+    for (int k = 0; k < 9; ++k) r[k] = load<Real>(reference, 10 * g + k);
+    // H_ij = sum_a D_ia dxi_a/dx_j, then the weighted stress s = (w det J / 8) sigma.
+    Real h[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) h[3 * i + j] = d[3 * i] * r[j] + d[3 * i + 1] * r[3 + j] + d[3 * i + 2] * r[6 + j];
+    const Real w = load<Real>(reference, 10 * g + 9);
+    const Real lambda_trace = lambda * (h[0] + h[4] + h[8]);
+    const Real s[6] = {w * (lambda_trace + two_mu * h[0]), w * (lambda_trace + two_mu * h[4]),
+                       w * (lambda_trace + two_mu * h[8]), w * (mu * (h[1] + h[3])),
+                       w * (mu * (h[5] + h[7])),           w * (mu * (h[2] + h[6]))};
+    for (int k = 0; k < 6; ++k) stress_sum[k] += s[k];
+    // P_ia = sum_j s_ij dxi_a/dx_j; the mode forces are sums over g of P with signs.
+    for (int i = 0; i < 3; ++i) {
+      Real p[3];
+      for (int k = 0; k < 3; ++k)
+        p[k] = s[row[i][0]] * r[3 * k] + s[row[i][1]] * r[3 * k + 1] + s[row[i][2]] * r[3 * k + 2];
+      Real* fm = force[i];
+      fm[1] += p[0];
+      fm[2] += p[1];
+      fm[3] += p[2];
+      fm[4] += sz * p[1] + se * p[2];
+      fm[5] += sz * p[0] + sx * p[2];
+      fm[6] += se * p[0] + sx * p[1];
+      fm[7] += sez * p[0] + szx * p[1] + sxe * p[2];
+    }
+  }
+  const Real inverse_volume_8 = load<Real>(reference, 80);
+  for (int k = 0; k < 6; ++k) mean_stress[k] = stress_sum[k] * inverse_volume_8;
+  std::array<Real, 8> fx{}, fy{}, fz{};
+  const std::array<std::array<Real, 8>*, 3> force_modes{&fx, &fy, &fz};
+  for (int i = 0; i < 3; ++i) {
+    const Real* fm = force[i];
+    *force_modes[i] = {Real{}, fm[1], fm[2], fm[3], a * fm[4], a * fm[5], a * fm[6], a2 * fm[7]};
   }
   f.x = nodal_from_modes(fx);
   f.y = nodal_from_modes(fy);
   f.z = nodal_from_modes(fz);
   // Strain energy = u.f / 2 = (8/2) sum_m c_m . F_m / 8 (orthogonality of the modes).
-  double energy = 0.0;
+  Real energy{};
   for (int k = 1; k < 8; ++k) energy += c.x[k] * fx[k] + c.y[k] * fy[k] + c.z[k] * fz[k];
   return 4.0 * energy;
 }

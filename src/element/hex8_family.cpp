@@ -2,12 +2,11 @@
 // hourglass stiffness), each with a general kernel and a constant-Jacobian one
 // for parallelepipeds (docs/theory.md, "Element library").
 //
-// Reference data layouts: every layout but the general hex8 one stores packs of L
+// Reference data layouts: every layout stores packs of L
 // consecutive elements interleaved value by value, [.., value k of Lp, .., value k of
 // Lp + L - 1, ..], for the kernels that run on L elements at once (Pack<L>: L = 2, 4
 // or 8, one vector register of the ISA the block runs, element_isa.hpp); a last
-// partial pack is padded with zeros. (The general hex8 kernel vectorises over its 8
-// Gauss points instead.)
+// partial pack is padded with zeros.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -110,14 +109,16 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
 
 // --- the four loops, one per layout
 
+template <int Lanes>
 ElementEnergies hex8_general_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
                                   const NodalVectors& u, NodalVectors& f_int, double* stress) {
+  using Real = Pack<Lanes>;
   const double lambda = block.material.lambda, mu = block.material.mu;
-  return element_loop<8, ElementVectors>(
-      block, begin, end, block.reference.data(), hex8::reference_size, u, f_int, stress,
-      [lambda, mu](const double* reference, const ElementVectors& u_local, ElementVectors& f_local,
-                   material::SymTensor& s) {
-        return ElementEnergies{hex8::internal_forces(reference, lambda, mu, u_local, f_local, s), 0.0};
+  return element_pack_loop<Lanes>(
+      block, begin, end, hex8::reference_size, u, f_int, stress,
+      [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
+                   BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+        return std::array<Real, 2>{hex8::internal_forces(reference, lambda, mu, u_local, f_local, s), Real{}};
       });
 }
 
@@ -217,8 +218,8 @@ void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
         block, x_ref, hex8::parallelepiped_reference_size, lanes_for(isa),
         [](const ElementVectors& x, double* r) { return hex8::make_parallelepiped_reference(x, r); });
   } else {
-    block.loop = for_isa<hex8_general_loop>(isa);
-    fill_reference(block, x_ref, hex8::reference_size, 1,
+    block.loop = packed_for_isa<hex8_general_loop<2>, hex8_general_loop<4>, hex8_general_loop<8>>(isa);
+    fill_reference(block, x_ref, hex8::reference_size, lanes_for(isa),
                    [](const ElementVectors& x, double* r) { return hex8::make_reference(x, r); });
   }
 }
