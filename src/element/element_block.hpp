@@ -47,6 +47,11 @@ struct ElementBlock {
   std::vector<std::uint32_t> reference_index;  // per element, where the family keeps its data there
   ElementLoopFn loop = nullptr;                // the kernel loop of the layout in use
   bool constant_jacobian = false;              // every element is a parallelepiped (a faster kernel)
+  // Per pack of the packed loops (hex8_family.cpp, packs of 2, 4 or 8 elements): 1 when
+  // the pack is a run along a node row, whose node k of lane l is node k of lane 0 plus
+  // l and whose edges 0-1, 3-2, 4-5, 7-6 join consecutive nodes (the x-rows of a
+  // structured box), so that its gather and scatter are whole-vector loads and stores.
+  std::vector<std::uint8_t> row_pack;
   // The parallel schedule (docs/performance.md): the elements in chunks of
   // element_chunk consecutive ones, grouped in colours whose chunks share no node,
   // so that the chunks of a colour scatter their forces at once without a race and

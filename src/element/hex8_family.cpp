@@ -48,6 +48,66 @@ BasicElementVectors<Pack<Lanes>> gather_pack(const NodalVectors& v,
   return local;
 }
 
+// Lane indices for __builtin_shuffle on Pack<Lanes> (one specialisation per width, as
+// for PackOf), and the one that moves every lane up by one and zero into lane 0.
+template <int Lanes>
+struct LaneIndices;
+template <>
+struct LaneIndices<2> {
+  using type = long long __attribute__((vector_size(16)));
+  static constexpr type up_one_lane{2, 0};
+};
+template <>
+struct LaneIndices<4> {
+  using type = long long __attribute__((vector_size(32)));
+  static constexpr type up_one_lane{4, 0, 1, 2};
+};
+template <>
+struct LaneIndices<8> {
+  using type = long long __attribute__((vector_size(64)));
+  static constexpr type up_one_lane{8, 0, 1, 2, 3, 4, 5, 6};
+};
+
+// The gather of a row pack (ElementBlock::row_pack): node k of the Lanes elements are
+// the consecutive nodes from nodes[k] on, one unaligned vector load per component.
+template <int Lanes>
+BasicElementVectors<Pack<Lanes>> gather_row_pack(const NodalVectors& v, const std::uint32_t* nodes) {
+  BasicElementVectors<Pack<Lanes>> local{
+      typename BasicElementVectors<Pack<Lanes>>::Uninitialized{}};  // every entry written below
+  for (int k = 0; k < 8; ++k) {
+    local.x[k] = load<Pack<Lanes>>(v.x.data() + nodes[k], 0);
+    local.y[k] = load<Pack<Lanes>>(v.y.data() + nodes[k], 0);
+    local.z[k] = load<Pack<Lanes>>(v.z.data() + nodes[k], 0);
+  }
+  return local;
+}
+
+// The scatter of a row pack: along each row edge (a, b = a + 1 in node numbers), lane l
+// adds f_a to node n + l and f_b to node n + l + 1 (n: node a of lane 0). So node
+// n + l receives f_a of lane l plus f_b of lane l - 1: summed in the registers (f_b
+// moved up one lane), then one vector load-add-store and the last lane's f_b alone.
+template <int Lanes>
+void scatter_add_row_pack(const BasicElementVectors<Pack<Lanes>>& local, const std::uint32_t* nodes,
+                          NodalVectors& v) {
+  using Real = Pack<Lanes>;
+  // Lane l takes lane l - 1 of the first operand, lane 0 the zero of the second.
+  const typename LaneIndices<Lanes>::type up_one_lane = LaneIndices<Lanes>::up_one_lane;
+  constexpr int row_edges[4][2] = {{0, 1}, {3, 2}, {4, 5}, {7, 6}};
+  const std::array<const std::array<Real, 8>*, 3> forces{&local.x, &local.y, &local.z};
+  const std::array<double*, 3> out{v.x.data(), v.y.data(), v.z.data()};
+  for (const auto& edge : row_edges) {
+    const std::uint32_t n = nodes[edge[0]];
+    for (int c = 0; c < 3; ++c) {
+      const Real f_a = (*forces[std::size_t(c)])[std::size_t(edge[0])];
+      const Real f_b = (*forces[std::size_t(c)])[std::size_t(edge[1])];
+      double* p = out[std::size_t(c)] + n;
+      Real sum = load<Real>(p, 0) + (f_a + __builtin_shuffle(f_b, Real{}, up_one_lane));
+      std::memcpy(p, &sum, sizeof sum);
+      p[Lanes] += f_b[Lanes - 1];
+    }
+  }
+}
+
 template <class Real>
 double lane_value(const Real& pack, int lane) {
   return pack[lane];
@@ -71,7 +131,8 @@ void scatter_add_lane(const BasicElementVectors<Real>& local, int lane, const st
 // stress) on the pack at once returns their energies (strain, hourglass). Lanes
 // outside [begin, end) are computed but neither scattered nor counted; the lanes past
 // the block's last element take its first lane's nodes (their reference data are zero).
-// The forces are added lane by lane, in element order: the same order for any pack width.
+// The forces are added lane by lane, in element order (a row pack: summed along its row
+// edges first); the same order for any number of threads.
 template <int Lanes, class Kernel>
 ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
                                   std::size_t stride, const NodalVectors& u, NodalVectors& f_int,
@@ -88,14 +149,19 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
       const std::uint32_t present = element[lane] < block.count ? element[lane] : Lanes * pack;
       nodes[lane] = block.connectivity + 8 * static_cast<std::size_t>(present);
     }
-    const BasicElementVectors<Real> u_local = gather_pack<Lanes>(u, nodes);
+    // A whole row pack inside the range: vector gather and scatter.
+    const bool row = !block.row_pack.empty() && block.row_pack[pack] != 0 && element[0] >= begin &&
+                     element[Lanes - 1] < end;
+    const BasicElementVectors<Real> u_local =
+        row ? gather_row_pack<Lanes>(u, nodes[0]) : gather_pack<Lanes>(u, nodes);
     BasicElementVectors<Real> f_local{typename BasicElementVectors<Real>::Uninitialized{}};  // written whole
     std::array<Real, 6> element_stress;
     const std::array<Real, 2> energies =
         kernel(reference + Lanes * stride * pack, u_local, f_local, element_stress);
+    if (row) scatter_add_row_pack<Lanes>(f_local, nodes[0], f_int);
     for (int lane = 0; lane < Lanes; ++lane) {
       if (element[lane] < begin || element[lane] >= end) continue;
-      scatter_add_lane(f_local, lane, nodes[lane], f_int);
+      if (!row) scatter_add_lane(f_local, lane, nodes[lane], f_int);
       total.strain += lane_value(energies[0], lane);
       total.hourglass += lane_value(energies[1], lane);
       if (stress != nullptr) {
@@ -198,6 +264,20 @@ void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t 
   }
 }
 
+// ElementBlock::row_pack for packs of `lanes` elements.
+void mark_row_packs(ElementBlock& block, int lanes) {
+  const std::uint32_t width = static_cast<std::uint32_t>(lanes);
+  block.row_pack.assign((block.count + width - 1) / width, 0);
+  for (std::uint32_t pack = 0; pack < block.count / width; ++pack) {
+    const std::uint32_t* first = block.connectivity + 8 * static_cast<std::size_t>(width * pack);
+    bool row = first[1] == first[0] + 1 && first[2] == first[3] + 1 && first[5] == first[4] + 1 &&
+               first[6] == first[7] + 1;
+    for (std::uint32_t lane = 1; lane < width && row; ++lane)
+      for (int k = 0; k < 8; ++k) row = row && first[8 * lane + k] == first[k] + lane;
+    block.row_pack[pack] = row ? 1 : 0;
+  }
+}
+
 bool all_parallelepipeds(const ElementBlock& block, const NodalVectors& x_ref) {
   for (std::uint32_t e = 0; e < block.count; ++e)
     if (!hex8::is_parallelepiped(gather8(x_ref, block.connectivity + 8 * static_cast<std::size_t>(e))))
@@ -222,6 +302,7 @@ void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
     fill_reference(block, x_ref, hex8::reference_size, lanes_for(isa),
                    [](const ElementVectors& x, double* r) { return hex8::make_reference(x, r); });
   }
+  mark_row_packs(block, lanes_for(isa));
 }
 
 void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
@@ -241,6 +322,7 @@ void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
                      return hex8r::make_reference(x, mu, coefficient, r);
                    });
   }
+  mark_row_packs(block, lanes_for(isa));
 }
 
 // Row-sum lumping: m_I += rho integral of N_I dV (positive for every trilinear brick).
