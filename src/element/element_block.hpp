@@ -47,6 +47,7 @@ struct ElementBlock {
   std::vector<std::uint32_t> reference_index;  // per element, where the family keeps its data there
   ElementLoopFn loop = nullptr;                // the kernel loop of the layout in use
   bool constant_jacobian = false;              // every element is a parallelepiped (a faster kernel)
+  bool axis_aligned = false;  // hex8: and has its edges along x, y, z (diagonal dxi/dx: faster still)
   // Per pack of the packed loops (hex8_family.cpp, packs of 2, 4 or 8 elements): 1 when
   // the pack is a run along a node row, whose node k of lane l is node k of lane 0 plus
   // l and whose edges 0-1, 3-2, 4-5, 7-6 join consecutive nodes (the x-rows of a

@@ -13,53 +13,13 @@
 #include <cstring>
 #include <limits>
 
+#include "common/simd_pack.hpp"
 #include "material/elastic.hpp"
 
 namespace exdyn::element {
 
 using Vector3 = std::array<double, 3>;
 using Matrix3 = std::array<double, 9>;  // row-major
-
-// Lanes elements' values side by side, one per vector lane: 2 under SSE (x86-64-v2),
-// 4 under AVX2 (x86-64-v3), 8 under AVX-512 (x86-64-v4). The kernels that are
-// templates on the value type (hex8 parallelepiped, hex8r) run on packs of elements
-// with it, and on single elements with double.
-// (One specialisation per width: g++ drops vector_size on a typedef whose size
-// depends on a template parameter.)
-template <int Lanes>
-struct PackOf;
-template <>
-struct PackOf<2> {
-  using type = double __attribute__((vector_size(16)));
-};
-template <>
-struct PackOf<4> {
-  using type = double __attribute__((vector_size(32)));
-};
-template <>
-struct PackOf<8> {
-  using type = double __attribute__((vector_size(64)));
-};
-template <int Lanes>
-using Pack = typename PackOf<Lanes>::type;
-using Pack2 = Pack<2>;
-
-// Elements in one value: 1 for double, Lanes for Pack<Lanes>.
-template <class Real>
-inline constexpr int lanes_of = static_cast<int>(sizeof(Real) / sizeof(double));
-
-// Value k of an element's reference data: data[k] for one element; for a pack of
-// elements, whose data are interleaved, the Lanes values at data[Lanes k].
-template <class Real>
-inline Real load(const double* data, int k) {
-  if constexpr (lanes_of<Real> == 1) {
-    return data[k];
-  } else {
-    Real value;
-    std::memcpy(&value, data + lanes_of<Real> * k, sizeof value);
-    return value;
-  }
-}
 
 // One vector per node of one element (or element pair), the components apart
 // (x[I], y[I], z[I] for node I in VTK order): gathered from and scattered to NodalVectors.
@@ -377,8 +337,9 @@ inline constexpr double gauss_sign_xi_eta[8] = {1, -1, 1, -1, 1, -1, 1, -1};
 // one (the single-element version's 8-point vectors fill only 2 or 4 lanes and need
 // reductions). Sums over g run in the order g = 0..7 for any Real.
 template <class Real>
-inline Real internal_forces(const double* reference, double lambda, double mu, const BasicElementVectors<Real>& u,
-                            BasicElementVectors<Real>& f, std::array<Real, 6>& mean_stress) {
+inline Real internal_forces(const double* reference, double lambda, double mu,
+                            const BasicElementVectors<Real>& u, BasicElementVectors<Real>& f,
+                            std::array<Real, 6>& mean_stress) {
   using namespace detail;
   const BasicElementModes<Real> c = modes_from_nodal(u);
   constexpr double a = gauss_abscissa, a2 = gauss_abscissa * gauss_abscissa;
@@ -411,7 +372,8 @@ inline Real internal_forces(const double* reference, double lambda, double mu, c
     // H_ij = sum_a D_ia dxi_a/dx_j, then the weighted stress s = (w det J / 8) sigma.
     Real h[9];
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) h[3 * i + j] = d[3 * i] * r[j] + d[3 * i + 1] * r[3 + j] + d[3 * i + 2] * r[6 + j];
+      for (int j = 0; j < 3; ++j)
+        h[3 * i + j] = d[3 * i] * r[j] + d[3 * i + 1] * r[3 + j] + d[3 * i + 2] * r[6 + j];
     const Real w = load<Real>(reference, 10 * g + 9);
     const Real lambda_trace = lambda * (h[0] + h[4] + h[8]);
     const Real s[6] = {w * (lambda_trace + two_mu * h[0]), w * (lambda_trace + two_mu * h[4]),
@@ -475,11 +437,24 @@ inline double make_parallelepiped_reference(const ElementVectors& x_ref, double*
   return det;
 }
 
+// True when the parallelepiped's edges run along x, y and z (the boxes of this
+// program): its inverse Jacobian is diagonal, to `tolerance` relative to the largest
+// entry, and the axis-aligned kernel below applies.
+inline bool is_axis_aligned(const double* parallelepiped_reference, double tolerance = 1.0e-12) {
+  const double* r = parallelepiped_reference;
+  const double diagonal = std::max({std::abs(r[0]), std::abs(r[4]), std::abs(r[8])});
+  const double off_diagonal = std::max(
+      {std::abs(r[1]), std::abs(r[2]), std::abs(r[3]), std::abs(r[5]), std::abs(r[6]), std::abs(r[7])});
+  return off_diagonal <= tolerance * diagonal;
+}
+
 namespace detail {
 // One term t whose natural gradient M_t has the columns flagged (the others are
 // zero): sigma_t = C : sym(M_t dxi/dx), and out_a += weight (sigma_t (dxi/dx)^T)[:, a]
-// for the same columns. Returns sigma_t.
-template <bool column0, bool column1, bool column2, class Real>
+// for the same columns. Returns sigma_t. AxisAligned: dxi/dx is diagonal (only its
+// entries 0, 4, 8 are read), H_ij = (M_t)_ij dxi_j/dx_j and out_a = weight sigma[:, a] dxi_a/dx_a,
+// a third of the products.
+template <bool column0, bool column1, bool column2, bool AxisAligned, class Real>
 inline std::array<Real, 6> parallelepiped_term(double lambda, double mu,
                                                const std::array<Real, 9>& inverse_jacobian,
                                                const std::array<Real, 3>& d0, const std::array<Real, 3>& d1,
@@ -491,9 +466,14 @@ inline std::array<Real, 6> parallelepiped_term(double lambda, double mu,
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       Real sum{};
-      if constexpr (column0) sum += d0[i] * r[j];
-      if constexpr (column1) sum += d1[i] * r[3 + j];
-      if constexpr (column2) sum += d2[i] * r[6 + j];
+      if constexpr (AxisAligned) {
+        const std::array<Real, 3>& d = j == 0 ? d0 : (j == 1 ? d1 : d2);
+        if ((j == 0 && column0) || (j == 1 && column1) || (j == 2 && column2)) sum = d[i] * r[4 * j];
+      } else {
+        if constexpr (column0) sum += d0[i] * r[j];
+        if constexpr (column1) sum += d1[i] * r[3 + j];
+        if constexpr (column2) sum += d2[i] * r[6 + j];
+      }
       h[3 * i + j] = sum;
     }
   const std::array<Real, 6> s = stress_from_gradient(lambda, mu, h);
@@ -501,9 +481,14 @@ inline std::array<Real, 6> parallelepiped_term(double lambda, double mu,
                                weight * s[3], weight * s[4], weight * s[5]};
   // (sigma (dxi/dx)^T)_ia = sum_j sigma_ij dxi_a/dx_j, sigma rows (xx xy xz), (xy yy yz), (xz yz zz).
   const auto column = [&](int a, std::array<Real, 3>& out) {
-    out[0] += ws[0] * r[3 * a] + ws[3] * r[3 * a + 1] + ws[5] * r[3 * a + 2];
-    out[1] += ws[3] * r[3 * a] + ws[1] * r[3 * a + 1] + ws[4] * r[3 * a + 2];
-    out[2] += ws[5] * r[3 * a] + ws[4] * r[3 * a + 1] + ws[2] * r[3 * a + 2];
+    if constexpr (AxisAligned) {
+      constexpr int row[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};  // sigma_ia in SymTensor order
+      for (int i = 0; i < 3; ++i) out[i] += ws[row[i][a]] * r[4 * a];
+    } else {
+      out[0] += ws[0] * r[3 * a] + ws[3] * r[3 * a + 1] + ws[5] * r[3 * a + 2];
+      out[1] += ws[3] * r[3 * a] + ws[1] * r[3 * a + 1] + ws[4] * r[3 * a + 2];
+      out[2] += ws[5] * r[3 * a] + ws[4] * r[3 * a + 1] + ws[2] * r[3 * a + 2];
+    }
   };
   if constexpr (column0) column(0, out0);
   if constexpr (column1) column(1, out1);
@@ -513,9 +498,10 @@ inline std::array<Real, 6> parallelepiped_term(double lambda, double mu,
 }  // namespace detail
 
 // For one element (Real = double, reference data as written by
-// make_parallelepiped_reference) or an element pair (Real = Pack2, the two
-// elements' data interleaved value by value).
-template <class Real>
+// make_parallelepiped_reference) or a pack of elements (Real = Pack<L>, the
+// elements' data interleaved value by value). AxisAligned: every element of the
+// pack is_axis_aligned, and its inverse Jacobian's off-diagonal entries are not read.
+template <bool AxisAligned = false, class Real>
 inline Real parallelepiped_internal_forces(const double* reference, double lambda, double mu,
                                            const BasicElementVectors<Real>& u, BasicElementVectors<Real>& f,
                                            std::array<Real, 6>& mean_stress) {
@@ -530,22 +516,22 @@ inline Real parallelepiped_internal_forces(const double* reference, double lambd
   std::array<Real, 3> unused{};
   const std::array<Real, 3>& none = unused;
   // M_1 = [c1 | c2 | c3]
-  mean_stress = detail::parallelepiped_term<true, true, true>(lambda, mu, inverse_jacobian, cm[1], cm[2],
-                                                              cm[3], w, force[1], force[2], force[3]);
+  mean_stress = detail::parallelepiped_term<true, true, true, AxisAligned>(
+      lambda, mu, inverse_jacobian, cm[1], cm[2], cm[3], w, force[1], force[2], force[3]);
   // M_xi = [0 | c6 | c5], M_eta = [c6 | 0 | c4], M_zeta = [c5 | c4 | 0]
-  detail::parallelepiped_term<false, true, true>(lambda, mu, inverse_jacobian, none, cm[6], cm[5], w_linear,
-                                                 unused, force[6], force[5]);
-  detail::parallelepiped_term<true, false, true>(lambda, mu, inverse_jacobian, cm[6], none, cm[4], w_linear,
-                                                 force[6], unused, force[4]);
-  detail::parallelepiped_term<true, true, false>(lambda, mu, inverse_jacobian, cm[5], cm[4], none, w_linear,
-                                                 force[5], force[4], unused);
+  detail::parallelepiped_term<false, true, true, AxisAligned>(lambda, mu, inverse_jacobian, none, cm[6],
+                                                              cm[5], w_linear, unused, force[6], force[5]);
+  detail::parallelepiped_term<true, false, true, AxisAligned>(lambda, mu, inverse_jacobian, cm[6], none,
+                                                              cm[4], w_linear, force[6], unused, force[4]);
+  detail::parallelepiped_term<true, true, false, AxisAligned>(lambda, mu, inverse_jacobian, cm[5], cm[4],
+                                                              none, w_linear, force[5], force[4], unused);
   // M_etazeta = [c7 | 0 | 0], M_zetaxi = [0 | c7 | 0], M_xieta = [0 | 0 | c7]
-  detail::parallelepiped_term<true, false, false>(lambda, mu, inverse_jacobian, cm[7], none, none, w_bilinear,
-                                                  force[7], unused, unused);
-  detail::parallelepiped_term<false, true, false>(lambda, mu, inverse_jacobian, none, cm[7], none, w_bilinear,
-                                                  unused, force[7], unused);
-  detail::parallelepiped_term<false, false, true>(lambda, mu, inverse_jacobian, none, none, cm[7], w_bilinear,
-                                                  unused, unused, force[7]);
+  detail::parallelepiped_term<true, false, false, AxisAligned>(lambda, mu, inverse_jacobian, cm[7], none,
+                                                               none, w_bilinear, force[7], unused, unused);
+  detail::parallelepiped_term<false, true, false, AxisAligned>(lambda, mu, inverse_jacobian, none, cm[7],
+                                                               none, w_bilinear, unused, force[7], unused);
+  detail::parallelepiped_term<false, false, true, AxisAligned>(lambda, mu, inverse_jacobian, none, none,
+                                                               cm[7], w_bilinear, unused, unused, force[7]);
   std::array<Real, 8> fx{}, fy{}, fz{};
   Real energy{};
   for (int k = 1; k < 8; ++k) {

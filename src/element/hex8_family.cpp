@@ -48,25 +48,15 @@ BasicElementVectors<Pack<Lanes>> gather_pack(const NodalVectors& v,
   return local;
 }
 
-// Lane indices for __builtin_shuffle on Pack<Lanes> (one specialisation per width, as
-// for PackOf), and the one that moves every lane up by one and zero into lane 0.
+// The lane indices for __builtin_shuffle that move every lane up by one and the zero
+// of the second operand into lane 0.
 template <int Lanes>
-struct LaneIndices;
-template <>
-struct LaneIndices<2> {
-  using type = long long __attribute__((vector_size(16)));
-  static constexpr type up_one_lane{2, 0};
-};
-template <>
-struct LaneIndices<4> {
-  using type = long long __attribute__((vector_size(32)));
-  static constexpr type up_one_lane{4, 0, 1, 2};
-};
-template <>
-struct LaneIndices<8> {
-  using type = long long __attribute__((vector_size(64)));
-  static constexpr type up_one_lane{8, 0, 1, 2, 3, 4, 5, 6};
-};
+constexpr IntPack<Lanes> up_one_lane() {
+  IntPack<Lanes> indices{};
+  indices[0] = Lanes;
+  for (int lane = 1; lane < Lanes; ++lane) indices[lane] = lane - 1;
+  return indices;
+}
 
 // The gather of a row pack (ElementBlock::row_pack): node k of the Lanes elements are
 // the consecutive nodes from nodes[k] on, one unaligned vector load per component.
@@ -90,8 +80,7 @@ template <int Lanes>
 void scatter_add_row_pack(const BasicElementVectors<Pack<Lanes>>& local, const std::uint32_t* nodes,
                           NodalVectors& v) {
   using Real = Pack<Lanes>;
-  // Lane l takes lane l - 1 of the first operand, lane 0 the zero of the second.
-  const typename LaneIndices<Lanes>::type up_one_lane = LaneIndices<Lanes>::up_one_lane;
+  const IntPack<Lanes> shift = up_one_lane<Lanes>();
   constexpr int row_edges[4][2] = {{0, 1}, {3, 2}, {4, 5}, {7, 6}};
   const std::array<const std::array<Real, 8>*, 3> forces{&local.x, &local.y, &local.z};
   const std::array<double*, 3> out{v.x.data(), v.y.data(), v.z.data()};
@@ -101,7 +90,7 @@ void scatter_add_row_pack(const BasicElementVectors<Pack<Lanes>>& local, const s
       const Real f_a = (*forces[std::size_t(c)])[std::size_t(edge[0])];
       const Real f_b = (*forces[std::size_t(c)])[std::size_t(edge[1])];
       double* p = out[std::size_t(c)] + n;
-      Real sum = load<Real>(p, 0) + (f_a + __builtin_shuffle(f_b, Real{}, up_one_lane));
+      Real sum = load<Real>(p, 0) + (f_a + __builtin_shuffle(f_b, Real{}, shift));
       std::memcpy(p, &sum, sizeof sum);
       p[Lanes] += f_b[Lanes - 1];
     }
@@ -188,7 +177,7 @@ ElementEnergies hex8_general_loop(const ElementBlock& block, std::uint32_t begin
       });
 }
 
-template <int Lanes>
+template <int Lanes, bool AxisAligned>
 ElementEnergies hex8_parallelepiped_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
                                          const NodalVectors& u, NodalVectors& f_int, double* stress) {
   using Real = Pack<Lanes>;
@@ -198,7 +187,8 @@ ElementEnergies hex8_parallelepiped_loop(const ElementBlock& block, std::uint32_
       [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
                    BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
         return std::array<Real, 2>{
-            hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s), Real{}};
+            hex8::parallelepiped_internal_forces<AxisAligned>(reference, lambda, mu, u_local, f_local, s),
+            Real{}};
       });
 }
 
@@ -278,6 +268,17 @@ void mark_row_packs(ElementBlock& block, int lanes) {
   }
 }
 
+// True when every element is a parallelepiped with edges along x, y and z.
+bool all_axis_aligned(const ElementBlock& block, const NodalVectors& x_ref) {
+  std::array<double, hex8::parallelepiped_reference_size> reference{};
+  for (std::uint32_t e = 0; e < block.count; ++e) {
+    hex8::make_parallelepiped_reference(gather8(x_ref, block.connectivity + 8 * static_cast<std::size_t>(e)),
+                                        reference.data());
+    if (!hex8::is_axis_aligned(reference.data())) return false;
+  }
+  return true;
+}
+
 bool all_parallelepipeds(const ElementBlock& block, const NodalVectors& x_ref) {
   for (std::uint32_t e = 0; e < block.count; ++e)
     if (!hex8::is_parallelepiped(gather8(x_ref, block.connectivity + 8 * static_cast<std::size_t>(e))))
@@ -285,15 +286,19 @@ bool all_parallelepipeds(const ElementBlock& block, const NodalVectors& x_ref) {
   return true;
 }
 
-// The constant-Jacobian kernels when every element is a parallelepiped (the
-// structured boxes of this program), the general ones otherwise.
+// The constant-Jacobian kernels when every element is a parallelepiped, their
+// axis-aligned form when every one also has its edges along x, y, z (the structured
+// boxes of this program), the general ones otherwise.
 void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
   const Isa isa = selected_isa();
   block.constant_jacobian = all_parallelepipeds(block, x_ref);
   if (block.constant_jacobian) {
-    block.loop =
-        packed_for_isa<hex8_parallelepiped_loop<2>, hex8_parallelepiped_loop<4>, hex8_parallelepiped_loop<8>>(
-            isa);
+    block.axis_aligned = all_axis_aligned(block, x_ref);
+    block.loop = block.axis_aligned
+                     ? packed_for_isa<hex8_parallelepiped_loop<2, true>, hex8_parallelepiped_loop<4, true>,
+                                      hex8_parallelepiped_loop<8, true>>(isa)
+                     : packed_for_isa<hex8_parallelepiped_loop<2, false>, hex8_parallelepiped_loop<4, false>,
+                                      hex8_parallelepiped_loop<8, false>>(isa);
     fill_reference(
         block, x_ref, hex8::parallelepiped_reference_size, lanes_for(isa),
         [](const ElementVectors& x, double* r) { return hex8::make_parallelepiped_reference(x, r); });

@@ -92,7 +92,7 @@ using Energies = BasicEnergies<double>;
 
 // f = (K_mean + K_hourglass) u (N), the stress (Pa) and the energies (J) of one
 // element (Real = double, reference data as written by make_reference) or an
-// element pair (Real = Pack2, the two elements' data interleaved value by value).
+// pack of elements (Real = Pack<L>, their data interleaved value by value).
 template <class Real>
 inline BasicEnergies<Real> internal_forces(const double* reference, double lambda, double mu,
                                            const BasicElementVectors<Real>& u, BasicElementVectors<Real>& f,
@@ -174,8 +174,8 @@ inline double make_parallelepiped_reference(const ElementVectors& x_ref, double 
 }
 
 // For one element (Real = double, reference data as written by
-// make_parallelepiped_reference) or an element pair (Real = Pack2, the two
-// elements' data interleaved value by value).
+// make_parallelepiped_reference) or a pack of elements (Real = Pack<L>, their
+// data interleaved value by value).
 template <class Real>
 inline BasicEnergies<Real> parallelepiped_internal_forces(const double* reference, double lambda, double mu,
                                                           const BasicElementVectors<Real>& u,

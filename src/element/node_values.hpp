@@ -5,7 +5,7 @@
 
 namespace exdyn::element {
 
-// One vector per node of one element (or of an element pair, Real = Pack2), the
+// One vector per node of one element (or of a pack of elements, Real = Pack<L>), the
 // components apart: x[I], y[I], z[I] for local node I.
 template <int Nodes, class Real = double>
 struct NodeValues {

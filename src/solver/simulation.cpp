@@ -27,6 +27,7 @@
 #include "output/result_writer.hpp"
 #include "solver/contact_setup.hpp"
 #include "solver/model.hpp"
+#include "solver/nodal_update.hpp"
 
 namespace exdyn::solver {
 
@@ -174,41 +175,30 @@ struct NodalUpdate {
 // bits on any number of threads). v^{n+1/2} and u^{n+1} go to other_velocity and
 // next_displacement: v^{n-1/2} and u^n stay for output, the guards and a step back.
 // On success the velocities are swapped (velocity = v^{n+1/2}); the displacements
-// are swapped at the end of the step. Three passes before (accelerations, velocities,
-// displacements); the same operations in the same order, so the same bits.
-NodalUpdate update_nodes(const Model& model, State& state, double dt, bool first_step) {
+// are swapped at the end of the step. update_range is the version of the selected
+// ISA (nodal_update.hpp): packs of nodes, one partial sum per lane.
+NodalUpdate update_nodes(const Model& model, State& state, double dt, bool first_step,
+                         NodalUpdateFn update_range) {
+  NodalArrays arrays;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const int component = static_cast<int>(c);
+    arrays.internal_force[c] = state.internal_force.component(component).data();
+    arrays.contact_force[c] = state.contact_force.component(component).data();
+    arrays.fixed[c] = state.fixed[c].data();
+    arrays.velocity[c] = state.velocity.component(component).data();
+    arrays.displacement[c] = state.displacement.component(component).data();
+    arrays.acceleration[c] = state.acceleration.component(component).data();
+    arrays.next_velocity[c] = state.other_velocity.component(component).data();
+    arrays.next_displacement[c] = state.next_displacement.component(component).data();
+  }
+  arrays.mass = model.mass.data();
+  arrays.inverse_mass = model.inverse_mass.data();
   for_each_chunk(model.mesh.node_count(), [&](std::size_t begin, std::size_t end, std::size_t k) {
-    double non_finite = 0.0, twice_kinetic = 0.0, largest = 0.0, m_a2 = 0.0;
-    const double* inverse_mass = model.inverse_mass.data();
-    const double* m = model.mass.data();
-    const double half_step_back = -0.5 * dt;
-    for (int c = 0; c < 3; ++c) {
-      const double* f = state.internal_force.component(c).data();
-      const double* f_contact = state.contact_force.component(c).data();
-      const std::uint8_t* fixed = state.fixed[std::size_t(c)].data();
-      const double* v = state.velocity.component(c).data();
-      const double* u = state.displacement.component(c).data();
-      double* a = state.acceleration.component(c).data();
-      double* v_next = state.other_velocity.component(c).data();
-      double* u_next = state.next_displacement.component(c).data();
-      for (std::size_t i = begin; i < end; ++i) {
-        const double raw = (f_contact[i] - f[i]) * inverse_mass[i];
-        non_finite += 0.0 * raw;
-        const double a_i = fixed[i] ? 0.0 : raw;
-        const double v_old = first_step ? v[i] + half_step_back * a_i : v[i];
-        const double v_new = v_old + dt * a_i;
-        twice_kinetic += m[i] * v_old * v_new;
-        m_a2 += m[i] * a_i * a_i;
-        largest = std::max(largest, std::abs(v_new));
-        a[i] = a_i;
-        v_next[i] = v_new;
-        u_next[i] = u[i] + dt * v_new;
-      }
-    }
-    state.partial[0][k] = non_finite;
-    state.partial[1][k] = twice_kinetic;
-    state.partial[2][k] = m_a2;
-    state.partial[3][k] = largest;
+    const NodalSums sums = update_range(arrays, begin, end, dt, first_step);
+    state.partial[0][k] = sums.non_finite;
+    state.partial[1][k] = sums.twice_kinetic;
+    state.partial[2][k] = sums.mass_acceleration_squared;
+    state.partial[3][k] = sums.largest_component;
   });
   NodalUpdate update;
   update.finite = ordered_sum(state.partial[0]) == 0.0;
@@ -406,6 +396,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   state.velocity = initial_velocity(deck, model);
   for (auto& p : state.partial) p.assign(chunk_count(node_count), 0.0);
   StepWriter step_writer(writer, model);
+  const NodalUpdateFn nodal_update = nodal_update_for(selected_isa());  // the element blocks' ISA
 
   output::PhaseSeconds& phase = summary.phase_seconds;
   contact::ContactStatistics contact_statistics;  // all pairs together, updated every step
@@ -474,7 +465,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       }
       {
         ScopedTimer timer(phase.time_integration);
-        const NodalUpdate update = update_nodes(model, state, dt, state.step == 0);
+        const NodalUpdate update = update_nodes(model, state, dt, state.step == 0, nodal_update);
         if (!update.finite) step_back_and_stop(describe_non_finite(state) + when());
         energy.kinetic = update.kinetic;
         mean_energy = energy.total() + dt * dt * update.mass_acceleration_squared;

@@ -2,9 +2,11 @@
 // chain (../shared/reference/plate-impact.md) through the element loop.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "common/errors.hpp"
@@ -263,6 +265,55 @@ void check_odd_counts_and_ranges(bool distorted) {
         }
         EXPECT_NEAR(energies.strain + energies.hourglass, energy, 1e-12 * (energy + 1e-300));
       }
+    }
+  }
+}
+
+TEST(ElementBlock, RowPacksOfABoxAddTheForcesOfTheElementKernels) {
+  // Rows of 8 elements along x: whole packs of 2, 4 or 8 elements lie on one row, so
+  // the packed loops take their vector gather and scatter (ElementBlock::row_pack);
+  // ranges that cut a pack take the lane-by-lane path for it.
+  std::mt19937_64 rng(46);
+  const Box box = make_box(8, 2, 2, 2.5e-5);
+  NodalVectors u(box.x_ref.size());
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (std::size_t n = 0; n < u.size(); ++n)
+    u.x[n] = 1e-8 * unit(rng), u.y[n] = 1e-8 * unit(rng), u.z[n] = 1e-8 * unit(rng);
+  for (input::Formulation formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
+    const ElementBlock block =
+        make_element_block(formulation, steel, 0.05, 0, box.count, box.connectivity.data(), box.x_ref);
+    EXPECT_EQ(block.axis_aligned, formulation == input::Formulation::hex8);
+    ASSERT_FALSE(block.row_pack.empty());
+    EXPECT_TRUE(
+        std::all_of(block.row_pack.begin(), block.row_pack.end(), [](std::uint8_t r) { return r == 1; }));
+    for (const auto& [begin, end] :
+         {std::pair<std::uint32_t, std::uint32_t>{0, box.count}, {1, 9}, {4, 31}, {8, 24}}) {
+      NodalVectors f_int(box.x_ref.size());
+      std::vector<double> stress(6 * box.count, 0.0);
+      const ElementEnergies energies = add_internal_forces(block, begin, end, u, f_int, stress.data());
+      Eigen::VectorXd f_expected = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(u.size()));
+      double energy = 0.0;
+      for (std::uint32_t e = begin; e < end; ++e) {
+        const std::uint32_t* nodes = box.connectivity.data() + 8 * e;
+        const ElementVectors x = gather(box.x_ref, nodes), u_local = gather(u, nodes);
+        const testing::ReferenceResult ref =
+            formulation == input::Formulation::hex8
+                ? testing::reference_hex8(x, steel.lambda, steel.mu, u_local)
+                : testing::reference_hex8r(x, steel.lambda, steel.mu, 0.05, u_local);
+        for (int I = 0; I < 8; ++I)
+          for (int i = 0; i < 3; ++i) f_expected(3 * nodes[I] + i) += ref.force(3 * I + i);
+        energy += ref.strain_energy + ref.hourglass_energy;
+        for (int k = 0; k < 6; ++k)
+          EXPECT_NEAR(stress[6 * e + k], ref.mean_stress(k), 1e-12 * ref.mean_stress.cwiseAbs().maxCoeff());
+      }
+      const double scale = f_expected.cwiseAbs().maxCoeff();
+      for (std::size_t n = 0; n < u.size(); ++n) {
+        const Eigen::Index i = static_cast<Eigen::Index>(n);
+        EXPECT_NEAR(f_int.x[n], f_expected(3 * i), 1e-12 * scale) << begin << ".." << end;
+        EXPECT_NEAR(f_int.y[n], f_expected(3 * i + 1), 1e-12 * scale) << begin << ".." << end;
+        EXPECT_NEAR(f_int.z[n], f_expected(3 * i + 2), 1e-12 * scale) << begin << ".." << end;
+      }
+      EXPECT_NEAR(energies.strain + energies.hourglass, energy, 1e-12 * energy);
     }
   }
 }

@@ -1,0 +1,48 @@
+// The fused nodal update of the central-difference step, for a range of nodes and one
+// instruction set (common/isa.hpp): one pass over the nodes computes
+//   a^n       = M^-1 (f_contact - f_int)       (0 on fixed components)
+//   v^{n+1/2} = v^{n-1/2} + dt a^n             (first step: v^{-1/2} = v^0 - dt/2 a^0)
+//   u^{n+1}   = u^n + dt v^{n+1/2}
+// and the sums the energy and the guards need. The version for an ISA runs on packs
+// of 2, 4 or 8 nodes (its vector width) with one partial sum per lane; the lanes are
+// added in order at the end, so a range gives the same bits on any thread.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "common/isa.hpp"
+
+namespace exdyn::solver {
+
+// The nodal arrays of one step, per component c (x, y, z), and per node.
+struct NodalArrays {
+  std::array<const double*, 3> internal_force{};  // f_int(u^n), N
+  std::array<const double*, 3> contact_force{};   // f_contact(x^n), N
+  std::array<const std::uint8_t*, 3> fixed{};     // 1 where the component is fixed
+  std::array<const double*, 3> velocity{};        // v^{n-1/2}, m/s
+  std::array<const double*, 3> displacement{};    // u^n, m
+  std::array<double*, 3> acceleration{};          // a^n written, m/s^2
+  std::array<double*, 3> next_velocity{};         // v^{n+1/2} written, m/s
+  std::array<double*, 3> next_displacement{};     // u^{n+1} written, m
+  const double* mass = nullptr;                   // lumped mass, kg
+  const double* inverse_mass = nullptr;           // 1 / mass, 1/kg
+};
+
+// The sums over a range of nodes and components.
+struct NodalSums {
+  double non_finite = 0.0;                 // sum 0 * a_raw: 0 unless some a is inf or NaN
+  double twice_kinetic = 0.0;              // sum m v^{n-1/2} v^{n+1/2}, J
+  double mass_acceleration_squared = 0.0;  // sum m a^2, kg m^2/s^4
+  double largest_component = 0.0;          // max |v^{n+1/2}_c|, m/s
+};
+
+using NodalUpdateFn = NodalSums (*)(const NodalArrays& arrays, std::size_t begin, std::size_t end, double dt,
+                                    bool first_step);
+
+// The update of nodes [begin, end) compiled for `isa` (which the caller has checked
+// this CPU runs).
+NodalUpdateFn nodal_update_for(Isa isa);
+
+}  // namespace exdyn::solver
