@@ -25,19 +25,23 @@ NodalSums update_range(const NodalArrays& d, std::size_t begin, std::size_t end,
   for (int c = 0; c < 3; ++c) {
     const double* f = d.internal_force[std::size_t(c)];
     const double* f_contact = d.contact_force[std::size_t(c)];
-    const std::uint8_t* fixed = d.fixed[std::size_t(c)];
+    const std::uint8_t* flags = d.flags[std::size_t(c)];
     const double* v = d.velocity[std::size_t(c)];
     const double* u = d.displacement[std::size_t(c)];
-    double* a = d.acceleration[std::size_t(c)];
     double* v_next = d.next_velocity[std::size_t(c)];
     double* u_next = d.next_displacement[std::size_t(c)];
     std::size_t i = begin;
     for (; i + Lanes <= end; i += Lanes) {
-      const Real raw =
-          (load<Real>(f_contact + i, 0) - load<Real>(f + i, 0)) * load<Real>(d.inverse_mass + i, 0);
-      non_finite += 0.0 * raw;
       Mask is_fixed;
-      for (int lane = 0; lane < Lanes; ++lane) is_fixed[lane] = fixed[i + std::size_t(lane)];
+      int contact = 0;
+      for (int lane = 0; lane < Lanes; ++lane) {
+        is_fixed[lane] = flags[i + std::size_t(lane)] & fixed_flag;
+        contact |= flags[i + std::size_t(lane)] & contact_flag;
+      }
+      // 0 - f_int where no node of the pack has contact: the same bits as f_contact - f_int.
+      const Real f_c = contact != 0 ? load<Real>(f_contact + i, 0) : Real{};
+      const Real raw = (f_c - load<Real>(f + i, 0)) * load<Real>(d.inverse_mass + i, 0);
+      non_finite += 0.0 * raw;
       const Real a_i = is_fixed != 0 ? Real{} : raw;
       const Real v_i = load<Real>(v + i, 0);
       const Real v_old = first_step ? v_i + half_step_back * a_i : v_i;
@@ -47,20 +51,18 @@ NodalSums update_range(const NodalArrays& d, std::size_t begin, std::size_t end,
       m_a2 += m * a_i * a_i;
       const Real speed = v_new < 0.0 ? -v_new : v_new;
       largest = speed > largest ? speed : largest;
-      store(a + i, a_i);
       store(v_next + i, v_new);
       store(u_next + i, load<Real>(u + i, 0) + dt * v_new);
     }
     for (; i < end; ++i) {
       const double raw = (f_contact[i] - f[i]) * d.inverse_mass[i];
       tail.non_finite += 0.0 * raw;
-      const double a_i = fixed[i] ? 0.0 : raw;
+      const double a_i = (flags[i] & fixed_flag) != 0 ? 0.0 : raw;
       const double v_old = first_step ? v[i] + half_step_back * a_i : v[i];
       const double v_new = v_old + dt * a_i;
       tail.twice_kinetic += d.mass[i] * v_old * v_new;
       tail.m_a2 += d.mass[i] * a_i * a_i;
       tail.largest = std::max(tail.largest, std::abs(v_new));
-      a[i] = a_i;
       v_next[i] = v_new;
       u_next[i] = u[i] + dt * v_new;
     }

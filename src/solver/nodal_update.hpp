@@ -1,9 +1,12 @@
 // The fused nodal update of the central-difference step, for a range of nodes and one
 // instruction set (common/isa.hpp): one pass over the nodes computes
-//   a^n       = M^-1 (f_contact - f_int)       (0 on fixed components)
+//   a^n       = M^-1 (f_contact - f_int)       (0 on fixed components; not stored)
 //   v^{n+1/2} = v^{n-1/2} + dt a^n             (first step: v^{-1/2} = v^0 - dt/2 a^0)
 //   u^{n+1}   = u^n + dt v^{n+1/2}
-// and the sums the energy and the guards need. The version for an ISA runs on packs
+// and the sums the energy and the guards need. The pass is bound by memory traffic
+// (docs/performance.md), so it reads and writes no more than it must: a^n is not
+// stored (the output recomputes it, solver/simulation.cpp), and f_contact is read
+// only for packs holding a contact node. The version for an ISA runs on packs
 // of 2, 4 or 8 nodes (its vector width) with one partial sum per lane; the lanes are
 // added in order at the end, so a range gives the same bits on any thread.
 #pragma once
@@ -16,14 +19,17 @@
 
 namespace exdyn::solver {
 
+// Flags of a node component.
+inline constexpr std::uint8_t fixed_flag = 1;    // the component is fixed: a = 0
+inline constexpr std::uint8_t contact_flag = 2;  // the node may carry a contact force
+
 // The nodal arrays of one step, per component c (x, y, z), and per node.
 struct NodalArrays {
   std::array<const double*, 3> internal_force{};  // f_int(u^n), N
-  std::array<const double*, 3> contact_force{};   // f_contact(x^n), N
-  std::array<const std::uint8_t*, 3> fixed{};     // 1 where the component is fixed
+  std::array<const double*, 3> contact_force{};   // f_contact(x^n), N; 0 at nodes without contact_flag
+  std::array<const std::uint8_t*, 3> flags{};     // fixed_flag | contact_flag
   std::array<const double*, 3> velocity{};        // v^{n-1/2}, m/s
   std::array<const double*, 3> displacement{};    // u^n, m
-  std::array<double*, 3> acceleration{};          // a^n written, m/s^2
   std::array<double*, 3> next_velocity{};         // v^{n+1/2} written, m/s
   std::array<double*, 3> next_displacement{};     // u^{n+1} written, m
   const double* mass = nullptr;                   // lumped mass, kg

@@ -40,11 +40,13 @@ struct State {
   NodalVectors next_displacement;  // u^{n+1} from update_nodes, m (swapped in at the step's end)
   NodalVectors velocity;           // v^{n-1/2}, then v^{n+1/2} after update_nodes, m/s
   NodalVectors other_velocity;     // update_nodes writes here; after the swap, v^{n-1/2}
-  std::array<std::vector<std::uint8_t>, 3> fixed;  // 1 where a component is fixed (a = 0)
-  NodalVectors acceleration;                       // a^n, m/s^2
-  NodalVectors internal_force;                     // f_int(u^n), N
-  NodalVectors contact_force;                      // f_contact(x^n), N
-  NodalVectors previous_contact_force;             // f_contact(x^{n-1}), N (for the contact work)
+  std::array<std::vector<std::uint8_t>, 3>
+      flags;  // per component: fixed_flag | contact_flag (nodal_update.hpp)
+  NodalVectors
+      acceleration;  // a^n, m/s^2, computed when needed (output, a non-finite step: compute_accelerations)
+  NodalVectors internal_force;                 // f_int(u^n), N
+  NodalVectors contact_force;                  // f_contact(x^n), N
+  NodalVectors previous_contact_force;         // f_contact(x^{n-1}), N (for the contact work)
   std::vector<double> gap;                     // signed normal gap of each slave node, m (0: no candidate)
   std::vector<double> previous_gap;            // the gap of step n-1 (to step back after a non-finite step)
   std::vector<double> stress;                  // 6 per element: xx yy zz xy yz xz, Pa
@@ -184,10 +186,9 @@ NodalUpdate update_nodes(const Model& model, State& state, double dt, bool first
     const int component = static_cast<int>(c);
     arrays.internal_force[c] = state.internal_force.component(component).data();
     arrays.contact_force[c] = state.contact_force.component(component).data();
-    arrays.fixed[c] = state.fixed[c].data();
+    arrays.flags[c] = state.flags[c].data();
     arrays.velocity[c] = state.velocity.component(component).data();
     arrays.displacement[c] = state.displacement.component(component).data();
-    arrays.acceleration[c] = state.acceleration.component(component).data();
     arrays.next_velocity[c] = state.other_velocity.component(component).data();
     arrays.next_displacement[c] = state.next_displacement.component(component).data();
   }
@@ -237,7 +238,8 @@ std::string describe_fastest_node(const NodalVectors& velocity) {
 
 // Names the first node with a non-finite acceleration, velocity or displacement,
 // else the first element with a non-finite stress, else the fastest node.
-std::string describe_non_finite(const State& state) {
+std::string describe_non_finite(const Model& model, State& state) {
+  compute_accelerations(model, state);
   const std::pair<const char*, const NodalVectors*> fields[] = {{"acceleration", &state.acceleration},
                                                                 {"velocity", &state.velocity},
                                                                 {"displacement", &state.displacement}};
@@ -275,7 +277,8 @@ class StepWriter {
     velocity_.resize(model.mesh.node_count());
     von_mises_.resize(model.mesh.element_count());
   }
-  void write(const State& state, double dt) {
+  void write(State& state, double dt) {
+    compute_accelerations(model_, state);  // a^n: the nodal update does not store it
     for (int c = 0; c < 3; ++c) {
       const auto& v = state.velocity.component(c);
       const auto& a = state.acceleration.component(c);
@@ -382,9 +385,10 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   state.displacement.resize(node_count);
   state.next_displacement.resize(node_count);
   state.other_velocity.resize(node_count);
-  for (int c = 0; c < 3; ++c) {
-    state.fixed[std::size_t(c)].assign(node_count, 0);
-    for (const std::uint32_t node : model.fixed_nodes[std::size_t(c)]) state.fixed[std::size_t(c)][node] = 1;
+  for (std::size_t c = 0; c < 3; ++c) {
+    state.flags[c].assign(node_count, 0);
+    for (const std::uint32_t node : model.fixed_nodes[c]) state.flags[c][node] |= fixed_flag;
+    for (const std::uint32_t node : contact.nodes) state.flags[c][node] |= contact_flag;
   }
   state.acceleration.resize(node_count);
   state.internal_force.resize(node_count);
@@ -466,14 +470,14 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       {
         ScopedTimer timer(phase.time_integration);
         const NodalUpdate update = update_nodes(model, state, dt, state.step == 0, nodal_update);
-        if (!update.finite) step_back_and_stop(describe_non_finite(state) + when());
+        if (!update.finite) step_back_and_stop(describe_non_finite(model, state) + when());
         energy.kinetic = update.kinetic;
         mean_energy = energy.total() + dt * dt * update.mass_acceleration_squared;
         largest_speed = std::sqrt(3.0) * update.largest_component;  // >= |v^{n+1/2}|_2 of every node
       }
       const double total = energy.total();
       if (!std::isfinite(total)) {
-        const std::string message = describe_non_finite(state) + when();
+        const std::string message = describe_non_finite(model, state) + when();
         std::swap(state.velocity, state.other_velocity);  // back to v^{n-1/2}
         step_back_and_stop(message);
       }
