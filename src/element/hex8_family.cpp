@@ -187,7 +187,8 @@ ElementEnergies hex8_parallelepiped_loop(const ElementBlock& block, std::uint32_
       [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
                    BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
         return std::array<Real, 2>{
-            hex8::parallelepiped_internal_forces<AxisAligned>(reference, lambda, mu, u_local, f_local, s),
+            AxisAligned ? hex8::axis_aligned_internal_forces(reference, lambda, mu, u_local, f_local, s)
+                        : hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s),
             Real{}};
       });
 }
