@@ -92,6 +92,10 @@ void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettin
   }
   std::swap(state.candidates, state.new_candidates);
   std::swap(state.previous_xi, state.new_previous_xi);
+  // Where each slave point's candidates start (they are sorted by point).
+  state.point_begin.assign(surfaces.point_count() + 1, 0);
+  for (const CandidatePair& pair : state.candidates) ++state.point_begin[pair.point + 1];
+  for (std::size_t p = 0; p < surfaces.point_count(); ++p) state.point_begin[p + 1] += state.point_begin[p];
 
   state.moving_at_build.resize(surfaces.moving_nodes.size());
   for (std::size_t i = 0; i < surfaces.moving_nodes.size(); ++i) {
@@ -169,39 +173,47 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         start = state.previous_xi[c];
       state.results[c] = settings.project(segment, point, start, settings.projection);
     }
-    // The choice, in candidate order (the same on any number of threads).
+    // The choice: per slave point, its candidates in order (ties to the first), so the
+    // same on any number of threads; the statistics are integer sums and a max.
     state.contacts.assign(n_points, ContactPassState::Contact{});
-    double best_distance = 0.0;
-    std::uint32_t current_point = std::numeric_limits<std::uint32_t>::max();
-    for (std::size_t c = 0; c < state.candidates.size(); ++c) {
-      const CandidatePair pair = state.candidates[c];
-      if (pair.point != current_point) {
-        current_point = pair.point;
-        best_distance = std::numeric_limits<double>::infinity();
+    long projections = 0, iterations = 0, max_iterations = 0, not_converged = 0, saddle_points = 0;
+    const auto points = static_cast<std::ptrdiff_t>(n_points);
+#pragma omp parallel for schedule(static) if (candidates >= 512) \
+    reduction(+ : projections, iterations, not_converged, saddle_points) reduction(max : max_iterations)
+    for (std::ptrdiff_t q = 0; q < points; ++q) {
+      const auto p = static_cast<std::size_t>(q);
+      double best_distance = std::numeric_limits<double>::infinity();
+      std::size_t best = state.candidates.size();  // none
+      for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
+        const ProjectionResult& r = state.results[c];
+        ++projections;
+        iterations += r.iterations;
+        max_iterations = std::max<long>(max_iterations, r.iterations);
+        state.previous_xi[c] = std::isfinite(r.xi[0]) && std::isfinite(r.xi[1]) ? r.xi : Xi{0.0, 0.0};
+        if (!r.converged) {
+          ++not_converged;
+          continue;
+        }
+        if (r.stationary == StationaryKind::saddle || r.stationary == StationaryKind::maximum) {
+          ++saddle_points;
+          continue;
+        }
+        if (r.stationary != StationaryKind::minimum || !r.inside) continue;
+        if (r.distance < best_distance) best_distance = r.distance, best = c;
       }
-      const ProjectionResult& r = state.results[c];
-      ++statistics.projections;
-      statistics.iterations += r.iterations;
-      statistics.max_iterations = std::max<long>(statistics.max_iterations, r.iterations);
-      state.previous_xi[c] = std::isfinite(r.xi[0]) && std::isfinite(r.xi[1]) ? r.xi : Xi{0.0, 0.0};
-      if (!r.converged) {
-        ++statistics.not_converged;
-        continue;
-      }
-      if (r.stationary == StationaryKind::saddle || r.stationary == StationaryKind::maximum) {
-        ++statistics.saddle_points;
-        continue;
-      }
-      if (r.stationary != StationaryKind::minimum || !r.inside) continue;
-      if (r.distance < best_distance) {
-        best_distance = r.distance;
-        auto& contact = state.contacts[pair.point];
-        contact.segment = pair.segment;
-        contact.xi = r.xi;
-        contact.gap = r.gap;
-        contact.normal = outward_normal(current_segment(surfaces.segments[pair.segment], x_ref, u), r.xi);
-      }
+      if (best == state.candidates.size()) continue;
+      const std::uint32_t segment = state.candidates[best].segment;
+      auto& contact = state.contacts[p];
+      contact.segment = segment;
+      contact.xi = state.results[best].xi;
+      contact.gap = state.results[best].gap;
+      contact.normal = outward_normal(current_segment(surfaces.segments[segment], x_ref, u), contact.xi);
     }
+    statistics.projections += projections;
+    statistics.iterations += iterations;
+    statistics.max_iterations = std::max(statistics.max_iterations, max_iterations);
+    statistics.not_converged += not_converged;
+    statistics.saddle_points += saddle_points;
   }
 
   // Penalty forces: F = max(0, -k g - c (v_s - v_m).n) along n on the slave point,

@@ -67,6 +67,7 @@ struct ContactPassState {
   bool built = false;
   long rebuilds = 0;
   std::vector<CandidatePair> candidates;  // sorted by slave point, then segment
+  std::vector<std::size_t> point_begin;   // slave point p's candidates: [point_begin[p], point_begin[p + 1])
   std::vector<Xi> previous_xi;            // last step's point of each candidate pair
   NodalVectors moving_at_build;           // positions of moving_nodes at the last build
   // scratch, kept to avoid allocation

@@ -305,7 +305,11 @@ void ResultWriter::Impl::write_field(hid_t file, const std::string& group, const
       values = zeros(3 * n);
     } else {
       buffer.resize(std::max(buffer.size(), 3 * n));
-      for (std::size_t i = 0; i < n; ++i) {
+      // SoA to (N, 3) rows, on the threads for a large mesh (the write itself is serial).
+      const auto rows = static_cast<std::ptrdiff_t>(n);
+#pragma omp parallel for schedule(static) if (rows >= 16384)
+      for (std::ptrdiff_t k = 0; k < rows; ++k) {
+        const auto i = static_cast<std::size_t>(k);
         buffer[3 * i] = vectors->x[i];
         buffer[3 * i + 1] = vectors->y[i];
         buffer[3 * i + 2] = vectors->z[i];

@@ -279,17 +279,21 @@ class StepWriter {
   }
   void write(State& state, double dt) {
     compute_accelerations(model_, state);  // a^n: the nodal update does not store it
-    for (int c = 0; c < 3; ++c) {
-      const auto& v = state.velocity.component(c);
-      const auto& a = state.acceleration.component(c);
-      auto& out = velocity_.component(c);
-      for (std::size_t i = 0; i < v.size(); ++i) out[i] = v[i] - 0.5 * dt * a[i];
-    }
-    for (std::size_t e = 0; e < von_mises_.size(); ++e) {
-      material::SymTensor s;
-      std::copy_n(state.stress.data() + 6 * e, 6, s.begin());
-      von_mises_[e] = material::von_mises(s);
-    }
+    for_each_chunk(velocity_.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (int c = 0; c < 3; ++c) {
+        const double* v = state.velocity.component(c).data();
+        const double* a = state.acceleration.component(c).data();
+        double* out = velocity_.component(c).data();
+        for (std::size_t i = begin; i < end; ++i) out[i] = v[i] - 0.5 * dt * a[i];
+      }
+    });
+    for_each_chunk(von_mises_.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (std::size_t e = begin; e < end; ++e) {
+        material::SymTensor s;
+        std::copy_n(state.stress.data() + 6 * e, 6, s.begin());
+        von_mises_[e] = material::von_mises(s);
+      }
+    });
     output::StepData data;
     data.step = state.step;
     data.time = state.time;
