@@ -1,12 +1,15 @@
-// The gather -> kernel -> scatter loop over a range of a block's elements, for
-// the element families (hex8_family.cpp, hex20_family.cpp): templates on the
-// number of nodes and the value type, so a family writes only its kernel.
+// The gather -> kernel -> scatter loops over a range of a block's elements, for the
+// element families (hex8_family.cpp, hex20_family.cpp): one element at a time
+// (element_loop) or a pack of elements in the vector lanes (element_pack_loop);
+// templates on the number of nodes and the value type, so a family writes only its kernel.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <cstring>
 
 #include "common/nodal_vectors.hpp"
+#include "common/simd_pack.hpp"
 #include "element/element_block.hpp"
 #include "element/node_values.hpp"
 
@@ -58,6 +61,149 @@ ElementEnergies element_loop(const ElementBlock& block, std::uint32_t begin, std
     if (stress != nullptr) {
       double* out = stress + 6 * (static_cast<std::size_t>(block.first_element) + e);
       for (int k = 0; k < 6; ++k) out[k] = element_stress[k];
+    }
+  }
+  return total;
+}
+
+// --- packs of elements: Lanes elements in the lanes of Pack<Lanes> (common/simd_pack.hpp)
+
+// The gather of a pack: lane l from element l's nodes.
+template <int Nodes, int Lanes>
+NodeValues<Nodes, Pack<Lanes>> gather_pack(const NodalVectors& v,
+                                           const std::uint32_t* const (&nodes)[Lanes]) {
+  NodeValues<Nodes, Pack<Lanes>> local{
+      typename NodeValues<Nodes, Pack<Lanes>>::Uninitialized{}};  // every entry written below
+  const double* x = v.x.data();
+  const double* y = v.y.data();
+  const double* z = v.z.data();
+  for (int k = 0; k < Nodes; ++k) {
+    for (int lane = 0; lane < Lanes; ++lane) {
+      const std::uint32_t n = nodes[lane][k];
+      local.x[k][lane] = x[n];
+      local.y[k][lane] = y[n];
+      local.z[k][lane] = z[n];
+    }
+  }
+  return local;
+}
+
+// The lane indices for __builtin_shuffle that move every lane up by one and the zero
+// of the second operand into lane 0.
+template <int Lanes>
+constexpr IntPack<Lanes> up_one_lane() {
+  IntPack<Lanes> indices{};
+  indices[0] = Lanes;
+  for (int lane = 1; lane < Lanes; ++lane) indices[lane] = lane - 1;
+  return indices;
+}
+
+// The gather of a row pack (ElementBlock::row_pack): node k of the Lanes elements are
+// the consecutive nodes from nodes[k] on, one unaligned vector load per component.
+template <int Lanes>
+NodeValues<8, Pack<Lanes>> gather_row_pack(const NodalVectors& v, const std::uint32_t* nodes) {
+  NodeValues<8, Pack<Lanes>> local{
+      typename NodeValues<8, Pack<Lanes>>::Uninitialized{}};  // every entry written below
+  for (int k = 0; k < 8; ++k) {
+    local.x[k] = load<Pack<Lanes>>(v.x.data() + nodes[k], 0);
+    local.y[k] = load<Pack<Lanes>>(v.y.data() + nodes[k], 0);
+    local.z[k] = load<Pack<Lanes>>(v.z.data() + nodes[k], 0);
+  }
+  return local;
+}
+
+// The scatter of a row pack: along each row edge (a, b = a + 1 in node numbers), lane l
+// adds f_a to node n + l and f_b to node n + l + 1 (n: node a of lane 0). So node
+// n + l receives f_a of lane l plus f_b of lane l - 1: summed in the registers (f_b
+// moved up one lane), then one vector load-add-store and the last lane's f_b alone.
+template <int Lanes>
+void scatter_add_row_pack(const NodeValues<8, Pack<Lanes>>& local, const std::uint32_t* nodes,
+                          NodalVectors& v) {
+  using Real = Pack<Lanes>;
+  const IntPack<Lanes> shift = up_one_lane<Lanes>();
+  constexpr int row_edges[4][2] = {{0, 1}, {3, 2}, {4, 5}, {7, 6}};
+  const std::array<const std::array<Real, 8>*, 3> forces{&local.x, &local.y, &local.z};
+  const std::array<double*, 3> out{v.x.data(), v.y.data(), v.z.data()};
+  for (const auto& edge : row_edges) {
+    const std::uint32_t n = nodes[edge[0]];
+    for (int c = 0; c < 3; ++c) {
+      const Real f_a = (*forces[std::size_t(c)])[std::size_t(edge[0])];
+      const Real f_b = (*forces[std::size_t(c)])[std::size_t(edge[1])];
+      double* p = out[std::size_t(c)] + n;
+      Real sum = load<Real>(p, 0) + (f_a + __builtin_shuffle(f_b, Real{}, shift));
+      std::memcpy(p, &sum, sizeof sum);
+      p[Lanes] += f_b[Lanes - 1];
+    }
+  }
+}
+
+template <class Real>
+double lane_value(const Real& pack, int lane) {
+  return pack[lane];
+}
+
+template <int Nodes, class Real>
+void scatter_add_lane(const NodeValues<Nodes, Real>& local, int lane, const std::uint32_t* nodes,
+                      NodalVectors& v) {
+  double* x = v.x.data();
+  double* y = v.y.data();
+  double* z = v.z.data();
+  for (int k = 0; k < Nodes; ++k) {
+    const std::uint32_t n = nodes[k];
+    x[n] += lane_value(local.x[std::size_t(k)], lane);
+    y[n] += lane_value(local.y[std::size_t(k)], lane);
+    z[n] += lane_value(local.z[std::size_t(k)], lane);
+  }
+}
+
+// The element loop over packs of Lanes consecutive elements: kernel(pack, u, f, stress)
+// on the elements Lanes pack .. Lanes pack + Lanes - 1 at once returns their energies
+// (strain, hourglass); it finds the pack's reference data itself. Lanes outside
+// [begin, end) are computed but neither scattered nor counted; the lanes past the
+// block's last element take its first lane's nodes (hex8 layouts pad their reference
+// data with zeros there). The forces are added lane by lane, in element order (a row
+// pack, 8-node elements only: summed along its row edges first); the same order for
+// any number of threads.
+template <int Nodes, int Lanes, class Kernel>
+ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
+                                  const NodalVectors& u, NodalVectors& f_int, double* stress, Kernel kernel) {
+  using Real = Pack<Lanes>;
+  using Vectors = NodeValues<Nodes, Real>;
+  ElementEnergies total;
+  if (begin >= end) return total;
+  for (std::uint32_t pack = begin / Lanes; pack <= (end - 1) / Lanes; ++pack) {
+    std::uint32_t element[Lanes];
+    const std::uint32_t* nodes[Lanes];
+    for (int lane = 0; lane < Lanes; ++lane) {
+      element[lane] = Lanes * pack + std::uint32_t(lane);
+      const std::uint32_t present = element[lane] < block.count ? element[lane] : Lanes * pack;
+      nodes[lane] = block.connectivity + Nodes * static_cast<std::size_t>(present);
+    }
+    // A whole row pack inside the range: vector gather and scatter.
+    bool row = false;
+    Vectors u_local{typename Vectors::Uninitialized{}};
+    if constexpr (Nodes == 8) {
+      row = !block.row_pack.empty() && block.row_pack[pack] != 0 && element[0] >= begin &&
+            element[Lanes - 1] < end;
+      u_local = row ? gather_row_pack<Lanes>(u, nodes[0]) : gather_pack<Nodes, Lanes>(u, nodes);
+    } else {
+      u_local = gather_pack<Nodes, Lanes>(u, nodes);
+    }
+    Vectors f_local{typename Vectors::Uninitialized{}};  // written whole by the kernel
+    std::array<Real, 6> element_stress;
+    const std::array<Real, 2> energies = kernel(pack, u_local, f_local, element_stress);
+    if constexpr (Nodes == 8) {
+      if (row) scatter_add_row_pack<Lanes>(f_local, nodes[0], f_int);
+    }
+    for (int lane = 0; lane < Lanes; ++lane) {
+      if (element[lane] < begin || element[lane] >= end) continue;
+      if (!row) scatter_add_lane(f_local, lane, nodes[lane], f_int);
+      total.strain += lane_value(energies[0], lane);
+      total.hourglass += lane_value(energies[1], lane);
+      if (stress != nullptr) {
+        double* out = stress + 6 * (static_cast<std::size_t>(block.first_element) + element[lane]);
+        for (int k = 0; k < 6; ++k) out[k] = lane_value(element_stress[std::size_t(k)], lane);
+      }
     }
   }
   return total;

@@ -169,54 +169,59 @@ inline double make_reference(const ElementVectors20& x_ref, const GaussRule& rul
 // the strain energy u.f / 2 (J):
 //   D_g = du/dxi at g, H_g = D_g dxi/dx, s_g = w det J (lambda tr H I + mu (H + H^T)),
 //   P_g = s_g (dxi/dx)^T, f_I = sum_g P_g dN_I/dxi (g).
-inline double internal_forces(int gauss_points, const double* table, const double* reference, double lambda,
-                              double mu, const ElementVectors20& u, ElementVectors20& f,
-                              material::SymTensor& mean_stress) {
-  f = ElementVectors20{};
-  std::array<double, 6> stress_sum{};
-  const std::array<const std::array<double, 20>*, 3> u_component{&u.x, &u.y, &u.z};
-  const std::array<std::array<double, 20>*, 3> f_component{&f.x, &f.y, &f.z};
+// For one element (Real = double) or a pack of elements (Real = Pack<L>, their
+// reference data interleaved value by value: load<Real>); the table of dN/dxi is the
+// same for every element.
+template <class Real>
+inline Real internal_forces(int gauss_points, const double* table, const double* reference, double lambda,
+                            double mu, const NodeValues<20, Real>& u, NodeValues<20, Real>& f,
+                            std::array<Real, 6>& mean_stress) {
+  f = NodeValues<20, Real>{};
+  std::array<Real, 6> stress_sum{};
+  const std::array<const std::array<Real, 20>*, 3> u_component{&u.x, &u.y, &u.z};
+  const std::array<std::array<Real, 20>*, 3> f_component{&f.x, &f.y, &f.z};
   for (int g = 0; g < gauss_points; ++g) {
     const double* dn = table + table_stride * g;
-    const double* r = reference + 10 * g;
     // du_i/dxi_a = sum_I u_iI dN_I/dxi_a: nine sums carried together over the nodes,
     // so the adds of one sum do not wait on each other (nine 20-term chains would be
     // bound by the add latency; the order of each sum is still node 0 to 19).
-    double d[3][3] = {};
+    Real d[3][3] = {};
     for (int node = 0; node < 20; ++node) {
       const double n0 = dn[node], n1 = dn[20 + node], n2 = dn[40 + node];
       for (int i = 0; i < 3; ++i) {
-        const double ui = (*u_component[i])[node];
+        const Real ui = (*u_component[i])[node];
         d[i][0] += ui * n0;
         d[i][1] += ui * n1;
         d[i][2] += ui * n2;
       }
     }
-    double h[9];
+    Real r[10];  // dxi_a/dx_j (row a), then w det J
+    for (int k = 0; k < 10; ++k) r[k] = load<Real>(reference, 10 * g + k);
+    Real h[9];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) h[3 * i + j] = d[i][0] * r[j] + d[i][1] * r[3 + j] + d[i][2] * r[6 + j];
-    const double w = r[9];
-    const double lambda_trace = lambda * (h[0] + h[4] + h[8]);
-    const double s[6] = {w * (lambda_trace + 2.0 * mu * h[0]),
-                         w * (lambda_trace + 2.0 * mu * h[4]),
-                         w * (lambda_trace + 2.0 * mu * h[8]),
-                         w * mu * (h[1] + h[3]),
-                         w * mu * (h[5] + h[7]),
-                         w * mu * (h[2] + h[6])};
+    const Real w = r[9];
+    const Real lambda_trace = lambda * (h[0] + h[4] + h[8]);
+    const Real s[6] = {w * (lambda_trace + 2.0 * mu * h[0]),
+                       w * (lambda_trace + 2.0 * mu * h[4]),
+                       w * (lambda_trace + 2.0 * mu * h[8]),
+                       w * mu * (h[1] + h[3]),
+                       w * mu * (h[5] + h[7]),
+                       w * mu * (h[2] + h[6])};
     for (int k = 0; k < 6; ++k) stress_sum[k] += s[k];
     constexpr int row[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};  // s_ij in SymTensor order
     for (int i = 0; i < 3; ++i) {
-      double p[3];  // P_ia = sum_j s_ij dxi_a/dx_j
+      Real p[3];  // P_ia = sum_j s_ij dxi_a/dx_j
       for (int a = 0; a < 3; ++a)
         p[a] = s[row[i][0]] * r[3 * a] + s[row[i][1]] * r[3 * a + 1] + s[row[i][2]] * r[3 * a + 2];
-      std::array<double, 20>& out = *f_component[i];
+      std::array<Real, 20>& out = *f_component[i];
       for (int node = 0; node < 20; ++node)
         out[node] += p[0] * dn[node] + p[1] * dn[20 + node] + p[2] * dn[40 + node];
     }
   }
-  const double inverse_volume = reference[10 * gauss_points];
+  const Real inverse_volume = load<Real>(reference, 10 * gauss_points);
   for (int k = 0; k < 6; ++k) mean_stress[k] = stress_sum[k] * inverse_volume;
-  double energy = 0.0;
+  Real energy{};
   for (int node = 0; node < 20; ++node)
     energy += u.x[node] * f.x[node] + u.y[node] * f.y[node] + u.z[node] * f.z[node];
   return 0.5 * energy;

@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "common/simd_pack.hpp"
+#include "element/node_values.hpp"
 #include "material/elastic.hpp"
 
 namespace exdyn::element {
@@ -21,18 +22,10 @@ namespace exdyn::element {
 using Vector3 = std::array<double, 3>;
 using Matrix3 = std::array<double, 9>;  // row-major
 
-// One vector per node of one element (or element pair), the components apart
+// One vector per node of one element (or of a pack of elements), the components apart
 // (x[I], y[I], z[I] for node I in VTK order): gathered from and scattered to NodalVectors.
 template <class Real>
-struct BasicElementVectors {
-  std::array<Real, 8> x, y, z;
-  BasicElementVectors() : x{}, y{}, z{} {}  // zero
-  // Left uninitialised, for the element loop's gather and force arrays that are
-  // written whole before they are read (zeroing them cost 11-23 % of the loop:
-  // docs/performance.md).
-  struct Uninitialized {};
-  explicit BasicElementVectors(Uninitialized) {}
-};
+using BasicElementVectors = NodeValues<8, Real>;
 using ElementVectors = BasicElementVectors<double>;
 
 namespace hex8 {

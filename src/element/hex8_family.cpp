@@ -29,139 +29,6 @@ ElementVectors gather8(const NodalVectors& v, const std::uint32_t* nodes) {
   return local;
 }
 
-template <int Lanes>
-BasicElementVectors<Pack<Lanes>> gather_pack(const NodalVectors& v,
-                                             const std::uint32_t* const (&nodes)[Lanes]) {
-  BasicElementVectors<Pack<Lanes>> local{
-      typename BasicElementVectors<Pack<Lanes>>::Uninitialized{}};  // every entry written below
-  const double* x = v.x.data();
-  const double* y = v.y.data();
-  const double* z = v.z.data();
-  for (int k = 0; k < 8; ++k) {
-    for (int lane = 0; lane < Lanes; ++lane) {
-      const std::uint32_t n = nodes[lane][k];
-      local.x[k][lane] = x[n];
-      local.y[k][lane] = y[n];
-      local.z[k][lane] = z[n];
-    }
-  }
-  return local;
-}
-
-// The lane indices for __builtin_shuffle that move every lane up by one and the zero
-// of the second operand into lane 0.
-template <int Lanes>
-constexpr IntPack<Lanes> up_one_lane() {
-  IntPack<Lanes> indices{};
-  indices[0] = Lanes;
-  for (int lane = 1; lane < Lanes; ++lane) indices[lane] = lane - 1;
-  return indices;
-}
-
-// The gather of a row pack (ElementBlock::row_pack): node k of the Lanes elements are
-// the consecutive nodes from nodes[k] on, one unaligned vector load per component.
-template <int Lanes>
-BasicElementVectors<Pack<Lanes>> gather_row_pack(const NodalVectors& v, const std::uint32_t* nodes) {
-  BasicElementVectors<Pack<Lanes>> local{
-      typename BasicElementVectors<Pack<Lanes>>::Uninitialized{}};  // every entry written below
-  for (int k = 0; k < 8; ++k) {
-    local.x[k] = load<Pack<Lanes>>(v.x.data() + nodes[k], 0);
-    local.y[k] = load<Pack<Lanes>>(v.y.data() + nodes[k], 0);
-    local.z[k] = load<Pack<Lanes>>(v.z.data() + nodes[k], 0);
-  }
-  return local;
-}
-
-// The scatter of a row pack: along each row edge (a, b = a + 1 in node numbers), lane l
-// adds f_a to node n + l and f_b to node n + l + 1 (n: node a of lane 0). So node
-// n + l receives f_a of lane l plus f_b of lane l - 1: summed in the registers (f_b
-// moved up one lane), then one vector load-add-store and the last lane's f_b alone.
-template <int Lanes>
-void scatter_add_row_pack(const BasicElementVectors<Pack<Lanes>>& local, const std::uint32_t* nodes,
-                          NodalVectors& v) {
-  using Real = Pack<Lanes>;
-  const IntPack<Lanes> shift = up_one_lane<Lanes>();
-  constexpr int row_edges[4][2] = {{0, 1}, {3, 2}, {4, 5}, {7, 6}};
-  const std::array<const std::array<Real, 8>*, 3> forces{&local.x, &local.y, &local.z};
-  const std::array<double*, 3> out{v.x.data(), v.y.data(), v.z.data()};
-  for (const auto& edge : row_edges) {
-    const std::uint32_t n = nodes[edge[0]];
-    for (int c = 0; c < 3; ++c) {
-      const Real f_a = (*forces[std::size_t(c)])[std::size_t(edge[0])];
-      const Real f_b = (*forces[std::size_t(c)])[std::size_t(edge[1])];
-      double* p = out[std::size_t(c)] + n;
-      Real sum = load<Real>(p, 0) + (f_a + __builtin_shuffle(f_b, Real{}, shift));
-      std::memcpy(p, &sum, sizeof sum);
-      p[Lanes] += f_b[Lanes - 1];
-    }
-  }
-}
-
-template <class Real>
-double lane_value(const Real& pack, int lane) {
-  return pack[lane];
-}
-
-template <class Real>
-void scatter_add_lane(const BasicElementVectors<Real>& local, int lane, const std::uint32_t* nodes,
-                      NodalVectors& v) {
-  double* x = v.x.data();
-  double* y = v.y.data();
-  double* z = v.z.data();
-  for (int k = 0; k < 8; ++k) {
-    const std::uint32_t n = nodes[k];
-    x[n] += lane_value(local.x[std::size_t(k)], lane);
-    y[n] += lane_value(local.y[std::size_t(k)], lane);
-    z[n] += lane_value(local.z[std::size_t(k)], lane);
-  }
-}
-
-// The element loop over packs of Lanes consecutive elements: kernel(reference, u, f,
-// stress) on the pack at once returns their energies (strain, hourglass). Lanes
-// outside [begin, end) are computed but neither scattered nor counted; the lanes past
-// the block's last element take its first lane's nodes (their reference data are zero).
-// The forces are added lane by lane, in element order (a row pack: summed along its row
-// edges first); the same order for any number of threads.
-template <int Lanes, class Kernel>
-ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
-                                  std::size_t stride, const NodalVectors& u, NodalVectors& f_int,
-                                  double* stress, Kernel kernel) {
-  using Real = Pack<Lanes>;
-  ElementEnergies total;
-  if (begin >= end) return total;
-  const double* reference = block.reference.data();
-  for (std::uint32_t pack = begin / Lanes; pack <= (end - 1) / Lanes; ++pack) {
-    std::uint32_t element[Lanes];
-    const std::uint32_t* nodes[Lanes];
-    for (int lane = 0; lane < Lanes; ++lane) {
-      element[lane] = Lanes * pack + std::uint32_t(lane);
-      const std::uint32_t present = element[lane] < block.count ? element[lane] : Lanes * pack;
-      nodes[lane] = block.connectivity + 8 * static_cast<std::size_t>(present);
-    }
-    // A whole row pack inside the range: vector gather and scatter.
-    const bool row = !block.row_pack.empty() && block.row_pack[pack] != 0 && element[0] >= begin &&
-                     element[Lanes - 1] < end;
-    const BasicElementVectors<Real> u_local =
-        row ? gather_row_pack<Lanes>(u, nodes[0]) : gather_pack<Lanes>(u, nodes);
-    BasicElementVectors<Real> f_local{typename BasicElementVectors<Real>::Uninitialized{}};  // written whole
-    std::array<Real, 6> element_stress;
-    const std::array<Real, 2> energies =
-        kernel(reference + Lanes * stride * pack, u_local, f_local, element_stress);
-    if (row) scatter_add_row_pack<Lanes>(f_local, nodes[0], f_int);
-    for (int lane = 0; lane < Lanes; ++lane) {
-      if (element[lane] < begin || element[lane] >= end) continue;
-      if (!row) scatter_add_lane(f_local, lane, nodes[lane], f_int);
-      total.strain += lane_value(energies[0], lane);
-      total.hourglass += lane_value(energies[1], lane);
-      if (stress != nullptr) {
-        double* out = stress + 6 * (static_cast<std::size_t>(block.first_element) + element[lane]);
-        for (int k = 0; k < 6; ++k) out[k] = lane_value(element_stress[std::size_t(k)], lane);
-      }
-    }
-  }
-  return total;
-}
-
 // --- the four loops, one per layout
 
 template <int Lanes>
@@ -169,10 +36,12 @@ ElementEnergies hex8_general_loop(const ElementBlock& block, std::uint32_t begin
                                   const NodalVectors& u, NodalVectors& f_int, double* stress) {
   using Real = Pack<Lanes>;
   const double lambda = block.material.lambda, mu = block.material.mu;
-  return element_pack_loop<Lanes>(
-      block, begin, end, hex8::reference_size, u, f_int, stress,
-      [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
-                   BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+  const double* data = block.reference.data();
+  return element_pack_loop<8, Lanes>(
+      block, begin, end, u, f_int, stress,
+      [lambda, mu, data](std::uint32_t pack, const BasicElementVectors<Real>& u_local,
+                         BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+        const double* reference = data + std::size_t(Lanes) * hex8::reference_size * pack;
         return std::array<Real, 2>{hex8::internal_forces(reference, lambda, mu, u_local, f_local, s), Real{}};
       });
 }
@@ -182,10 +51,12 @@ ElementEnergies hex8_parallelepiped_loop(const ElementBlock& block, std::uint32_
                                          const NodalVectors& u, NodalVectors& f_int, double* stress) {
   using Real = Pack<Lanes>;
   const double lambda = block.material.lambda, mu = block.material.mu;
-  return element_pack_loop<Lanes>(
-      block, begin, end, hex8::parallelepiped_reference_size, u, f_int, stress,
-      [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
-                   BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+  const double* data = block.reference.data();
+  return element_pack_loop<8, Lanes>(
+      block, begin, end, u, f_int, stress,
+      [lambda, mu, data](std::uint32_t pack, const BasicElementVectors<Real>& u_local,
+                         BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+        const double* reference = data + std::size_t(Lanes) * hex8::parallelepiped_reference_size * pack;
         return std::array<Real, 2>{
             AxisAligned ? hex8::axis_aligned_internal_forces(reference, lambda, mu, u_local, f_local, s)
                         : hex8::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s),
@@ -201,32 +72,17 @@ ElementEnergies hex8r_loop(const ElementBlock& block, std::uint32_t begin, std::
   using Real = Pack<Lanes>;
   const double lambda = block.material.lambda, mu = block.material.mu;
   const std::size_t stride = Parallelepiped ? hex8r::parallelepiped_reference_size : hex8r::reference_size;
-  return element_pack_loop<Lanes>(
-      block, begin, end, stride, u, f_int, stress,
-      [lambda, mu](const double* reference, const BasicElementVectors<Real>& u_local,
-                   BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+  const double* data = block.reference.data();
+  return element_pack_loop<8, Lanes>(
+      block, begin, end, u, f_int, stress,
+      [lambda, mu, data, stride](std::uint32_t pack, const BasicElementVectors<Real>& u_local,
+                                 BasicElementVectors<Real>& f_local, std::array<Real, 6>& s) {
+        const double* reference = data + std::size_t(Lanes) * stride * pack;
         const hex8r::BasicEnergies<Real> e =
             Parallelepiped ? hex8r::parallelepiped_internal_forces(reference, lambda, mu, u_local, f_local, s)
                            : hex8r::internal_forces(reference, lambda, mu, u_local, f_local, s);
         return std::array<Real, 2>{e.strain, e.hourglass};
       });
-}
-
-// The pack width of an ISA's loops: one 128-, 256- or 512-bit register of doubles.
-int lanes_for(Isa isa) { return isa == Isa::x86_64_v4 ? 8 : isa == Isa::x86_64_v3 ? 4 : 2; }
-
-// The loop for `isa`, from its versions for packs of 2, 4 and 8.
-template <ElementLoopFn Loop2, ElementLoopFn Loop4, ElementLoopFn Loop8>
-ElementLoopFn packed_for_isa(Isa isa) {
-  switch (isa) {
-    case Isa::x86_64_v4:
-      return for_isa<Loop8>(isa);
-    case Isa::x86_64_v3:
-      return for_isa<Loop4>(isa);
-    case Isa::x86_64_v2:
-      break;
-  }
-  return for_isa<Loop2>(isa);
 }
 
 // Precomputes the reference data of every element with make(x, reference) (which

@@ -11,7 +11,10 @@ template <int Nodes, class Real = double>
 struct NodeValues {
   std::array<Real, Nodes> x, y, z;
   NodeValues() : x{}, y{}, z{} {}  // zero
-  struct Uninitialized {};         // for arrays written whole before they are read
+  // Left uninitialised, for the element loops' gather and force arrays that are
+  // written whole before they are read (zeroing them cost 11-23 % of the loop:
+  // docs/performance.md).
+  struct Uninitialized {};
   explicit NodeValues(Uninitialized) {}
 };
 

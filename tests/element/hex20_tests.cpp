@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "element/element_block.hpp"
@@ -238,6 +240,72 @@ TEST(Hex20, AffineMatrixPathEqualsTheGaussPointKernel) {
     EXPECT_LT(difference, 1e-12 * largest);
     EXPECT_NEAR(fast.strain, energy, 1e-12 * energy);
     EXPECT_GT(scale, 0.0);
+  }
+}
+
+TEST(Hex20, PackedGeneralLoopEqualsTheElementKernelOnAnyRange) {
+  // A distorted box of 15 elements (not a multiple of 2, 4 or 8): the general kernel on
+  // packs of elements, for ranges that start and end inside packs, against the
+  // single-element kernel summed by hand.
+  for (const auto formulation : {input::Formulation::hex20, input::Formulation::hex20r}) {
+    const input::Deck deck = box_deck(formulation, {5, 3, 1}, {1.0, 0.6, 0.2}, 0.15);
+    const mesh::Mesh mesh = mesh::build_mesh(deck);
+    const auto count = static_cast<std::uint32_t>(mesh.element_count());
+    const ElementBlock block =
+        make_element_block(formulation, steel, 0.0, 2, count, mesh.connectivity.data(), mesh.x_ref);
+    ASSERT_FALSE(uses_parallelepiped_kernel(block));
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> unit(-1e-4, 1e-4);
+    NodalVectors u(mesh.node_count());
+    for (std::size_t n = 0; n < mesh.node_count(); ++n)
+      u.x[n] = unit(rng), u.y[n] = unit(rng), u.z[n] = unit(rng);
+    const int per_direction = formulation == input::Formulation::hex20 ? 3 : 2;
+    const hex20::GaussRule rule = hex20::gauss_rule(per_direction);
+    std::vector<double> table(std::size_t(hex20::table_stride * rule.count));
+    hex20::derivative_table(rule, table.data());
+    std::vector<double> reference(std::size_t(hex20::reference_size(rule.count)));
+    for (const auto& [begin, end] :
+         {std::pair<std::uint32_t, std::uint32_t>{0, count}, {1, 14}, {3, 9}, {5, 6}}) {
+      NodalVectors f(mesh.node_count()), f_simple(mesh.node_count());
+      std::vector<double> stress(6 * std::size_t(2 + count), 0.0);
+      const ElementEnergies packed = add_internal_forces(block, begin, end, u, f, stress.data());
+      double energy = 0.0, largest = 0.0;
+      for (std::uint32_t e = begin; e < end; ++e) {
+        const std::uint32_t* nodes = mesh.connectivity.data() + 20 * std::size_t(e);
+        ElementVectors20 x, ue, fe;
+        for (std::size_t k = 0; k < 20; ++k) {
+          const auto n = nodes[k];
+          x.x[k] = mesh.x_ref.x[n], x.y[k] = mesh.x_ref.y[n], x.z[k] = mesh.x_ref.z[n];
+          ue.x[k] = u.x[n], ue.y[k] = u.y[n], ue.z[k] = u.z[n];
+        }
+        ASSERT_GT(hex20::make_reference(x, rule, table.data(), reference.data()), 0.0);
+        material::SymTensor s;
+        energy += hex20::internal_forces(rule.count, table.data(), reference.data(), steel.lambda, steel.mu,
+                                         ue, fe, s);
+        for (std::size_t k = 0; k < 6; ++k)
+          EXPECT_NEAR(stress[6 * (2 + e) + k], s[k],
+                      1e-12 * std::max({std::abs(s[0]), std::abs(s[1]), std::abs(s[2])}));
+        for (std::size_t k = 0; k < 20; ++k) {
+          const auto n = nodes[k];
+          f_simple.x[n] += fe.x[k], f_simple.y[n] += fe.y[k], f_simple.z[n] += fe.z[k];
+        }
+      }
+      double difference = 0.0;
+      for (std::size_t n = 0; n < mesh.node_count(); ++n) {
+        largest =
+            std::max({largest, std::abs(f_simple.x[n]), std::abs(f_simple.y[n]), std::abs(f_simple.z[n])});
+        difference = std::max({difference, std::abs(f.x[n] - f_simple.x[n]), std::abs(f.y[n] - f_simple.y[n]),
+                               std::abs(f.z[n] - f_simple.z[n])});
+      }
+      EXPECT_GT(largest, 0.0);
+      EXPECT_LE(difference, 1e-12 * largest) << begin << ".." << end;
+      EXPECT_NEAR(packed.strain, energy, 1e-12 * energy) << begin << ".." << end;
+      // Elements outside the range: no stress written.
+      for (std::uint32_t e = 0; e < count; ++e)
+        if (e < begin || e >= end) {
+          EXPECT_EQ(stress[6 * (2 + e)], 0.0) << e;
+        }
+    }
   }
 }
 
