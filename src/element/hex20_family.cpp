@@ -12,7 +12,8 @@
 //    built by applying the general kernel to the 60 unit displacements of one element
 //    of the group, so it is the same quadrature to round-off. The loop multiplies it by
 //    the displacements of up to `batch` elements at once (a small matrix product,
-//    3,960 multiply-adds per element instead of about 11,600 at 27 Gauss points).
+//    3,960 multiply-adds per element instead of about 11,600 at 27 Gauss points), the
+//    elements in the vector lanes of the ISA.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
@@ -82,36 +83,36 @@ ElementEnergies general_loop(const ElementBlock& block, std::uint32_t begin, std
 
 // --- affine layout
 
-// F (66 x batch) = [K; S] (66 x 60, row-major) U (60 x batch), two rows at a time with
-// the batch's columns in SSE lanes.
+// F (66 x batch) = [K; S] (66 x 60, row-major) U (60 x batch): Rows rows at a time, the
+// batch's 8 columns in packs of Lanes (8 / Lanes packs per row), so Rows x 8 / Lanes
+// independent sums hide the multiply-add latency. Rows divides 66.
+template <int Lanes>
 void multiply(const double* matrix, const double (&u)[dofs][batch], double (&f)[matrix_rows][batch]) {
-  static_assert(batch == 8 && matrix_rows % 2 == 0);
-  for (int r = 0; r < matrix_rows; r += 2) {
-    const double* k0 = matrix + dofs * r;
-    const double* k1 = k0 + dofs;
-    Pack2 a0{}, a1{}, a2{}, a3{}, b0{}, b1{}, b2{}, b3{};
+  using Real = Pack<Lanes>;
+  constexpr int packs = batch / Lanes;
+  constexpr int rows_at_once = Lanes == 2 ? 2 : 6;
+  static_assert(batch % Lanes == 0 && matrix_rows % rows_at_once == 0);
+  for (int r = 0; r < matrix_rows; r += rows_at_once) {
+    Real sum[rows_at_once][packs] = {};
     for (int c = 0; c < dofs; ++c) {
-      Pack2 u0, u1, u2, u3;
-      std::memcpy(&u0, &u[c][0], sizeof u0);
-      std::memcpy(&u1, &u[c][2], sizeof u1);
-      std::memcpy(&u2, &u[c][4], sizeof u2);
-      std::memcpy(&u3, &u[c][6], sizeof u3);
-      const Pack2 p{k0[c], k0[c]}, q{k1[c], k1[c]};
-      a0 += p * u0, a1 += p * u1, a2 += p * u2, a3 += p * u3;
-      b0 += q * u0, b1 += q * u1, b2 += q * u2, b3 += q * u3;
+      Real column[packs];
+      for (int p = 0; p < packs; ++p) column[p] = load<Real>(&u[c][Lanes * p], 0);
+      for (int i = 0; i < rows_at_once; ++i) {
+        const double k = matrix[dofs * (r + i) + c];
+        for (int p = 0; p < packs; ++p) sum[i][p] += k * column[p];
+      }
     }
-    std::memcpy(&f[r][0], &a0, sizeof a0), std::memcpy(&f[r][2], &a1, sizeof a1);
-    std::memcpy(&f[r][4], &a2, sizeof a2), std::memcpy(&f[r][6], &a3, sizeof a3);
-    std::memcpy(&f[r + 1][0], &b0, sizeof b0), std::memcpy(&f[r + 1][2], &b1, sizeof b1);
-    std::memcpy(&f[r + 1][4], &b2, sizeof b2), std::memcpy(&f[r + 1][6], &b3, sizeof b3);
+    for (int i = 0; i < rows_at_once; ++i)
+      for (int p = 0; p < packs; ++p) store(&f[r + i][Lanes * p], sum[i][p]);
   }
 }
 
+template <int Lanes>
 ElementEnergies affine_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
                             const NodalVectors& u, NodalVectors& f_int, double* stress) {
   ElementEnergies total;
-  alignas(16) double u_batch[dofs][batch];
-  alignas(16) double f_batch[matrix_rows][batch];
+  alignas(64) double u_batch[dofs][batch];
+  alignas(64) double f_batch[matrix_rows][batch];
   const double* ux = u.x.data();
   const double* uy = u.y.data();
   const double* uz = u.z.data();
@@ -138,7 +139,7 @@ ElementEnergies affine_loop(const ElementBlock& block, std::uint32_t begin, std:
         u_batch[40 + k][slot] = uz[n];
       }
     }
-    multiply(block.shared.data() + std::size_t(matrix_size) * group, u_batch, f_batch);
+    multiply<Lanes>(block.shared.data() + std::size_t(matrix_size) * group, u_batch, f_batch);
     for (int slot = 0; slot < count; ++slot) {
       const std::uint32_t* nodes = block.connectivity + 20 * (std::size_t(e) + std::size_t(slot));
       double energy = 0.0;
@@ -235,7 +236,7 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
                      block.material.mu, block.shared.data() + std::size_t(matrix_size) * g);
     block.reference.clear();
     block.reference.shrink_to_fit();
-    block.loop = for_isa<affine_loop>(selected_isa());
+    block.loop = packed_for_isa<affine_loop<2>, affine_loop<4>, affine_loop<8>>(selected_isa());
   } else {
     block.reference_index.clear();
     block.shared = std::move(table);
