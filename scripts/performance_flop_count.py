@@ -102,11 +102,11 @@ def count(binary, benchmark, n, workdir):
     run = subprocess.run(
         ["valgrind", "--tool=callgrind", f"--callgrind-out-file={out_file}", "--collect-atstart=no",
          f"--toggle-collect={TOGGLE}", "--dump-instr=yes", "--dump-line=no", binary,
-         f"--benchmark_filter=^{benchmark}/{n}$", "--benchmark_min_time=0"],
+         f"--benchmark_filter=^{benchmark}/n:{n}/threads:1/real_time$", "--benchmark_min_time=0"],
         check=True, capture_output=True, text=True)
     iterations = None
     for line in run.stdout.splitlines():
-        m = re.match(rf"^{benchmark}/{n}\s+\S+ \S+\s+\S+ \S+\s+(\d+)\s", line)
+        m = re.match(rf"^{benchmark}/n:{n}/threads:1(?:/real_time)?\s+\S+ \S+\s+\S+ \S+\s+(\d+)\s", line)
         if m:
             iterations = int(m.group(1))
     if iterations is None:
