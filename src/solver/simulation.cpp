@@ -50,6 +50,7 @@ struct State {
   std::vector<double> gap;                     // signed normal gap of each slave node, m (0: no candidate)
   std::vector<double> previous_gap;            // the gap of step n-1 (to step back after a non-finite step)
   std::vector<double> stress;                  // 6 per element: xx yy zz xy yz xz, Pa
+  long stress_step = -1;                       // the step whose stresses `stress` holds (see below)
   double contact_energy = 0.0;                 // work done against the contact forces, J
   std::array<std::vector<double>, 4> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
 };
@@ -63,8 +64,12 @@ struct Energies {
   double total() const { return kinetic + internal + hourglass + contact - external_work; }
 };
 
-// f_int(u^n) and the stresses of every element; returns the strain and hourglass energies.
-element::ElementEnergies compute_internal_forces(const Model& model, State& state) {
+// f_int(u^n), and with_stress the stresses of every element; returns the strain and
+// hourglass energies. The stresses are stored only when a step is written (they are
+// 48 B per element, written and read back through the caches every step otherwise):
+// whatever reads state.stress first makes sure state.stress_step is the current step
+// (stresses_of_this_step).
+element::ElementEnergies compute_internal_forces(const Model& model, State& state, bool with_stress) {
   for_each_chunk(state.internal_force.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
     for (int c = 0; c < 3; ++c)
       std::fill(state.internal_force.component(c).begin() + begin,
@@ -72,12 +77,19 @@ element::ElementEnergies compute_internal_forces(const Model& model, State& stat
   });
   element::ElementEnergies total;
   for (const auto& block : model.blocks) {
-    const element::ElementEnergies e =
-        element::add_internal_forces(block, state.displacement, state.internal_force, state.stress.data());
+    const element::ElementEnergies e = element::add_internal_forces(
+        block, state.displacement, state.internal_force, with_stress ? state.stress.data() : nullptr);
     total.strain += e.strain;
     total.hourglass += e.hourglass;
   }
+  if (with_stress) state.stress_step = state.step;
   return total;
+}
+
+// state.stress at u^n: computed again (with f_int, the same bits) unless this step's
+// element pass stored them.
+void stresses_of_this_step(const Model& model, State& state) {
+  if (state.stress_step != state.step) compute_internal_forces(model, state, true);
 }
 
 // The contact pass of every pair at x^n = x_ref + u^n with v^{n-1/2}; then the
@@ -239,6 +251,7 @@ std::string describe_fastest_node(const NodalVectors& velocity) {
 // Names the first node with a non-finite acceleration, velocity or displacement,
 // else the first element with a non-finite stress, else the fastest node.
 std::string describe_non_finite(const Model& model, State& state) {
+  stresses_of_this_step(model, state);
   compute_accelerations(model, state);
   const std::pair<const char*, const NodalVectors*> fields[] = {{"acceleration", &state.acceleration},
                                                                 {"velocity", &state.velocity},
@@ -278,6 +291,7 @@ class StepWriter {
     von_mises_.resize(model.mesh.element_count());
   }
   void write(State& state, double dt) {
+    stresses_of_this_step(model_, state);  // f_int and sigma at u^n
     compute_accelerations(model_, state);  // a^n: the nodal update does not store it
     for_each_chunk(velocity_.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
       for (int c = 0; c < 3; ++c) {
@@ -447,11 +461,12 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   const auto step_back_and_stop = [&](const std::string& message) {
     if (state.step == 0) throw RunFailure(message, state.step, state.time);
     add_scaled(state.displacement, -dt, state.velocity);  // u^{n-1} = u^n - dt v^{n-1/2}
-    compute_internal_forces(model, state);
+    compute_internal_forces(model, state, true);
     std::swap(state.contact_force, state.previous_contact_force);
     std::swap(state.gap, state.previous_gap);
     compute_accelerations(model, state);
     --state.step;
+    state.stress_step = state.step;  // computed above, at u^{n-1}
     state.time = static_cast<double>(state.step) * dt;
     stop_run(message + " (the last finite state, step " + std::to_string(state.step) + ", is written)");
   };
@@ -462,7 +477,10 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       energy = Energies{};
       {
         ScopedTimer timer(phase.element_forces);
-        const element::ElementEnergies element_energy = compute_internal_forces(model, state);
+        // The stresses when this step is written (the guards may still write another
+        // step: stresses_of_this_step).
+        const bool output_step = state.step % deck.output.every == 0 || state.step == stepping.steps;
+        const element::ElementEnergies element_energy = compute_internal_forces(model, state, output_step);
         energy.internal = element_energy.strain;
         energy.hourglass = element_energy.hourglass;
       }

@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 #include <hdf5.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
 
 #include "../support/result_file.hpp"
 #include "../support/temp_dir.hpp"
+#include "common/errors.hpp"
 #include "input/deck_reader.hpp"
 #include "solver/simulation.hpp"
 
@@ -131,6 +134,50 @@ TEST(Threads, LargeContactFacesAreTheSameBitsOnOneAndTwoThreads) {
   ASSERT_GT(one.summary.contact.projections, 10000);
   for (const auto& path : dataset_paths(one.h5))
     EXPECT_TRUE(same_bits(read_dataset(two.h5, path).values, read_dataset(one.h5, path).values)) << path;
+}
+
+TEST(StepsWritten, AStopBetweenOutputStepsWritesTheStressesOfItsStep) {
+  // The element pass stores the stresses only at output steps; a step written by a stop
+  // computes them again. Here the penetration guard stops the plate impact (at step 2:
+  // the penetration is largest as the plates meet): with output.every = 1000 that is
+  // no output step, with output.every = 1 it is one. Both must write it with the same bits.
+  struct Stopped {
+    exdyn::testing::TempDir directory{"exdyn_stop_step"};
+    long step = -1;
+    std::string h5;
+  };
+  const auto run_until_the_guard = [](Stopped& result, const std::string& every) {
+    std::vector<exdyn::input::Override> parsed;
+    for (const std::string o : {"time.end_time=1.2e-7", "guards.max_penetration=4.4e-5", every.c_str()})
+      parsed.push_back(exdyn::input::parse_override(o));
+    const exdyn::input::Deck deck =
+        exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/plate_impact.yaml", parsed);
+    exdyn::solver::RunControls controls;
+    controls.output_directory = result.directory.path().string();
+    try {
+      exdyn::solver::run_simulation(deck, controls);
+    } catch (const exdyn::RunFailure& failure) {
+      result.step = failure.step();
+    }
+    result.h5 = result.directory.file(deck.name + ".h5");
+  };
+  Stopped sparse, every_step;
+  run_until_the_guard(sparse, "output.every=1000");
+  run_until_the_guard(every_step, "output.every=1");
+  ASSERT_GT(sparse.step, 0) << "the guard did not stop the run";
+  ASSERT_EQ(every_step.step, sparse.step);
+  ASSERT_NE(sparse.step % 1000, 0);
+  char group[32];
+  std::snprintf(group, sizeof group, "/steps/%06ld", sparse.step);
+  for (const char* field : {"stress", "von_mises", "velocity", "displacement", "contact_force"}) {
+    const std::string path = std::string(group) + "/" + field;
+    const auto expected = read_dataset(every_step.h5, path).values;
+    ASSERT_FALSE(expected.empty()) << path;
+    EXPECT_TRUE(same_bits(read_dataset(sparse.h5, path).values, expected)) << path;
+  }
+  // Not the stale stresses of step 0 (u = 0: all zero): the contact has loaded the plates.
+  const auto stress = read_dataset(sparse.h5, std::string(group) + "/stress").values;
+  EXPECT_TRUE(std::any_of(stress.begin(), stress.end(), [](double s) { return s != 0.0; }));
 }
 
 }  // namespace
