@@ -2,7 +2,7 @@
 """Stability tests through the executable (issue 6, docs/stability.md): the run-time
 guards, interrupted runs, and results that survive SIGKILL.
 
-    /usr/bin/python3 scripts/test_stability.py --exdyn PATH [--kills N] [--keep DIR]
+    /usr/bin/python3 scripts/test_stability.py --exdyn PATH [--kills N] [--write-kills N] [--keep DIR]
 
 Checks:
 - input/unstable_plate.yaml (Courant 1.5), hex8 and hex8r: exit 1 within a few steps,
@@ -17,7 +17,11 @@ Checks:
   "interrupted by SIGTERM"; the result is complete up to that step;
 - SIGKILL at random moments of the run's progress (--kills, default 20): every time, the files left are a
   result that h5py and ParaView read, holding every step the .xmf lists, with the
-  same data as an uninterrupted run of the same deck at those steps.
+  same data as an uninterrupted run of the same deck at those steps;
+- with --write-kills N (default 0; a campaign, not part of the suite): N more SIGKILLs, at
+  uniformly random moments, of a run that writes a step every 8 steps, so that most of its
+  wall time is spent writing NAME.h5 and most kills land inside a write
+  (docs/stability.md, "Interrupted and killed runs"). Same checks, against an uninterrupted run of it.
 Prints `N passed, M failed`; exit 0 when all passed.
 """
 
@@ -161,10 +165,10 @@ KILL_SETS = ["parts[0].elements=[50,1,50]", "parts[0].box={min: [-2.5e-3, 0, 0],
              "time.end_time=7.5e-6", f"output.every={EVERY}"]
 
 
-def start(exdyn, out, name):
+def start(exdyn, out, name, sets=None):
     cmd = [exdyn, "run", os.path.join(ROOT, "input", "plate_impact_reference.yaml"), "--quiet", "--output", out,
            "--set", f"name={name}"]
-    for s in KILL_SETS:
+    for s in sets or KILL_SETS:
         cmd += ["--set", s]
     return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 
@@ -256,10 +260,46 @@ def test_sigkill(exdyn, work, reference, kills, rng):
           str(killed_steps))
 
 
+def test_write_kills(exdyn, work, kills, rng):
+    """SIGKILL at uniformly random moments of a run that spends most of its time writing."""
+    sets = KILL_SETS[:-1] + ["output.every=8"]
+    ref_out = os.path.join(work, "write_reference")
+    begin = time.monotonic()
+    p = start(exdyn, ref_out, "wwhole", sets)
+    text = p.communicate(timeout=600)[0]
+    duration = time.monotonic() - begin
+    check("write kills: the uninterrupted run completes", p.returncode == 0, text)
+    reference = os.path.join(ref_out, "wwhole.h5")
+    failed, listed = 0, []
+    for k in range(kills):
+        out = os.path.join(work, f"wkill{k}")
+        proc = start(exdyn, out, "wkill", sets)
+        time.sleep(rng.uniform(0.0, duration))
+        proc.kill()
+        proc.wait()
+        xmf = os.path.join(out, "wkill.xmf")
+        if os.path.exists(xmf):
+            steps = xmf_steps(xmf)
+            listed.append(len(steps))
+            try:
+                ok, detail = same_steps(os.path.join(out, "wkill.h5"), reference, steps)
+            except Exception as error:  # noqa: BLE001 - any reading error is the failure under test
+                ok, detail = False, f"h5py: {error}"
+            if not ok:
+                failed += 1
+                print(f"write kill {k}: {len(steps)} steps listed: {detail}", flush=True)
+        shutil.rmtree(out, ignore_errors=True)
+    print(f"write kills: {len(listed)} of {kills} left a result ({min(listed, default=0)} to "
+          f"{max(listed, default=0)} steps listed), {failed} unreadable")
+    check(f"write kills: every one of {len(listed)} results reads back equal", failed == 0, f"{failed} failed")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--exdyn", required=True)
     parser.add_argument("--kills", type=int, default=20)
+    parser.add_argument("--write-kills", type=int, default=0,
+                        help="a campaign of kills of a run that writes every 8 steps (docs/stability.md)")
     parser.add_argument("--seed", type=int, default=None, help="random kill times (default: from the clock)")
     parser.add_argument("--keep", help="work in this directory and keep it")
     args = parser.parse_args()
@@ -279,6 +319,8 @@ def main():
         reference = os.path.join(ref_out, "whole.h5")
         test_sigterm(args.exdyn, work, reference)
         test_sigkill(args.exdyn, work, reference, args.kills, rng)
+        if args.write_kills > 0:
+            test_write_kills(args.exdyn, work, args.write_kills, rng)
     finally:
         if not args.keep:
             shutil.rmtree(work, ignore_errors=True)

@@ -174,6 +174,34 @@ inline Handle create_group(const Hdf5Errors& errors, hid_t parent, const std::st
                 H5Gclose);
 }
 
+// The group that gains one link per written step (/steps), made so that a step's
+// link is one in-place change of one block of the file. Its links are stored
+// "compactly", as messages of the group's own object header, and that header is
+// sized at creation for `expected_links` links: adding a step then rewrites the
+// header where it is, and nothing on disk that an earlier step's path goes through
+// is moved, freed or split. (A group of the old format keeps its names in a local
+// heap that is moved, and its old block freed and reused, each time the heap
+// doubles, and in a B-tree whose nodes split: a kill inside that work left a
+// file whose /steps could not be read, docs/stability.md "Interrupted and killed runs".)
+// Tracking the links' creation order is what makes HDF5 use the link messages in a
+// file of the earliest format (superblock 0, readable by every HDF5 reader).
+// The estimate is capped at 4096 links (about 135 kB of header, rewritten with
+// each step); past it the header grows by continuation blocks, and the links stay
+// compact up to 65535.
+inline Handle create_step_group(const Hdf5Errors& errors, hid_t parent, const std::string& path,
+                                unsigned expected_links) {
+  Handle properties(errors.check(H5Pcreate(H5P_GROUP_CREATE), "cannot create properties for " + path),
+                    H5Pclose);
+  const unsigned estimate = std::clamp(expected_links, 4U, 4096U);
+  errors.check(H5Pset_link_creation_order(properties.get(), H5P_CRT_ORDER_TRACKED),
+               "cannot set link creation order of", path);
+  errors.check(H5Pset_link_phase_change(properties.get(), 65535, 65535), "cannot set link storage of", path);
+  errors.check(H5Pset_est_link_info(properties.get(), estimate, 6), "cannot size the links of", path);
+  return Handle(errors.check(H5Gcreate2(parent, path.c_str(), H5P_DEFAULT, properties.get(), H5P_DEFAULT),
+                             "cannot create group " + path),
+                H5Gclose);
+}
+
 // Creates a fixed-size dataset `path` of shape `dims` and writes it in one call.
 inline void write_dataset(const Hdf5Errors& errors, hid_t file, const std::string& path,
                           const std::vector<hsize_t>& dims, hid_t file_type, hid_t memory_type,

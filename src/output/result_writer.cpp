@@ -138,6 +138,7 @@ struct ResultWriter::Impl {
   Hdf5Errors errors;
   std::size_t node_count = 0;
   std::size_t element_count = 0;
+  unsigned expected_steps = 0;             // the /steps group is sized for this many links
   std::vector<const FieldLayout*> fields;  // requested, canonical order, no duplicates
 
   std::vector<double> buffer;  // interleaved (AoS) staging and zeros; reused
@@ -178,7 +179,7 @@ struct ResultWriter::Impl {
 void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
   Hdf5File file(errors, Hdf5File::Mode::create);
   create_group(errors, file.get(), "/mesh");
-  create_group(errors, file.get(), "/steps");
+  create_step_group(errors, file.get(), "/steps", expected_steps);
   create_group(errors, file.get(), "/history");
 
   // Coordinates: SoA in memory, (N, 3) row-major on disk.
@@ -383,7 +384,7 @@ void ResultWriter::Impl::remove_stale_xdmf() const {
 
 ResultWriter::ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
                            const std::vector<input::OutputField>& fields,
-                           const std::vector<std::string>& contact_pairs) {
+                           const std::vector<std::string>& contact_pairs, std::size_t expected_steps) {
   // Names end up in "NAME.h5:/path" inside the .xmf, which the XDMF readers
   // split at the colon; a slash would put the files somewhere else.
   if (name.empty() || name.find_first_of(":/\\") != std::string::npos) {
@@ -439,6 +440,7 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   impl_ = std::make_unique<Impl>(fs::path(directory), name);
   impl_->node_count = node_count;
   impl_->element_count = element_count;
+  impl_->expected_steps = static_cast<unsigned>(std::min<std::size_t>(expected_steps, 65535));
   impl_->mixed = has_8 && has_20;
   impl_->nodes_per_element = has_20 ? 20 : 8;
   impl_->contact_pairs = contact_pairs;

@@ -65,9 +65,12 @@ class ResultWriter {
   // crashes on a collection with no step); a NAME.xmf of an earlier run is removed.
   // contact_pairs: the names of the contact pairs, whose histories go to
   // /history/contact/NAME (one ContactHistoryRow each with every history row).
+  // expected_steps: how many steps the run plans to write; /steps is sized for
+  // them, so that adding a step changes the file's structure in one place
+  // (hdf5_support.hpp, create_step_group). More steps are fine.
   ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
                const std::vector<input::OutputField>& fields,
-               const std::vector<std::string>& contact_pairs = {});
+               const std::vector<std::string>& contact_pairs = {}, std::size_t expected_steps = 64);
   ~ResultWriter();
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;

@@ -395,7 +395,9 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   output::ResultWriter writer(
       directory, deck.name,
       output::MeshView{&model.mesh.x_ref, &model.mesh.connectivity, &model.mesh.element_part, &element_nodes},
-      deck.output.fields, pair_names);
+      deck.output.fields, pair_names,
+      // steps 0, every, 2 every, ..., the last, and one more a stop may write
+      static_cast<std::size_t>(stepping.steps / std::max(deck.output.every, 1) + 3));
   const std::string summary_path = (std::filesystem::path(directory) / (deck.name + ".json")).string();
 
   State state;

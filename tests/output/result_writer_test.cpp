@@ -433,6 +433,66 @@ TEST_F(ResultWriterTest, HistoryRowsAreAppendedAtEveryStepAndFlush) {
   }
 }
 
+// Crash safety of a step's link (docs/stability.md, "Interrupted and killed runs"): /steps keeps its
+// links in its own object header, sized at creation for the steps the run plans, so
+// adding a step rewrites that one block where it is. The header neither moves nor
+// grows nor gains a chunk over the planned steps; past them it may grow, and every
+// step stays readable. (A group of the old format, a local heap and a B-tree of
+// symbol nodes, fails the first check: its links are not "compact".)
+TEST_F(ResultWriterTest, StepLinksAreRewrittenInPlaceInOneBlock) {
+  constexpr long planned = 40;
+  ResultWriter writer(directory_.string(), "run", mesh_.view(), {OutputField::velocity}, {}, planned);
+  const StepFields fields(mesh_, 0);
+  struct Header {
+    haddr_t address;
+    hsize_t bytes;
+    unsigned chunks;
+  };
+  auto steps_header = [&](H5G_storage_type_t* storage) {
+    const hid_t file = H5Fopen(h5().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    const hid_t group = H5Gopen2(file, "/steps", H5P_DEFAULT);
+    H5O_info_t info{};
+    H5Oget_info2(group, &info, H5O_INFO_BASIC | H5O_INFO_HDR);
+    H5G_info_t group_info{};
+    H5Gget_info(group, &group_info);
+    *storage = group_info.storage_type;
+    H5Gclose(group);
+    H5Fclose(file);
+    return Header{info.addr, info.hdr.space.total, info.hdr.nchunks};
+  };
+  H5G_storage_type_t storage{};
+  const Header before = steps_header(&storage);
+  EXPECT_EQ(storage, H5G_STORAGE_TYPE_COMPACT);
+  EXPECT_EQ(before.chunks, 1u);
+  for (long step = 0; step < planned; ++step) {
+    writer.write_step(fields.data(step, 1e-3 * static_cast<double>(step)));
+    const Header now = steps_header(&storage);
+    ASSERT_EQ(storage, H5G_STORAGE_TYPE_COMPACT) << "step " << step;
+    ASSERT_EQ(now.address, before.address) << "step " << step;
+    ASSERT_EQ(now.bytes, before.bytes) << "step " << step;
+    ASSERT_EQ(now.chunks, 1u) << "step " << step;
+  }
+  for (long step = planned; step < 3 * planned; ++step)  // more steps than planned: still fine
+    writer.write_step(fields.data(step, 1e-3 * static_cast<double>(step)));
+  H5Reader file(h5());
+  const std::vector<std::string> names = file.members("/steps");
+  ASSERT_EQ(names.size(), static_cast<std::size_t>(3 * planned));
+  for (long step = 0; step < 3 * planned; ++step) {
+    char name[8];
+    std::snprintf(name, sizeof name, "%06ld", step);
+    EXPECT_EQ(names[static_cast<std::size_t>(step)], name);
+    EXPECT_EQ(file.attribute<double>(std::string("/steps/") + name, "time", H5T_NATIVE_DOUBLE),
+              1e-3 * static_cast<double>(step));
+  }
+  // Superblock version 0: the file stays readable by every HDF5 reader, and a killed
+  // writer leaves no "file is open for writing" flag (a version 3 superblock would).
+  const hid_t raw = H5Fopen(h5().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  H5F_info2_t info{};
+  H5Fget_info2(raw, &info);
+  H5Fclose(raw);
+  EXPECT_EQ(info.super.version, 0u);
+}
+
 TEST_F(ResultWriterTest, DestructorFlushesHistoryLeftInTheBuffer) {
   {
     ResultWriter writer(directory_.string(), "run", mesh_.view(), all_fields);
