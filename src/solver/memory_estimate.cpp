@@ -19,7 +19,7 @@ namespace exdyn::solver {
 
 // The counts of memory_estimate.hpp, from the types they come from.
 static_assert(sizeof(double) == 8 && sizeof(std::uint32_t) == 4 && sizeof(std::int32_t) == 4);
-static_assert(bytes_per_node == (3 + 2 + 6 * 3 + 6 + 1 + 2 + 3 + 3) * sizeof(double));
+static_assert(bytes_per_node == (3 + 2 + 6 * 3 + 1 + 2 + 3 + 3) * sizeof(double));
 static_assert(bytes_per_element_besides_reference == 8 * sizeof(std::uint32_t) + sizeof(std::int32_t) +
                                                          (6 + 1) * sizeof(double) + 8 * sizeof(std::int64_t));
 

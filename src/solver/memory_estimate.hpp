@@ -16,10 +16,9 @@ namespace exdyn::solver {
 // the time loop's state and the result writer, slightly conservative (the
 // writer's temporary 64-bit connectivity is counted as if it lived on).
 // memory_estimate.cpp checks the counts against the types they come from.
-//   per node, 38 doubles: reference coordinates 3 (mesh), mass and 1/mass 2 (model);
-//     u, v, a, f_int, f_contact and the previous f_contact 18, u^{n+1} and the second
-//     v of the fused nodal update 6, the fixed-component flags 3 bytes counted as 1
-//     double, gap and previous gap
+//   per node, 32 doubles: reference coordinates 3 (mesh), mass and 1/mass 2 (model);
+//     u, v, a, f_int, f_contact and the previous f_contact 18 (the nodal update works
+//     in place), the fixed-component flags 3 bytes counted as 1 double, gap and previous gap
 //     2 (time loop); v at the step 3 (step writer); the (N, 3) staging buffer 3 (HDF5 writer)
 //   per element, 156 B besides the element block's reference data: 8 node ids 32 B
 //     and the part index 4 B (mesh); stress 6 doubles and von Mises 1 (time loop,
@@ -32,7 +31,7 @@ namespace exdyn::solver {
 //     (hex20r); a part has about 4 nodes per element
 // Not counted: arrays of the contact faces and fixed faces (they grow with the
 // surface, not the volume) and the program itself.
-inline constexpr std::uint64_t bytes_per_node = 38 * 8;
+inline constexpr std::uint64_t bytes_per_node = 32 * 8;
 inline constexpr std::uint64_t bytes_per_element_besides_reference = 32 + 4 + 7 * 8 + 64;
 
 // Bytes per element of one part: 244 for a regular box, 804 (hex8) or 444 (hex8r) distorted.

@@ -1,14 +1,20 @@
-// The fused nodal update of the central-difference step, for a range of nodes and one
-// instruction set (common/isa.hpp): one pass over the nodes computes
-//   a^n       = M^-1 (f_contact - f_int)       (0 on fixed components; not stored)
-//   v^{n+1/2} = v^{n-1/2} + dt a^n             (first step: v^{-1/2} = v^0 - dt/2 a^0)
-//   u^{n+1}   = u^n + dt v^{n+1/2}
-// and the sums the energy and the guards need. The pass is bound by memory traffic
-// (docs/performance.md), so it reads and writes no more than it must: a^n is not
-// stored (the output recomputes it, solver/simulation.cpp), and f_contact is read
-// only for packs holding a contact node. The version for an ISA runs on packs
-// of 2, 4 or 8 nodes (its vector width) with one partial sum per lane; the lanes are
-// added in order at the end, so a range gives the same bits on any thread.
+// The nodal update of the central-difference step, for a range of nodes and one
+// instruction set (common/isa.hpp). Two passes, each in place:
+//   the velocity update, after the forces of step n:
+//     a^n       = M^-1 (f_contact - f_int)       (0 on fixed components; not stored)
+//     v^{n+1/2} = v^{n-1/2} + dt a^n             (first step: v^{-1/2} = v^0 - dt/2 a^0)
+//   with the sums the energy and the guards need, and f_int set to 0 for the next
+//   element pass (except when the step is written: the output reads f_int);
+//   the position update, at the end of step n, when nothing reads u^n any more:
+//     u^{n+1}   = u^n + dt v^{n+1/2}.
+// Both passes are bound by memory traffic (docs/performance.md, "The nodal update"),
+// so they read and write no more than they must: every array is updated where it is
+// (a store to an array just read needs no read-for-ownership of its cache line), the
+// masses are read once per node, not once per component, a^n is not stored (the
+// output recomputes it, solver/simulation.cpp), and f_contact is read only for packs
+// holding a contact node. The version for an ISA runs on packs of 2, 4 or 8 nodes (its
+// vector width) with one partial sum per lane; the lanes are added in order at the end,
+// so a range gives the same bits on any thread.
 #pragma once
 
 #include <array>
@@ -25,15 +31,12 @@ inline constexpr std::uint8_t contact_flag = 2;  // the node may carry a contact
 
 // The nodal arrays of one step, per component c (x, y, z), and per node.
 struct NodalArrays {
-  std::array<const double*, 3> internal_force{};  // f_int(u^n), N
-  std::array<const double*, 3> contact_force{};   // f_contact(x^n), N; 0 at nodes without contact_flag
-  std::array<const std::uint8_t*, 3> flags{};     // fixed_flag | contact_flag
-  std::array<const double*, 3> velocity{};        // v^{n-1/2}, m/s
-  std::array<const double*, 3> displacement{};    // u^n, m
-  std::array<double*, 3> next_velocity{};         // v^{n+1/2} written, m/s
-  std::array<double*, 3> next_displacement{};     // u^{n+1} written, m
-  const double* mass = nullptr;                   // lumped mass, kg
-  const double* inverse_mass = nullptr;           // 1 / mass, 1/kg
+  std::array<double*, 3> internal_force{};       // f_int(u^n), N; 0 after the update if asked
+  std::array<const double*, 3> contact_force{};  // f_contact(x^n), N; 0 at nodes without contact_flag
+  std::array<const std::uint8_t*, 3> flags{};    // fixed_flag | contact_flag
+  std::array<double*, 3> velocity{};             // v^{n-1/2} in, v^{n+1/2} out, m/s
+  const double* mass = nullptr;                  // lumped mass, kg
+  const double* inverse_mass = nullptr;          // 1 / mass, 1/kg
 };
 
 // The sums over a range of nodes and components.
@@ -44,11 +47,23 @@ struct NodalSums {
   double largest_component = 0.0;          // max |v^{n+1/2}_c|, m/s
 };
 
-using NodalUpdateFn = NodalSums (*)(const NodalArrays& arrays, std::size_t begin, std::size_t end, double dt,
-                                    bool first_step);
+// The velocity update of nodes [begin, end). A component whose a^n is not finite keeps
+// v^{n-1/2} (and non_finite says so), so the caller can step back to the last finite
+// state (solver/simulation.cpp). zero_internal_force: set f_int to 0 behind the read.
+using VelocityUpdateFn = NodalSums (*)(const NodalArrays& arrays, std::size_t begin, std::size_t end,
+                                       double dt, bool first_step, bool zero_internal_force);
 
-// The update of nodes [begin, end) compiled for `isa` (which the caller has checked
-// this CPU runs).
-NodalUpdateFn nodal_update_for(Isa isa);
+// The position update u += dt v of nodes [begin, end), per component.
+using PositionUpdateFn = void (*)(const std::array<double*, 3>& displacement,
+                                  const std::array<const double*, 3>& velocity, std::size_t begin,
+                                  std::size_t end, double dt);
+
+struct NodalUpdateFns {
+  VelocityUpdateFn velocity = nullptr;
+  PositionUpdateFn position = nullptr;
+};
+
+// The two passes compiled for `isa` (which the caller has checked this CPU runs).
+NodalUpdateFns nodal_update_for(Isa isa);
 
 }  // namespace exdyn::solver

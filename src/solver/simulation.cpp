@@ -36,21 +36,21 @@ namespace {
 struct State {
   long step = 0;
   double time = 0.0;
-  NodalVectors displacement;       // u^n, m
-  NodalVectors next_displacement;  // u^{n+1} from update_nodes, m (swapped in at the step's end)
-  NodalVectors velocity;           // v^{n-1/2}, then v^{n+1/2} after update_nodes, m/s
-  NodalVectors other_velocity;     // update_nodes writes here; after the swap, v^{n-1/2}
+  NodalVectors displacement;  // u^n, m; u^{n+1} at the step's end (update_positions)
+  NodalVectors velocity;      // v^{n-1/2}, then v^{n+1/2} after update_velocities, m/s
   std::array<std::vector<std::uint8_t>, 3>
       flags;  // per component: fixed_flag | contact_flag (nodal_update.hpp)
   NodalVectors
       acceleration;  // a^n, m/s^2, computed when needed (output, a non-finite step: compute_accelerations)
-  NodalVectors internal_force;                 // f_int(u^n), N
+  NodalVectors internal_force;                 // f_int(u^n), N; 0 after update_velocities (see below)
   NodalVectors contact_force;                  // f_contact(x^n), N
   NodalVectors previous_contact_force;         // f_contact(x^{n-1}), N (for the contact work)
   std::vector<double> gap;                     // signed normal gap of each slave node, m (0: no candidate)
   std::vector<double> previous_gap;            // the gap of step n-1 (to step back after a non-finite step)
   std::vector<double> stress;                  // 6 per element: xx yy zz xy yz xz, Pa
   long stress_step = -1;                       // the step whose stresses `stress` holds (see below)
+  long force_step = -1;                        // the step whose f_int `internal_force` holds, -1: none
+  bool internal_force_zero = true;             // internal_force is all 0 (update_velocities zeroed it)
   double contact_energy = 0.0;                 // work done against the contact forces, J
   std::array<std::vector<double>, 4> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
 };
@@ -66,15 +66,18 @@ struct Energies {
 
 // f_int(u^n), and with_stress the stresses of every element; returns the strain and
 // hourglass energies. The stresses are stored only when a step is written (they are
-// 48 B per element, written and read back through the caches every step otherwise):
-// whatever reads state.stress first makes sure state.stress_step is the current step
-// (stresses_of_this_step).
+// 48 B per element, written and read back through the caches every step otherwise),
+// and the velocity update sets f_int to 0 behind its read except at those steps (the
+// next element pass then needs no pass of its own to clear it): whatever reads
+// state.stress or state.internal_force first makes sure they are the current step's
+// (forces_of_this_step).
 element::ElementEnergies compute_internal_forces(const Model& model, State& state, bool with_stress) {
-  for_each_chunk(state.internal_force.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
-    for (int c = 0; c < 3; ++c)
-      std::fill(state.internal_force.component(c).begin() + begin,
-                state.internal_force.component(c).begin() + end, 0.0);
-  });
+  if (!state.internal_force_zero)
+    for_each_chunk(state.internal_force.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (int c = 0; c < 3; ++c)
+        std::fill(state.internal_force.component(c).begin() + begin,
+                  state.internal_force.component(c).begin() + end, 0.0);
+    });
   element::ElementEnergies total;
   for (const auto& block : model.blocks) {
     const element::ElementEnergies e = element::add_internal_forces(
@@ -82,14 +85,17 @@ element::ElementEnergies compute_internal_forces(const Model& model, State& stat
     total.strain += e.strain;
     total.hourglass += e.hourglass;
   }
+  state.internal_force_zero = false;
+  state.force_step = state.step;
   if (with_stress) state.stress_step = state.step;
   return total;
 }
 
-// state.stress at u^n: computed again (with f_int, the same bits) unless this step's
-// element pass stored them.
-void stresses_of_this_step(const Model& model, State& state) {
-  if (state.stress_step != state.step) compute_internal_forces(model, state, true);
+// state.stress and state.internal_force at u^n: computed again (the same bits) unless
+// this step's element pass left them.
+void forces_of_this_step(const Model& model, State& state) {
+  if (state.stress_step != state.step || state.force_step != state.step)
+    compute_internal_forces(model, state, true);
 }
 
 // The contact pass of every pair at x^n = x_ref + u^n with v^{n-1/2}; then the
@@ -171,7 +177,7 @@ bool compute_accelerations(const Model& model, State& state) {
 }
 
 struct NodalUpdate {
-  bool finite = true;    // every a^n finite (else velocity and displacement are untouched)
+  bool finite = true;    // every a^n finite (else the components where it is not keep v^{n-1/2})
   double kinetic = 0.0;  // K^n = 1/2 sum m v^{n-1/2}.v^{n+1/2}, J
   // 1/8 sum m |a^n|^2, J/s^2: dt^2 times it turns K^n into 1/2 sum m |v^n|^2 with
   // v^n = (v^{n-1/2} + v^{n+1/2}) / 2, which is never negative (K^n can be: in an
@@ -180,19 +186,19 @@ struct NodalUpdate {
   double largest_component = 0;  // max |v^{n+1/2}| over nodes and components, m/s
 };
 
-// The nodal update of central differences, in one pass over the nodes
-// (docs/performance.md, "The fused nodal update"): per node and component
+// The velocity update of central differences, in one pass over the nodes
+// (docs/performance.md, "The nodal update"): per node and component
 //   a^n = (f_contact - f_int) / m, 0 where the component is fixed,
 //   v^{n+1/2} = v^{n-1/2} + dt a^n (at step 0 from v^{-1/2} = v^0 - dt/2 a^0),
-//   u^{n+1} = u^n + dt v^{n+1/2},
-// with the energy sums, each per chunk of nodes and added in chunk order (the same
-// bits on any number of threads). v^{n+1/2} and u^{n+1} go to other_velocity and
-// next_displacement: v^{n-1/2} and u^n stay for output, the guards and a step back.
-// On success the velocities are swapped (velocity = v^{n+1/2}); the displacements
-// are swapped at the end of the step. update_range is the version of the selected
-// ISA (nodal_update.hpp): packs of nodes, one partial sum per lane.
-NodalUpdate update_nodes(const Model& model, State& state, double dt, bool first_step,
-                         NodalUpdateFn update_range) {
+// in place, with the energy sums, each per chunk of nodes and added in chunk order (the
+// same bits on any number of threads); f_int is set to 0 behind the read unless the
+// step is written (keep_internal_force: the output recomputes a^n from it). u^n stays
+// for the guards and the output; update_positions makes u^{n+1} at the step's end.
+// A component whose a^n is not finite keeps v^{n-1/2} (step_back_and_stop).
+// The passes are the versions of the selected ISA (nodal_update.hpp): packs of nodes,
+// one partial sum per lane.
+NodalUpdate update_velocities(const Model& model, State& state, double dt, bool first_step,
+                              bool keep_internal_force, const NodalUpdateFns& passes) {
   NodalArrays arrays;
   for (std::size_t c = 0; c < 3; ++c) {
     const int component = static_cast<int>(c);
@@ -200,27 +206,37 @@ NodalUpdate update_nodes(const Model& model, State& state, double dt, bool first
     arrays.contact_force[c] = state.contact_force.component(component).data();
     arrays.flags[c] = state.flags[c].data();
     arrays.velocity[c] = state.velocity.component(component).data();
-    arrays.displacement[c] = state.displacement.component(component).data();
-    arrays.next_velocity[c] = state.other_velocity.component(component).data();
-    arrays.next_displacement[c] = state.next_displacement.component(component).data();
   }
   arrays.mass = model.mass.data();
   arrays.inverse_mass = model.inverse_mass.data();
   for_each_chunk(model.mesh.node_count(), [&](std::size_t begin, std::size_t end, std::size_t k) {
-    const NodalSums sums = update_range(arrays, begin, end, dt, first_step);
+    const NodalSums sums = passes.velocity(arrays, begin, end, dt, first_step, !keep_internal_force);
     state.partial[0][k] = sums.non_finite;
     state.partial[1][k] = sums.twice_kinetic;
     state.partial[2][k] = sums.mass_acceleration_squared;
     state.partial[3][k] = sums.largest_component;
   });
+  if (!keep_internal_force) state.internal_force_zero = true, state.force_step = -1;
   NodalUpdate update;
   update.finite = ordered_sum(state.partial[0]) == 0.0;
   if (!update.finite) return update;
-  std::swap(state.velocity, state.other_velocity);
   update.kinetic = 0.5 * ordered_sum(state.partial[1]);
   update.mass_acceleration_squared = 0.125 * ordered_sum(state.partial[2]);
   update.largest_component = *std::max_element(state.partial[3].begin(), state.partial[3].end());
   return update;
+}
+
+// u^{n+1} = u^n + dt v^{n+1/2}, in place: the last thing of step n.
+void update_positions(State& state, double dt, const NodalUpdateFns& passes) {
+  std::array<double*, 3> u;
+  std::array<const double*, 3> v;
+  for (int c = 0; c < 3; ++c) {
+    u[std::size_t(c)] = state.displacement.component(c).data();
+    v[std::size_t(c)] = state.velocity.component(c).data();
+  }
+  for_each_chunk(state.displacement.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    passes.position(u, v, begin, end, dt);
+  });
 }
 
 // y += scale x, componentwise over the nodes: u^{n+1} = u^n + dt v^{n+1/2};
@@ -251,7 +267,7 @@ std::string describe_fastest_node(const NodalVectors& velocity) {
 // Names the first node with a non-finite acceleration, velocity or displacement,
 // else the first element with a non-finite stress, else the fastest node.
 std::string describe_non_finite(const Model& model, State& state) {
-  stresses_of_this_step(model, state);
+  forces_of_this_step(model, state);
   compute_accelerations(model, state);
   const std::pair<const char*, const NodalVectors*> fields[] = {{"acceleration", &state.acceleration},
                                                                 {"velocity", &state.velocity},
@@ -291,7 +307,7 @@ class StepWriter {
     von_mises_.resize(model.mesh.element_count());
   }
   void write(State& state, double dt) {
-    stresses_of_this_step(model_, state);  // f_int and sigma at u^n
+    forces_of_this_step(model_, state);    // f_int and sigma at u^n
     compute_accelerations(model_, state);  // a^n: the nodal update does not store it
     for_each_chunk(velocity_.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
       for (int c = 0; c < 3; ++c) {
@@ -403,8 +419,6 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   State state;
   const std::size_t node_count = model.mesh.node_count();
   state.displacement.resize(node_count);
-  state.next_displacement.resize(node_count);
-  state.other_velocity.resize(node_count);
   for (std::size_t c = 0; c < 3; ++c) {
     state.flags[c].assign(node_count, 0);
     for (const std::uint32_t node : model.fixed_nodes[c]) state.flags[c][node] |= fixed_flag;
@@ -420,7 +434,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   state.velocity = initial_velocity(deck, model);
   for (auto& p : state.partial) p.assign(chunk_count(node_count), 0.0);
   StepWriter step_writer(writer, model);
-  const NodalUpdateFn nodal_update = nodal_update_for(selected_isa());  // the element blocks' ISA
+  const NodalUpdateFns nodal_update = nodal_update_for(selected_isa());  // the element blocks' ISA
 
   output::PhaseSeconds& phase = summary.phase_seconds;
   contact::ContactStatistics contact_statistics;  // all pairs together, updated every step
@@ -458,17 +472,28 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
     throw RunFailure(message, state.step, state.time);
   };
   // Step n produced a non-finite value: go back to step n-1, the last finite state,
-  // from u^{n-1} = u^n - dt v^{n-1/2} (state.velocity holds v^{n-1/2}), with that
-  // step's contact forces and gaps, and stop there.
+  // from u^{n-1} = u^n - dt v^{n-1/2}, with that step's contact forces and gaps, and
+  // stop there. The velocity update has made v^{n+1/2} = v^{n-1/2} + dt a^n in place
+  // wherever a^n is finite (and left v^{n-1/2} where it is not): v^{n-1/2} is taken
+  // back as v^{n+1/2} - dt a^n, to round-off (state.acceleration holds a^n:
+  // describe_non_finite computed it).
   const auto step_back_and_stop = [&](const std::string& message) {
     if (state.step == 0) throw RunFailure(message, state.step, state.time);
+    for_each_chunk(node_count, [&](std::size_t begin, std::size_t end, std::size_t) {
+      for (int c = 0; c < 3; ++c) {
+        double* v = state.velocity.component(c).data();
+        const double* a = state.acceleration.component(c).data();
+        for (std::size_t i = begin; i < end; ++i)
+          if (std::isfinite(a[i])) v[i] -= dt * a[i];
+      }
+    });
     add_scaled(state.displacement, -dt, state.velocity);  // u^{n-1} = u^n - dt v^{n-1/2}
     compute_internal_forces(model, state, true);
     std::swap(state.contact_force, state.previous_contact_force);
     std::swap(state.gap, state.previous_gap);
     compute_accelerations(model, state);
     --state.step;
-    state.stress_step = state.step;  // computed above, at u^{n-1}
+    state.stress_step = state.force_step = state.step;  // computed above, at u^{n-1}
     state.time = static_cast<double>(state.step) * dt;
     stop_run(message + " (the last finite state, step " + std::to_string(state.step) + ", is written)");
   };
@@ -477,11 +502,12 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
     for (state.step = 0;; ++state.step) {
       state.time = static_cast<double>(state.step) * dt;
       energy = Energies{};
+      // A step written: its element pass keeps the stresses and the velocity update keeps
+      // f_int for the output (the guards may still write another step:
+      // forces_of_this_step).
+      const bool output_step = state.step % deck.output.every == 0 || state.step == stepping.steps;
       {
         ScopedTimer timer(phase.element_forces);
-        // The stresses when this step is written (the guards may still write another
-        // step: stresses_of_this_step).
-        const bool output_step = state.step % deck.output.every == 0 || state.step == stepping.steps;
         const element::ElementEnergies element_energy = compute_internal_forces(model, state, output_step);
         energy.internal = element_energy.strain;
         energy.hourglass = element_energy.hourglass;
@@ -493,7 +519,8 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       }
       {
         ScopedTimer timer(phase.time_integration);
-        const NodalUpdate update = update_nodes(model, state, dt, state.step == 0, nodal_update);
+        const NodalUpdate update =
+            update_velocities(model, state, dt, state.step == 0, output_step, nodal_update);
         if (!update.finite) step_back_and_stop(describe_non_finite(model, state) + when());
         energy.kinetic = update.kinetic;
         mean_energy = energy.total() + dt * dt * update.mass_acceleration_squared;
@@ -501,9 +528,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       }
       const double total = energy.total();
       if (!std::isfinite(total)) {
-        const std::string message = describe_non_finite(model, state) + when();
-        std::swap(state.velocity, state.other_velocity);  // back to v^{n-1/2}
-        step_back_and_stop(message);
+        step_back_and_stop(describe_non_finite(model, state) + when());
       }
       if (state.step == 0) initial_total = total, initial_mean_energy = mean_energy;
       largest_mean_energy = std::max(largest_mean_energy, std::abs(mean_energy));
@@ -582,7 +607,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
                  when() + "; the results up to this step are written");
       {
         ScopedTimer timer(phase.time_integration);
-        std::swap(state.displacement, state.next_displacement);  // u^{n+1}, from update_nodes
+        update_positions(state, dt, nodal_update);  // u^{n+1}
       }
     }
   } catch (const RunFailure& failure) {
