@@ -190,7 +190,9 @@ def same_steps(path, reference_path, steps):
 def test_sigterm(exdyn, work, reference):
     out = os.path.join(work, "sigterm")
     proc = start(exdyn, out, "term")
-    time.sleep(0.5)
+    # After a written step, not after a fixed time: the whole run takes about 0.5 s on
+    # one machine and several seconds under load or a sanitizer.
+    wait_for_step(proc, os.path.join(out, "term.xmf"), 10 * EVERY)
     proc.send_signal(signal.SIGTERM)
     text = proc.communicate(timeout=60)[0]
     check("SIGTERM: exit 1, 'interrupted by SIGTERM'", proc.returncode == 1 and "interrupted by SIGTERM" in text,

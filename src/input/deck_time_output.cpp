@@ -32,7 +32,7 @@ TimeOptions DeckValidator::time(const YAML::Node& node, const std::string& path)
 OutputOptions DeckValidator::output(const YAML::Node& node, const std::string& path) const {
   OutputOptions result;
   if (node.IsNull()) return result;
-  check_map(node, path, {"directory", "every", "fields", "history_every"});
+  check_map(node, path, {"directory", "every", "fields", "history_every", "background"});
   if (const YAML::Node directory = optional(node, "directory"); directory.IsDefined())
     result.directory = text(directory, child_path(path, "directory"), "a directory name");
   if (const YAML::Node every = optional(node, "every"); every.IsDefined())
@@ -53,6 +53,8 @@ OutputOptions DeckValidator::output(const YAML::Node& node, const std::string& p
   }
   if (const YAML::Node history = optional(node, "history_every"); history.IsDefined())
     result.history_every = integer_where(history, child_path(path, "history_every"), "an integer >= 1", 1);
+  if (const YAML::Node background = optional(node, "background"); background.IsDefined())
+    result.background = boolean(background, child_path(path, "background"));
   return result;
 }
 

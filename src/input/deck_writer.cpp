@@ -165,6 +165,7 @@ std::string to_yaml(const Deck& deck) {
       << "  every: " << deck.output.every << "\n"
       << "  fields: [" << join(fields, ", ") << "]\n"
       << "  history_every: " << deck.output.history_every << "\n"
+      << "  background: " << (deck.output.background ? "true" : "false") << "\n"
       << "guards:\n"
       << "  energy_growth: " << yaml_number(deck.guards.energy_growth) << "\n"
       << "  max_penetration: " << yaml_number(deck.guards.max_penetration) << "\n";

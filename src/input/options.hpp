@@ -161,6 +161,8 @@ struct OutputOptions {
   int every = 100;  // steps between field outputs (first and last always written)
   std::vector<OutputField> fields{all_output_fields.begin(), all_output_fields.end()};
   int history_every = 1;  // steps between energy history rows
+  // Written by a thread of the writer's own while the time loop goes on (docs/output.md).
+  bool background = true;
 
   bool operator==(const OutputOptions&) const = default;
 };

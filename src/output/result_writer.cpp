@@ -6,6 +6,13 @@
 // on a locked file, so the file is only held while we write. The .xmf is
 // rewritten (temporary + rename) only after the HDF5 file is closed, so it
 // never names a step that is not complete on disk.
+//
+// A step is first copied into a Frame (the rows the file stores, and the history
+// rows since the last step); the Frame is then written, by the caller or, in the
+// background, by the writer's own thread while the caller goes on computing. Only
+// one thread is inside HDF5 at any time (the serial library is not thread-safe):
+// the caller waits for the writer thread before every operation that touches the
+// file.
 #include "output/result_writer.hpp"
 
 #include <hdf5.h>
@@ -15,8 +22,11 @@
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
@@ -131,6 +141,16 @@ constexpr std::string_view xdmf_tail =
 
 // ---------------------------------------------------------------------------
 
+// One step, ready for the file: each requested field as the rows it is stored in,
+// and the history rows buffered since the last step.
+struct Frame {
+  long step = 0;
+  double time = 0.0;
+  std::vector<std::vector<double>> values;  // per requested field (Impl::fields), reused
+  std::vector<HistoryRow> history;
+  std::vector<ContactHistoryRow> contact;  // contact_pairs.size() per history row
+};
+
 struct ResultWriter::Impl {
   fs::path h5_file;
   fs::path xmf_file;
@@ -154,6 +174,16 @@ struct ResultWriter::Impl {
   std::optional<double> last_time;
   long last_step = -1;
   std::vector<std::string> step_xml;  // one <Grid> per written step
+  Frame frame;                        // the step being written, or the last one
+
+  // The writer thread (write_in_background): it writes `frame` when `busy` is set and
+  // clears `busy` when done; the caller fills `frame` only while `busy` is clear.
+  bool background = false;
+  std::thread thread;
+  std::mutex mutex;
+  std::condition_variable wake, written;
+  bool busy = false, stopping = false;
+  std::exception_ptr failure;  // the writer thread's error, thrown by the caller's next call
 
   Impl(const fs::path& directory, const std::string& name)
       : h5_file(directory / (name + ".h5")),
@@ -162,18 +192,18 @@ struct ResultWriter::Impl {
         errors(h5_file.string()) {}
 
   void write_mesh(const MeshView& mesh);
-  void write_history(hid_t file);
-  void write_field(hid_t file, const std::string& group, const FieldLayout& layout, const StepData& data);
-  std::string grid_xml(const StepData& data, const std::string& group) const;
+  void write_history(hid_t file, const std::vector<HistoryRow>& rows,
+                     const std::vector<ContactHistoryRow>& contact_rows);
+  void fill_frame(const StepData& data);
+  void fill_field(std::vector<double>& out, const FieldLayout& layout, const StepData& data);
+  void write_frame();
+  void wait_until_written();
+  void writer_loop();
+  std::string grid_xml(double time, const std::string& group) const;
   void write_xdmf() const;
   void remove_stale_xdmf() const;
 
   std::size_t rows(Center center) const { return center == Center::node ? node_count : element_count; }
-  // A zeroed staging buffer of `count` values, for a requested field the solver did not provide.
-  const double* zeros(std::size_t count) {
-    buffer.assign(std::max(buffer.size(), count), 0.0);
-    return buffer.data();
-  }
 };
 
 void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
@@ -248,18 +278,19 @@ void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
   file.close();
 }
 
-void ResultWriter::Impl::write_history(hid_t file) {
-  if (pending_history.empty()) return;
-  std::vector<double> column_values(pending_history.size());
+void ResultWriter::Impl::write_history(hid_t file, const std::vector<HistoryRow>& rows,
+                                       const std::vector<ContactHistoryRow>& contact_rows) {
+  if (rows.empty()) return;
+  std::vector<double> column_values(rows.size());
   for (const auto& [column, member] : history_columns) {
-    for (std::size_t i = 0; i < pending_history.size(); ++i) column_values[i] = pending_history[i].*member;
+    for (std::size_t i = 0; i < rows.size(); ++i) column_values[i] = rows[i].*member;
     append_series(errors, file, std::string("/history/") + column, history_rows_on_disk, column_values);
   }
   const std::size_t pairs = contact_pairs.size();
-  std::vector<double> force(3 * pending_history.size());
+  std::vector<double> force(3 * rows.size());
   for (std::size_t k = 0; k < pairs; ++k) {
-    for (std::size_t i = 0; i < pending_history.size(); ++i) {
-      const ContactHistoryRow& row = pending_contact[pairs * i + k];
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const ContactHistoryRow& row = contact_rows[pairs * i + k];
       for (int c = 0; c < 3; ++c) force[3 * i + std::size_t(c)] = row.force[std::size_t(c)];
       column_values[i] = row.max_penetration;
     }
@@ -269,13 +300,11 @@ void ResultWriter::Impl::write_history(hid_t file) {
   }
 }
 
-void ResultWriter::Impl::write_field(hid_t file, const std::string& group, const FieldLayout& layout,
-                                     const StepData& data) {
-  const std::string path = group + "/" + layout.dataset;
+// The rows of one field as the file stores them: (N, 3) or (E, 6) row-major, or
+// (N,) / (E,); zeros for a requested field the solver did not provide.
+void ResultWriter::Impl::fill_field(std::vector<double>& out, const FieldLayout& layout, const StepData& data) {
   const std::size_t n = rows(layout.center);
-  std::vector<hsize_t> dims{n};
-  if (layout.components > 1) dims.push_back(static_cast<hsize_t>(layout.components));
-
+  const std::size_t count = n * static_cast<std::size_t>(layout.components);
   const double* values = nullptr;
   const NodalVectors* vectors = nullptr;
   switch (layout.field) {
@@ -301,30 +330,98 @@ void ResultWriter::Impl::write_field(hid_t file, const std::string& group, const
       values = data.gap;
       break;
   }
-  if (layout.components == 3) {
-    if (vectors == nullptr) {
-      values = zeros(3 * n);
-    } else {
-      buffer.resize(std::max(buffer.size(), 3 * n));
-      // SoA to (N, 3) rows, on the threads for a large mesh (the write itself is serial).
-      const auto rows = static_cast<std::ptrdiff_t>(n);
-#pragma omp parallel for schedule(static) if (rows >= 16384)
-      for (std::ptrdiff_t k = 0; k < rows; ++k) {
-        const auto i = static_cast<std::size_t>(k);
-        buffer[3 * i] = vectors->x[i];
-        buffer[3 * i + 1] = vectors->y[i];
-        buffer[3 * i + 2] = vectors->z[i];
-      }
-      values = buffer.data();
-    }
-  } else if (values == nullptr) {
-    values = zeros(n * static_cast<std::size_t>(layout.components));
+  out.resize(count);
+  if (vectors == nullptr && values == nullptr) {
+    std::fill(out.begin(), out.end(), 0.0);
+    return;
   }
-  // Stress arrives in ParaView's order xx yy zz xy yz xz and is written as-is.
-  write_dataset(errors, file, path, dims, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, values);
+  const auto rows = static_cast<std::ptrdiff_t>(n);
+  if (vectors != nullptr) {
+    // SoA to (N, 3) rows, on the threads for a large mesh (the write itself is serial).
+#pragma omp parallel for schedule(static) if (rows >= 16384)
+    for (std::ptrdiff_t k = 0; k < rows; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      out[3 * i] = vectors->x[i];
+      out[3 * i + 1] = vectors->y[i];
+      out[3 * i + 2] = vectors->z[i];
+    }
+  } else {
+    std::copy_n(values, count, out.begin());  // stress: ParaView's order xx yy zz xy yz xz, as it comes
+  }
 }
 
-std::string ResultWriter::Impl::grid_xml(const StepData& data, const std::string& group) const {
+// Copies a step into `frame` (the caller's thread; the writer thread is idle).
+void ResultWriter::Impl::fill_frame(const StepData& data) {
+  frame.step = data.step;
+  frame.time = data.time;
+  frame.values.resize(fields.size());
+  for (std::size_t k = 0; k < fields.size(); ++k) fill_field(frame.values[k], *fields[k], data);
+  frame.history.swap(pending_history);
+  frame.contact.swap(pending_contact);
+  pending_history.clear();
+  pending_contact.clear();
+}
+
+// Writes `frame` to NAME.h5, closes it, then names the step in the .xmf.
+void ResultWriter::Impl::write_frame() {
+  const Hdf5ErrorPrintingOff quiet;
+  const std::string group_name = step_group_name(frame.step);
+  const std::string group_path = "/steps/" + group_name;
+  {
+    Hdf5File file(errors, Hdf5File::Mode::append);
+    {
+      Handle group = create_group(errors, file.get(), group_path);
+      write_scalar_attribute(errors, group.get(), group_path, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+                             &frame.time);
+      const std::int64_t step = frame.step;
+      write_scalar_attribute(errors, group.get(), group_path, "step", H5T_STD_I64LE, H5T_NATIVE_INT64, &step);
+    }
+    for (std::size_t k = 0; k < fields.size(); ++k) {
+      const FieldLayout& layout = *fields[k];
+      std::vector<hsize_t> dims{rows(layout.center)};
+      if (layout.components > 1) dims.push_back(static_cast<hsize_t>(layout.components));
+      write_dataset(errors, file.get(), group_path + "/" + layout.dataset, dims, H5T_IEEE_F64LE,
+                    H5T_NATIVE_DOUBLE, frame.values[k].data());
+    }
+    append_series(errors, file.get(), "/time", steps_on_disk, {frame.time});
+    write_history(file.get(), frame.history, frame.contact);
+    file.close();
+  }
+  // Only now is the step on disk: record it, then let readers see it.
+  steps_on_disk += 1;
+  history_rows_on_disk += frame.history.size();
+  step_xml.push_back(grid_xml(frame.time, group_name));
+  write_xdmf();
+}
+
+// Waits until the writer thread has no frame; throws its error, if it had one.
+void ResultWriter::Impl::wait_until_written() {
+  if (!background) return;
+  std::unique_lock lock(mutex);
+  written.wait(lock, [&] { return !busy; });
+  if (failure) std::rethrow_exception(std::exchange(failure, nullptr));
+}
+
+void ResultWriter::Impl::writer_loop() {
+  std::unique_lock lock(mutex);
+  for (;;) {
+    wake.wait(lock, [&] { return busy || stopping; });
+    if (!busy) return;  // stopping, nothing left to write
+    lock.unlock();
+    std::exception_ptr error;
+    try {
+      write_frame();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    failure = error;
+    busy = false;
+    written.notify_all();
+  }
+}
+
+std::string ResultWriter::Impl::grid_xml(double time, const std::string& group) const {
   const std::string nodes = std::to_string(node_count);
   const std::string elements = std::to_string(element_count);
   auto data_item = [&](const std::string& dims, const char* number_type, const std::string& path) {
@@ -334,7 +431,7 @@ std::string ResultWriter::Impl::grid_xml(const StepData& data, const std::string
   std::string xml;
   xml.reserve(1600);
   xml += "      <Grid Name=\"step_" + group + "\" GridType=\"Uniform\">\n";
-  xml += "        <Time Value=\"" + format_time(data.time) + "\"/>\n";
+  xml += "        <Time Value=\"" + format_time(time) + "\"/>\n";
   if (mixed) {
     xml += "        <Topology TopologyType=\"Mixed\" NumberOfElements=\"" + elements + "\">\n";
     xml += "          " + data_item(std::to_string(mixed_topology_size), "Int", "/mesh/mixed_topology");
@@ -460,14 +557,34 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
 }
 
 ResultWriter::~ResultWriter() {
-  // Last chance for history rows of a run that ended without flush() (an
-  // exception unwinding the solver). A destructor cannot throw, and the run is
-  // already ending, so a failure here is dropped; flush() is the checked path.
-  if (impl_ == nullptr || impl_->pending_history.empty()) return;
+  // Last chance for a frame in flight and history rows of a run that ended without
+  // flush() (an exception unwinding the solver). A destructor cannot throw, and the
+  // run is already ending, so a failure here is dropped; flush() is the checked path.
+  if (impl_ == nullptr) return;
+  try {
+    impl_->wait_until_written();
+  } catch (...) {
+  }
+  if (impl_->thread.joinable()) {
+    {
+      const std::lock_guard lock(impl_->mutex);
+      impl_->stopping = true;
+    }
+    impl_->wake.notify_all();
+    impl_->thread.join();
+  }
+  impl_->background = false;
+  if (impl_->pending_history.empty()) return;
   try {
     flush();
   } catch (...) {
   }
+}
+
+void ResultWriter::write_in_background(bool background) {
+  Impl& w = *impl_;
+  if (w.last_step >= 0) throw std::logic_error("ResultWriter::write_in_background: a step is already written");
+  w.background = background;
 }
 
 void ResultWriter::add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact) {
@@ -508,41 +625,31 @@ void ResultWriter::write_step(const StepData& data) {
   check_nodes(data.acceleration, "acceleration");
   check_nodes(data.contact_force, "contact_force");
 
-  const Hdf5ErrorPrintingOff quiet;
-  const std::string group_name = step_group_name(data.step);
-  const std::string group_path = "/steps/" + group_name;
-  {
-    Hdf5File file(w.errors, Hdf5File::Mode::append);
-    {
-      Handle group = create_group(w.errors, file.get(), group_path);
-      write_scalar_attribute(w.errors, group.get(), group_path, "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-                             &data.time);
-      const std::int64_t step = data.step;
-      write_scalar_attribute(w.errors, group.get(), group_path, "step", H5T_STD_I64LE, H5T_NATIVE_INT64,
-                             &step);
-    }
-    for (const FieldLayout* layout : w.fields) w.write_field(file.get(), group_path, *layout, data);
-    append_series(w.errors, file.get(), "/time", w.steps_on_disk, {data.time});
-    w.write_history(file.get());
-    file.close();
-  }
-  // Only now is the step on disk: record it, then let readers see it.
-  w.steps_on_disk += 1;
-  w.history_rows_on_disk += w.pending_history.size();
-  w.pending_history.clear();
-  w.pending_contact.clear();
+  // The writer thread has finished the last frame (its error, if any, is thrown here):
+  // this step's frame may be filled.
+  w.wait_until_written();
+  w.fill_frame(data);
   w.last_time = data.time;
   w.last_step = data.step;
-  w.step_xml.push_back(w.grid_xml(data, group_name));
-  w.write_xdmf();
+  if (!w.background) {
+    w.write_frame();
+    return;
+  }
+  if (!w.thread.joinable()) w.thread = std::thread([&w] { w.writer_loop(); });
+  {
+    const std::lock_guard lock(w.mutex);
+    w.busy = true;
+  }
+  w.wake.notify_one();
 }
 
 void ResultWriter::flush() {
   Impl& w = *impl_;
+  w.wait_until_written();
   if (w.pending_history.empty()) return;
   const Hdf5ErrorPrintingOff quiet;
   Hdf5File file(w.errors, Hdf5File::Mode::append);
-  w.write_history(file.get());
+  w.write_history(file.get(), w.pending_history, w.pending_contact);
   file.close();
   w.history_rows_on_disk += w.pending_history.size();
   w.pending_history.clear();

@@ -53,7 +53,8 @@ struct ContactHistoryRow {
   double max_penetration = 0.0;   // the pair's deepest penetration at that step, m (>= 0)
 };
 
-// Call from one thread (the serial HDF5 library is not thread-safe). HDF5 and
+// Call from one thread (the serial HDF5 library is not thread-safe; the writer's
+// own thread, in the background, is inside it only while the caller is not). HDF5 and
 // file-system failures throw std::runtime_error naming the file and dataset;
 // a caller's mistake (time not increasing, a field of the wrong size) throws
 // std::logic_error before the file is touched; a bad mesh or name throws
@@ -80,9 +81,15 @@ class ResultWriter {
   void add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact = {});
   // Writes /steps/NNNNNN, appends to /time, flushes history, closes the file,
   // then rewrites the .xmf atomically. Steps must come in strictly increasing
-  // time and step number.
+  // time and step number. In the background (write_in_background), the step is
+  // copied and the call returns; the writer's thread writes it while the caller goes
+  // on, and the next call waits for it (and throws its error, if it had one).
   void write_step(const StepData& data);
-  // Flushes buffered history rows (end of run).
+  // Steps are written by a thread of the writer's own, one at a time, instead of by
+  // the caller. Call before the first write_step. The files on disk go through the
+  // same states in the same order: a kill leaves what it leaves without the thread.
+  void write_in_background(bool background);
+  // Waits for a step in flight, then flushes buffered history rows (end of run).
   void flush();
 
   std::string h5_path() const;

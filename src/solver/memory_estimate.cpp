@@ -19,9 +19,9 @@ namespace exdyn::solver {
 
 // The counts of memory_estimate.hpp, from the types they come from.
 static_assert(sizeof(double) == 8 && sizeof(std::uint32_t) == 4 && sizeof(std::int32_t) == 4);
-static_assert(bytes_per_node == (3 + 2 + 6 * 3 + 1 + 2 + 3 + 3) * sizeof(double));
+static_assert(bytes_per_node == (3 + 2 + 6 * 3 + 1 + 2 + 3 + (4 * 3 + 1)) * sizeof(double));
 static_assert(bytes_per_element_besides_reference == 8 * sizeof(std::uint32_t) + sizeof(std::int32_t) +
-                                                         (6 + 1) * sizeof(double) + 8 * sizeof(std::int64_t));
+                                                         2 * (6 + 1) * sizeof(double) + 8 * sizeof(std::int64_t));
 
 std::uint64_t bytes_per_element(const input::PartOptions& part) {
   if (input::is_quadratic(part.formulation)) {
@@ -29,7 +29,7 @@ std::uint64_t bytes_per_element(const input::PartOptions& part) {
     // distorted part, replaced by a few shared matrices for a box), 20 node ids, the
     // int64 connectivity written to HDF5 and the group index of each element.
     const int gauss_points = part.formulation == input::Formulation::hex20 ? 27 : 8;
-    return 20 * sizeof(std::uint32_t) + sizeof(std::int32_t) + (6 + 1) * sizeof(double) +
+    return 20 * sizeof(std::uint32_t) + sizeof(std::int32_t) + 2 * (6 + 1) * sizeof(double) +
            20 * sizeof(std::int64_t) + sizeof(std::uint32_t) +
            8 * static_cast<std::uint64_t>(element::hex20::reference_size(gauss_points));
   }

@@ -16,13 +16,16 @@ namespace exdyn::solver {
 // the time loop's state and the result writer, slightly conservative (the
 // writer's temporary 64-bit connectivity is counted as if it lived on).
 // memory_estimate.cpp checks the counts against the types they come from.
-//   per node, 32 doubles: reference coordinates 3 (mesh), mass and 1/mass 2 (model);
+//   per node, 42 doubles: reference coordinates 3 (mesh), mass and 1/mass 2 (model);
 //     u, v, a, f_int, f_contact and the previous f_contact 18 (the nodal update works
 //     in place), the fixed-component flags 3 bytes counted as 1 double, gap and previous gap
-//     2 (time loop); v at the step 3 (step writer); the (N, 3) staging buffer 3 (HDF5 writer)
-//   per element, 156 B besides the element block's reference data: 8 node ids 32 B
+//     2 (time loop); v at the step 3 (step writer); the frame of a written step,
+//     displacement, velocity, acceleration and contact force as (N, 3) rows and the
+//     gap, 13 (HDF5 writer: the copy its thread writes from)
+//   per element, 212 B besides the element block's reference data: 8 node ids 32 B
 //     and the part index 4 B (mesh); stress 6 doubles and von Mises 1 (time loop,
-//     step writer); the int64 connectivity written to HDF5 64 B
+//     step writer) and their copies in the frame 7; the int64 connectivity written to
+//     HDF5 64 B
 //   reference data per element (hex8_family.cpp): the parallelepiped kernels'
 //     at most 11 doubles for a regular box; a distorted part (perturbation) runs the
 //     general kernels, 81 doubles (hex8) or 36 (hex8r)
@@ -31,10 +34,10 @@ namespace exdyn::solver {
 //     (hex20r); a part has about 4 nodes per element
 // Not counted: arrays of the contact faces and fixed faces (they grow with the
 // surface, not the volume) and the program itself.
-inline constexpr std::uint64_t bytes_per_node = 32 * 8;
-inline constexpr std::uint64_t bytes_per_element_besides_reference = 32 + 4 + 7 * 8 + 64;
+inline constexpr std::uint64_t bytes_per_node = 42 * 8;
+inline constexpr std::uint64_t bytes_per_element_besides_reference = 32 + 4 + 14 * 8 + 64;
 
-// Bytes per element of one part: 244 for a regular box, 804 (hex8) or 444 (hex8r) distorted.
+// Bytes per element of one part: 300 for a regular box, 860 (hex8) or 500 (hex8r) distorted.
 std::uint64_t bytes_per_element(const input::PartOptions& part);
 
 struct MemoryEstimate {

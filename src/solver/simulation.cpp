@@ -414,6 +414,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       deck.output.fields, pair_names,
       // steps 0, every, 2 every, ..., the last, and one more a stop may write
       static_cast<std::size_t>(stepping.steps / std::max(deck.output.every, 1) + 3));
+  writer.write_in_background(deck.output.background);
   const std::string summary_path = (std::filesystem::path(directory) / (deck.name + ".json")).string();
 
   State state;

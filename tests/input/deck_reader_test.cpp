@@ -102,6 +102,7 @@ TEST(DeckReader, MinimalDeckGetsEveryDefault) {
   EXPECT_EQ(deck.output.every, 100);
   EXPECT_EQ(deck.output.fields, std::vector<OutputField>(all_output_fields.begin(), all_output_fields.end()));
   EXPECT_EQ(deck.output.history_every, 1);
+  EXPECT_TRUE(deck.output.background);  // the default
 }
 
 TEST(DeckReader, ContactPairDefaultsWhenOnlyRequiredKeysAreGiven) {
@@ -146,7 +147,7 @@ contact:
     search: {cell_size: 0.25}
     local_search: {method: robust, tolerance: 1.0e-12, max_iterations: 7, initial_guess: previous}
 time: {end_time: 1.0e-3, dt: 1.0e-7}
-output: {directory: "out dir", every: 3, fields: [gap, stress], history_every: 5}
+output: {directory: "out dir", every: 3, fields: [gap, stress], history_every: 5, background: false}
 )";
   const Deck deck = parse_deck(text, "inline.yaml");
   EXPECT_EQ(deck.name, "all-keys_2");
@@ -177,6 +178,7 @@ output: {directory: "out dir", every: 3, fields: [gap, stress], history_every: 5
   EXPECT_EQ(deck.output.every, 3);
   EXPECT_EQ(deck.output.fields, (std::vector<OutputField>{OutputField::gap, OutputField::stress}));
   EXPECT_EQ(deck.output.history_every, 5);
+  EXPECT_FALSE(deck.output.background);
 }
 
 TEST(DeckReader, HourglassBlockIsAcceptedForFullIntegration) {

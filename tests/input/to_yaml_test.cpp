@@ -30,7 +30,7 @@ TEST(ToYaml, MinimalDeckRoundTripsWithEveryDefaultWritten) {
         "perturbation: {fraction: 0, seed: 1}\n", "boundary_conditions: []\n", "contact: []\n",
         "courant: 0.9\n", "directory: results\n", "every: 100\n",
         "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap]\n",
-        "history_every: 1\n"})
+        "history_every: 1\n", "background: true\n"})
     EXPECT_TRUE(contains(text, line)) << line << " missing from\n" << text;
 }
 
@@ -68,6 +68,7 @@ TEST(ToYaml, DeckWithEveryOptionChangedRoundTrips) {
   deck.output.fields = {OutputField::gap};
   deck.output.every = 7;
   deck.output.history_every = 3;
+  deck.output.background = false;
   const std::string text = to_yaml(deck);
   const Deck read_back = round_trip(deck);
   EXPECT_EQ(read_back.materials, deck.materials);

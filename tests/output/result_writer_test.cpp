@@ -13,6 +13,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -613,6 +614,65 @@ TEST_F(ResultWriterTest, Hdf5FailureThrowsRuntimeErrorNamingTheFile) {
     EXPECT_NE(std::string(error.what()).find(h5().string()), std::string::npos) << error.what();
   }
   EXPECT_FALSE(fs::exists(xmf())) << "a step that failed must not be named in the .xmf";
+  EXPECT_EQ(open_hdf5_files(), 0);
+}
+
+// Written in the background, a run leaves the same bytes in every dataset and the same
+// .xmf as written by the caller; the caller's buffers may change as soon as write_step
+// returns (the step was copied).
+TEST_F(ResultWriterTest, InTheBackgroundTheFilesAreTheSame) {
+  const std::vector<std::string> pairs{"interface"};
+  auto run = [&](const fs::path& directory, bool background) {
+    ResultWriter writer(directory.string(), "run", mesh_.view(), all_fields, pairs);
+    writer.write_in_background(background);
+    for (long step = 0; step < 12; ++step) {
+      for (int row = 0; row < 3; ++row) {
+        const double t = 1e-3 * static_cast<double>(3 * step + row);
+        writer.add_history({t, 1.0 + t, 2.0, 3.0, 4.0, 5.0, 6.0 + t}, {{{{t, 2 * t, 3 * t}}, t}});
+      }
+      auto fields = std::make_unique<StepFields>(mesh_, step);
+      writer.write_step(fields->data(step, 1e-3 * static_cast<double>(3 * step)));
+      fields.reset();  // the writer must not read the caller's arrays after write_step
+    }
+    writer.add_history({1.0, 0, 0, 0, 0, 0, 0}, {{{{0, 0, 0}}, 0}});
+    writer.flush();
+    EXPECT_EQ(open_hdf5_files(), 0);
+  };
+  run(directory_ / "caller", false);
+  run(directory_ / "background", true);
+  H5Reader a(directory_ / "caller" / "run.h5"), b(directory_ / "background" / "run.h5");
+  std::vector<std::string> datasets{"/time", "/history/time", "/history/total_energy",
+                                    "/history/contact/interface/force", "/history/contact/interface/max_penetration"};
+  for (const std::string& step : a.members("/steps")) {
+    for (const std::string& field : a.members("/steps/" + step)) datasets.push_back("/steps/" + step + "/" + field);
+  }
+  EXPECT_EQ(a.members("/steps").size(), 12u);
+  EXPECT_EQ(datasets.size(), 5u + 12u * 7u);
+  for (const std::string& path : datasets) EXPECT_EQ(a.doubles(path), b.doubles(path)) << path;
+  EXPECT_EQ(a.doubles("/history/time").size(), 37u);
+  EXPECT_EQ(read_text(directory_ / "caller" / "run.xmf"), read_text(directory_ / "background" / "run.xmf"));
+}
+
+// A failure of the writer's thread is thrown by the caller's next call, and the .xmf
+// never names the step that failed.
+TEST_F(ResultWriterTest, InTheBackgroundAFailureIsThrownByTheNextCall) {
+  ResultWriter writer(directory_.string(), "run", mesh_.view(), all_fields);
+  writer.write_in_background(true);
+  const StepFields fields(mesh_, 0);
+  writer.write_step(fields.data(0, 0.0));
+  writer.flush();  // step 0 is on disk
+  EXPECT_THROW(writer.write_in_background(false), std::logic_error) << "only before the first step";
+  fs::remove(h5());
+  writer.write_step(fields.data(1, 1.0));  // copied; the thread fails to open the file
+  try {
+    writer.write_step(fields.data(2, 2.0));
+    FAIL() << "expected std::runtime_error";
+  } catch (const std::runtime_error& error) {
+    EXPECT_NE(std::string(error.what()).find(h5().string()), std::string::npos) << error.what();
+  }
+  const std::string xmf_text = read_text(xmf());
+  EXPECT_NE(xmf_text.find("/steps/000000/"), std::string::npos);
+  EXPECT_EQ(xmf_text.find("/steps/000001/"), std::string::npos);
   EXPECT_EQ(open_hdf5_files(), 0);
 }
 
