@@ -302,7 +302,8 @@ void ResultWriter::Impl::write_history(hid_t file, const std::vector<HistoryRow>
 
 // The rows of one field as the file stores them: (N, 3) or (E, 6) row-major, or
 // (N,) / (E,); zeros for a requested field the solver did not provide.
-void ResultWriter::Impl::fill_field(std::vector<double>& out, const FieldLayout& layout, const StepData& data) {
+void ResultWriter::Impl::fill_field(std::vector<double>& out, const FieldLayout& layout,
+                                    const StepData& data) {
   const std::size_t n = rows(layout.center);
   const std::size_t count = n * static_cast<std::size_t>(layout.components);
   const double* values = nullptr;
@@ -583,7 +584,8 @@ ResultWriter::~ResultWriter() {
 
 void ResultWriter::write_in_background(bool background) {
   Impl& w = *impl_;
-  if (w.last_step >= 0) throw std::logic_error("ResultWriter::write_in_background: a step is already written");
+  if (w.last_step >= 0)
+    throw std::logic_error("ResultWriter::write_in_background: a step is already written");
   w.background = background;
 }
 

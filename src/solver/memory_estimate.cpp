@@ -21,7 +21,8 @@ namespace exdyn::solver {
 static_assert(sizeof(double) == 8 && sizeof(std::uint32_t) == 4 && sizeof(std::int32_t) == 4);
 static_assert(bytes_per_node == (3 + 2 + 6 * 3 + 1 + 2 + 3 + (4 * 3 + 1)) * sizeof(double));
 static_assert(bytes_per_element_besides_reference == 8 * sizeof(std::uint32_t) + sizeof(std::int32_t) +
-                                                         2 * (6 + 1) * sizeof(double) + 8 * sizeof(std::int64_t));
+                                                         2 * (6 + 1) * sizeof(double) +
+                                                         8 * sizeof(std::int64_t));
 
 std::uint64_t bytes_per_element(const input::PartOptions& part) {
   if (input::is_quadratic(part.formulation)) {

@@ -142,7 +142,8 @@ TEST(BadDecks, UnknownKeyFarFromEveryKnownOneListsTheAllowedKeys) {
     FAIL() << "no error";
   } catch (const InputError& error) {
     EXPECT_EQ(error.key_path(), "output.frequency");
-    EXPECT_NE(std::string(error.what()).find("the keys here are directory, every, fields, history_every, background"),
+    EXPECT_NE(std::string(error.what())
+                  .find("the keys here are directory, every, fields, history_every, background"),
               std::string::npos)
         << error.what();
   }

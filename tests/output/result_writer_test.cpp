@@ -642,9 +642,11 @@ TEST_F(ResultWriterTest, InTheBackgroundTheFilesAreTheSame) {
   run(directory_ / "background", true);
   H5Reader a(directory_ / "caller" / "run.h5"), b(directory_ / "background" / "run.h5");
   std::vector<std::string> datasets{"/time", "/history/time", "/history/total_energy",
-                                    "/history/contact/interface/force", "/history/contact/interface/max_penetration"};
+                                    "/history/contact/interface/force",
+                                    "/history/contact/interface/max_penetration"};
   for (const std::string& step : a.members("/steps")) {
-    for (const std::string& field : a.members("/steps/" + step)) datasets.push_back("/steps/" + step + "/" + field);
+    for (const std::string& field : a.members("/steps/" + step))
+      datasets.push_back("/steps/" + step + "/" + field);
   }
   EXPECT_EQ(a.members("/steps").size(), 12u);
   EXPECT_EQ(datasets.size(), 5u + 12u * 7u);
