@@ -77,6 +77,14 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
 ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVectors& u, NodalVectors& f_int,
                                     double* stress);
 
+// The same as OpenMP tasks of the team that meets it: a task per chunk, a colour's
+// tasks in a taskgroup, the colours one after the other. Call from one thread of a
+// parallel region (a `single`): the team takes the chunks, and can run other tasks
+// beside them (the solver's contact pass). Each node gets the same additions in the
+// same order, and the energies are added in chunk order: the same bits as above.
+ElementEnergies add_internal_forces_as_tasks(const ElementBlock& block, const NodalVectors& u,
+                                             NodalVectors& f_int, double* stress);
+
 // Smallest stable time step of the block, s, by the family's rule (docs/theory.md):
 // 8-node elements min over elements of L_e / c1, with L_e the characteristic length
 // (element volume / largest face area) and c1 = sqrt((lambda + 2 mu) / rho); 20-node

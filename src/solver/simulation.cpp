@@ -71,13 +71,23 @@ struct Energies {
 // next element pass then needs no pass of its own to clear it): whatever reads
 // state.stress or state.internal_force first makes sure they are the current step's
 // (forces_of_this_step).
-element::ElementEnergies compute_internal_forces(const Model& model, State& state, bool with_stress) {
+void clear_internal_force(State& state) {
   if (!state.internal_force_zero)
     for_each_chunk(state.internal_force.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
       for (int c = 0; c < 3; ++c)
         std::fill(state.internal_force.component(c).begin() + begin,
                   state.internal_force.component(c).begin() + end, 0.0);
     });
+}
+
+void internal_force_computed(State& state, bool with_stress) {
+  state.internal_force_zero = false;
+  state.force_step = state.step;
+  if (with_stress) state.stress_step = state.step;
+}
+
+element::ElementEnergies compute_internal_forces(const Model& model, State& state, bool with_stress) {
+  clear_internal_force(state);
   element::ElementEnergies total;
   for (const auto& block : model.blocks) {
     const element::ElementEnergies e = element::add_internal_forces(
@@ -85,9 +95,7 @@ element::ElementEnergies compute_internal_forces(const Model& model, State& stat
     total.strain += e.strain;
     total.hourglass += e.hourglass;
   }
-  state.internal_force_zero = false;
-  state.force_step = state.step;
-  if (with_stress) state.stress_step = state.step;
+  internal_force_computed(state, with_stress);
   return total;
 }
 
@@ -101,13 +109,16 @@ void forces_of_this_step(const Model& model, State& state) {
 // The contact pass of every pair at x^n = x_ref + u^n with v^{n-1/2}; then the
 // work done against the contact forces (trapezoidal rule):
 //   E_c^n = E_c^{n-1} - 1/2 (f_c^{n-1} + f_c^n).(u^n - u^{n-1}),  u^n - u^{n-1} = dt v^{n-1/2}.
-void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt) {
+void begin_contact_forces(ContactModel& contact, State& state) {
   std::swap(state.contact_force, state.previous_contact_force);
   for (std::uint32_t node : contact.nodes) {
     state.contact_force.x[node] = state.contact_force.y[node] = state.contact_force.z[node] = 0.0;
     state.previous_gap[node] = state.gap[node];
     state.gap[node] = std::numeric_limits<double>::infinity();
   }
+}
+
+void run_contact_passes(const Model& model, ContactModel& contact, State& state) {
   for (auto& pair : contact.pairs) {
     for (std::size_t p = 0; p < pair.passes.size(); ++p)
       contact::run_contact_pass(pair.passes[p], pair.settings, pair.states[p], model.mesh.x_ref,
@@ -115,6 +126,9 @@ void compute_contact_forces(const Model& model, ContactModel& contact, State& st
                                 state.gap, pair.statistics, pair.seconds);
     pair.max_force = std::max(pair.max_force, contact::norm(pair.slave_force()));
   }
+}
+
+void finish_contact_forces(ContactModel& contact, State& state, double dt) {
   double power = 0.0;  // (f_c^{n-1} + f_c^n).v^{n-1/2}, W x 2
   for (std::uint32_t node : contact.nodes) {
     if (state.gap[node] == std::numeric_limits<double>::infinity()) state.gap[node] = 0.0;  // no candidate
@@ -123,6 +137,58 @@ void compute_contact_forces(const Model& model, ContactModel& contact, State& st
              (state.previous_contact_force.z[node] + state.contact_force.z[node]) * state.velocity.z[node];
   }
   state.contact_energy -= 0.5 * dt * power;
+}
+
+void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt) {
+  begin_contact_forces(contact, state);
+  run_contact_passes(model, contact, state);
+  finish_contact_forces(contact, state, dt);
+}
+
+// f_int (compute_internal_forces) and the contact forces (compute_contact_forces) of
+// step n, side by side on the threads. The two are independent: the element pass reads
+// u^n and writes f_int and the stresses, the contact pass reads u^n and v^{n-1/2} and
+// writes f_contact, the gaps and its own state. So the contact pass runs as one task
+// (its loops on one thread) while the team runs the element chunks as tasks, and
+// whoever is free takes the next chunk. On a small model the serial parts of the
+// contact pass (the bucket rebuild, the scatter) are then hidden behind element work,
+// and there is one parallel region where there were one per colour and per contact
+// loop (docs/performance.md, "Two threads"). The same operations in the same order
+// on every array: the same bits as the passes one after the other.
+// element_seconds: the element pass's own time is added to it (its task's, from start
+// to end); the contact pass times itself (pair.seconds), so the phases of the run
+// summary overlap in this mode.
+element::ElementEnergies compute_forces_side_by_side(const Model& model, ContactModel& contact, State& state,
+                                                     double dt, bool with_stress, double& element_seconds) {
+  clear_internal_force(state);
+  begin_contact_forces(contact, state);
+  std::vector<element::ElementEnergies> block_energies(model.blocks.size());
+  double* stress = with_stress ? state.stress.data() : nullptr;
+  // Two tasks: the element pass, which makes a task of each chunk and waits for each
+  // colour's, and the contact pass. Each thread takes one; the element chunks are
+  // taken by whichever thread is free, so the thread that finishes the contact pass
+  // goes on with them.
+#pragma omp parallel
+#pragma omp single
+  {
+#pragma omp task shared(model, state, block_energies, element_seconds)
+    {
+      const ScopedTimer timer(element_seconds);
+      for (std::size_t b = 0; b < model.blocks.size(); ++b)
+        block_energies[b] = element::add_internal_forces_as_tasks(model.blocks[b], state.displacement,
+                                                                  state.internal_force, stress);
+    }
+#pragma omp task shared(model, contact, state)
+    run_contact_passes(model, contact, state);
+  }  // the barrier: every task is done
+  finish_contact_forces(contact, state, dt);
+  internal_force_computed(state, with_stress);
+  element::ElementEnergies total;
+  for (const element::ElementEnergies& e : block_energies) {
+    total.strain += e.strain;
+    total.hourglass += e.hourglass;
+  }
+  return total;
 }
 
 // The figures of all pairs together (the run's), from each pair's.
@@ -436,6 +502,8 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   for (auto& p : state.partial) p.assign(chunk_count(node_count), 0.0);
   StepWriter step_writer(writer, model);
   const NodalUpdateFns nodal_update = nodal_update_for(selected_isa());  // the element blocks' ISA
+  // The element and contact passes side by side, as tasks (compute_forces_side_by_side).
+  const bool side_by_side = !contact.pairs.empty() && max_threads() > 1;
 
   output::PhaseSeconds& phase = summary.phase_seconds;
   contact::ContactStatistics contact_statistics;  // all pairs together, updated every step
@@ -507,14 +575,19 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       // f_int for the output (the guards may still write another step:
       // forces_of_this_step).
       const bool output_step = state.step % deck.output.every == 0 || state.step == stepping.steps;
-      {
+      if (side_by_side) {  // each pass times itself: the two phases overlap
+        const element::ElementEnergies element_energy =
+            compute_forces_side_by_side(model, contact, state, dt, output_step, phase.element_forces);
+        energy.internal = element_energy.strain;
+        energy.hourglass = element_energy.hourglass;
+      } else {
         ScopedTimer timer(phase.element_forces);
         const element::ElementEnergies element_energy = compute_internal_forces(model, state, output_step);
         energy.internal = element_energy.strain;
         energy.hourglass = element_energy.hourglass;
       }
       if (!contact.pairs.empty()) {
-        compute_contact_forces(model, contact, state, dt);
+        if (!side_by_side) compute_contact_forces(model, contact, state, dt);
         contact_statistics = total_statistics(contact);
         energy.contact = state.contact_energy;
       }
