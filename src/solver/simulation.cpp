@@ -502,8 +502,17 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   for (auto& p : state.partial) p.assign(chunk_count(node_count), 0.0);
   StepWriter step_writer(writer, model);
   const NodalUpdateFns nodal_update = nodal_update_for(selected_isa());  // the element blocks' ISA
-  // The element and contact passes side by side, as tasks (compute_forces_side_by_side).
-  const bool side_by_side = !contact.pairs.empty() && max_threads() > 1;
+  // The element and contact passes side by side, as tasks (compute_forces_side_by_side),
+  // where the element pass runs on the threads anyway (a colour of more than one chunk):
+  // then one parallel region replaces several. A small model keeps its passes without
+  // a region, whose barrier can cost milliseconds when another process holds a core
+  // (docs/performance.md, "Threads").
+  const bool element_pass_threaded =
+      std::any_of(model.blocks.begin(), model.blocks.end(), [](const auto& block) {
+        return std::any_of(block.colours.begin(), block.colours.end(),
+                           [](const auto& colour) { return colour.size() > 1; });
+      });
+  const bool side_by_side = !contact.pairs.empty() && max_threads() > 1 && element_pass_threaded;
 
   output::PhaseSeconds& phase = summary.phase_seconds;
   contact::ContactStatistics contact_statistics;  // all pairs together, updated every step
