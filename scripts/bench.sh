@@ -20,6 +20,7 @@ echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //
 echo "exdyn $($exdyn --version | head -1 | cut -d' ' -f2), kernels $($exdyn --version | sed -n 's/.*a run uses \([^ ;]*\).*/\1/p'); load average at the start: $(cut -d' ' -f1-3 /proc/loadavg)"
 printf '%-34s %-6s %3s %10s %7s %12s %8s  %s\n' case form thr elements steps "Mcycles/s" speedup \
   "phase shares (element forces / integration / output / contact: global + local + forces)"
+echo "(on 2 threads with contact the element and contact passes run side by side, each timing itself: their shares overlap)"
 
 run_case() {  # label formulation deck overrides... (each at 1 thread, then 2)
   local label=$1 form=$2 deck=$3; shift 3
