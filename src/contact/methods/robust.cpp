@@ -294,8 +294,11 @@ struct QuadraticProof {
     struct Range {
       double lo, hi;
     };
+    // a times the range: its ends' products in order (min and max, no branch on the sign:
+    // the signs of the K c_k are as good as random, and a mispredicted branch costs more).
     const auto times = [](double a, Range r) {
-      return a >= 0.0 ? Range{a * r.lo, a * r.hi} : Range{a * r.hi, a * r.lo};
+      const double p = a * r.lo, q = a * r.hi;
+      return Range{std::min(p, q), std::max(p, q)};
     };
     const auto plus = [](Range a, Range b) { return Range{a.lo + b.lo, a.hi + b.hi}; };
     const Range du{du0, du1}, dv{dv0, dv1};
