@@ -53,6 +53,7 @@ struct State {
   bool internal_force_zero = true;             // internal_force is all 0 (update_velocities zeroed it)
   double contact_energy = 0.0;                 // work done against the contact forces, J
   std::array<std::vector<double>, 4> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
+  std::vector<element::ElementEnergies> block_energies;  // per block, scratch of compute_forces_side_by_side
 };
 
 struct Energies {
@@ -162,7 +163,8 @@ element::ElementEnergies compute_forces_side_by_side(const Model& model, Contact
                                                      double dt, bool with_stress, double& element_seconds) {
   clear_internal_force(state);
   begin_contact_forces(contact, state);
-  std::vector<element::ElementEnergies> block_energies(model.blocks.size());
+  std::vector<element::ElementEnergies>& block_energies = state.block_energies;
+  block_energies.resize(model.blocks.size());
   double* stress = with_stress ? state.stress.data() : nullptr;
   // Two tasks: the element pass, which makes a task of each chunk and waits for each
   // colour's, and the contact pass. Each thread takes one; the element chunks are

@@ -27,6 +27,18 @@ struct Box {
   std::uint32_t count = 0;
 };
 
+// n nodal vectors, each component uniform in [-scale, scale], drawn x, y, z node by node.
+NodalVectors random_vectors(std::size_t n, double scale, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  NodalVectors v(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    v.x[i] = scale * unit(rng);
+    v.y[i] = scale * unit(rng);
+    v.z[i] = scale * unit(rng);
+  }
+  return v;
+}
+
 Box make_box(int nx, int ny, int nz, double h) {
   Box box;
   const auto node = [&](int i, int j, int k) {
@@ -82,13 +94,7 @@ void check_block_against_hand_summed_elements(input::Formulation formulation) {
   const ElementBlock block = make_element_block(formulation, steel, coefficient, first_element, box.count,
                                                 box.connectivity.data(), box.x_ref);
   EXPECT_FALSE(uses_parallelepiped_kernel(block));
-  NodalVectors u(box.x_ref.size());
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (std::size_t n = 0; n < u.size(); ++n) {
-    u.x[n] = 1e-4 * unit(rng);
-    u.y[n] = 1e-4 * unit(rng);
-    u.z[n] = 1e-4 * unit(rng);
-  }
+  const NodalVectors u = random_vectors(box.x_ref.size(), 1e-4, rng);
   NodalVectors f_int(box.x_ref.size());
   const double sentinel = -12345.0;
   std::vector<double> stress(6 * (first_element + box.count + 2), sentinel);
@@ -173,13 +179,7 @@ TEST(ElementBlock, PatchTestInteriorNodeOfDistortedPatchFeelsNoForce) {
 TEST(ElementBlock, StructuredBoxUsesTheParallelepipedKernelsAndMatchesTheReference) {
   std::mt19937_64 rng(44);
   const Box box = make_box(3, 2, 2, 2.5e-5);
-  NodalVectors u(box.x_ref.size());
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (std::size_t n = 0; n < u.size(); ++n) {
-    u.x[n] = 1e-8 * unit(rng);
-    u.y[n] = 1e-8 * unit(rng);
-    u.z[n] = 1e-8 * unit(rng);
-  }
+  const NodalVectors u = random_vectors(box.x_ref.size(), 1e-8, rng);
   for (input::Formulation formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
     const ElementBlock block =
         make_element_block(formulation, steel, 0.05, 0, box.count, box.connectivity.data(), box.x_ref);
@@ -222,12 +222,7 @@ void check_odd_counts_and_ranges(bool distorted) {
       box.x_ref.y[n] += 1e-4 * unit(rng);
       box.x_ref.z[n] += 1e-4 * unit(rng);
     }
-  NodalVectors u(box.x_ref.size());
-  for (std::size_t n = 0; n < u.size(); ++n) {
-    u.x[n] = 1e-6 * unit(rng);
-    u.y[n] = 1e-6 * unit(rng);
-    u.z[n] = 1e-6 * unit(rng);
-  }
+  const NodalVectors u = random_vectors(box.x_ref.size(), 1e-6, rng);
   for (input::Formulation formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
     const std::uint32_t first_element = 3;
     const ElementBlock block = make_element_block(formulation, steel, 0.05, first_element, box.count,
@@ -275,10 +270,7 @@ TEST(ElementBlock, RowPacksOfABoxAddTheForcesOfTheElementKernels) {
   // ranges that cut a pack take the lane-by-lane path for it.
   std::mt19937_64 rng(46);
   const Box box = make_box(8, 2, 2, 2.5e-5);
-  NodalVectors u(box.x_ref.size());
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (std::size_t n = 0; n < u.size(); ++n)
-    u.x[n] = 1e-8 * unit(rng), u.y[n] = 1e-8 * unit(rng), u.z[n] = 1e-8 * unit(rng);
+  const NodalVectors u = random_vectors(box.x_ref.size(), 1e-8, rng);
   for (input::Formulation formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
     const ElementBlock block =
         make_element_block(formulation, steel, 0.05, 0, box.count, box.connectivity.data(), box.x_ref);
@@ -324,10 +316,7 @@ TEST(ElementBlock, RowPacksOfABoxAddTheForcesOfTheElementKernels) {
 TEST(ElementBlock, TasksAddTheSameBitsAsTheColouredLoop) {
   std::mt19937_64 rng(47);
   const Box box = make_box(40, 3, 20, 2.5e-5);  // 2400 elements: 5 chunks of 512, 2 colours
-  NodalVectors u(box.x_ref.size());
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  for (std::size_t n = 0; n < u.size(); ++n)
-    u.x[n] = 1e-8 * unit(rng), u.y[n] = 1e-8 * unit(rng), u.z[n] = 1e-8 * unit(rng);
+  const NodalVectors u = random_vectors(box.x_ref.size(), 1e-8, rng);
   for (input::Formulation formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
     const ElementBlock block =
         make_element_block(formulation, steel, 0.05, 0, box.count, box.connectivity.data(), box.x_ref);
