@@ -4,7 +4,8 @@
 #   scripts/install_deps.sh --test    also ParaView, xvfb and the Python packages of the tests
 #   scripts/install_deps.sh --fuzz    also clang 14, its libFuzzer runtime and llvm-symbolizer (scripts/fuzz.sh)
 set -euo pipefail
-packages=(cmake g++ make pkg-config libeigen3-dev libhdf5-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+packages=(cmake g++ make pkg-config libeigen3-dev libhdf5-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
+          libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libbenchmark-dev hdf5-tools python3-numpy python3-h5py python3-matplotlib)
 for option in "$@"; do
   case "$option" in

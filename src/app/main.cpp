@@ -6,12 +6,14 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "app/project_command.hpp"
 #include "common/errors.hpp"
 #include "common/isa.hpp"
+#include "common/mpi.hpp"
 #include "common/version.hpp"
 #include "input/deck_reader.hpp"
 #include "mesh/mesh.hpp"
@@ -89,19 +91,22 @@ struct RunArguments {
   bool quiet = false;
 };
 
-int run_command(const RunArguments& arguments) {
+// On many ranks (mpirun) every rank runs the deck; rank 0 alone prints.
+int run_command(const RunArguments& arguments, const exdyn::mpi::Communicator& comm) {
   if (!arguments.isa.empty()) exdyn::select_isa(exdyn::parse_isa(arguments.isa, "--isa"));
   const exdyn::input::Deck deck = exdyn::input::read_deck(arguments.deck, parse_overrides(arguments.sets));
   exdyn::solver::RunControls controls;
   controls.output_directory = arguments.output;
   controls.threads = arguments.threads;
+  controls.comm = comm;
   controls.stop_signal = &stop_signal;
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);
-  if (!arguments.quiet && isatty(STDERR_FILENO)) controls.on_progress = print_progress;
+  if (!arguments.quiet && comm.root() && isatty(STDERR_FILENO)) controls.on_progress = print_progress;
   try {
     const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
     // A failed local search gives no contact force (docs/stability.md): say so, even with --quiet.
+    if (!comm.root()) return exit_success;
     if (const long failed = summary.contact.not_converged + summary.contact.saddle_points; failed > 0)
       std::fprintf(
           stderr,
@@ -125,6 +130,15 @@ int run_command(const RunArguments& arguments) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // MPI when mpirun started us (common/mpi.hpp), else nothing of it.
+  std::unique_ptr<exdyn::mpi::Session> session;
+  try {
+    session = std::make_unique<exdyn::mpi::Session>();
+  } catch (const std::exception& error) {
+    std::cerr << "exdyn: error: " << error.what() << '\n';
+    return exit_bad_input;
+  }
+  const exdyn::mpi::Communicator world = session->world();
   CLI::App app{"exdyn: explicit dynamics with penalty node-to-segment contact"};
   app.set_version_flag("--version", version_text());
   app.require_subcommand(1);
@@ -174,7 +188,7 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run) return run_command(run_arguments);
+    if (*run) return run_command(run_arguments, world);
     if (*check) {
       const exdyn::input::Deck deck = exdyn::input::read_deck(check_deck, parse_overrides(check_sets));
       std::cout << exdyn::input::to_yaml(deck);
@@ -194,12 +208,19 @@ int main(int argc, char** argv) {
       return exit_success;
     }
   } catch (const exdyn::InputError& error) {
-    std::cerr << "exdyn: error: " << error.what() << '\n';
+    // Bad input is the same on every rank (the same deck): rank 0 says it, all exit.
+    if (world.root()) std::cerr << "exdyn: error: " << error.what() << '\n';
     return exit_bad_input;
   } catch (const exdyn::RunFailure& failure) {
-    std::cerr << "exdyn: run failed: " << failure.what() << '\n';
+    // The guards and the stop signals are agreed by all ranks, which fail together.
+    if (world.root()) std::cerr << "exdyn: run failed: " << failure.what() << '\n';
     return exit_run_failed;
   } catch (const std::exception& error) {
+    // An error of one rank (a file, MPI): the others may be waiting for it, so end them all.
+    if (world.distributed()) {
+      std::cerr << "exdyn: run failed on rank " << world.rank << ": " << error.what() << '\n';
+      session->abort(exit_run_failed);
+    }
     std::cerr << "exdyn: run failed: " << error.what() << '\n';
     return exit_run_failed;
   }

@@ -11,6 +11,7 @@
 
 #include "common/errors.hpp"
 #include "element/element_family.hpp"
+#include "element/element_isa.hpp"
 #include "element/element_loop.hpp"
 
 namespace exdyn::element {
@@ -114,6 +115,71 @@ ElementEnergies add_internal_forces_as_tasks(const ElementBlock& block, const No
     }
   }
   ElementEnergies total;  // in chunk order, whatever the threads
+  for (const ElementEnergies& e : block.chunk_energies) {
+    total.strain += e.strain;
+    total.hourglass += e.hourglass;
+  }
+  return total;
+}
+
+ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint32_t>& chunks,
+                         const std::uint32_t* connectivity, std::uint32_t first_element) {
+  ElementBlock slice;
+  slice.formulation = block.formulation;
+  slice.family = block.family;
+  slice.nodes_per_element = block.nodes_per_element;
+  slice.material = block.material;
+  slice.hourglass_coefficient = block.hourglass_coefficient;
+  slice.first_element = first_element;
+  slice.connectivity = connectivity;
+  slice.shared = block.shared;
+  slice.loop = block.loop;
+  slice.constant_jacobian = block.constant_jacobian;
+  slice.axis_aligned = block.axis_aligned;
+  slice.reference_per_element = block.reference_per_element;
+  // Packs never straddle chunks (element_chunk is a multiple of every pack width).
+  const auto lanes = static_cast<std::uint32_t>(lanes_for(selected_isa()));  // as mark_row_packs
+  std::vector<std::uint32_t> local_chunk(block.chunk_begin.size(), ~0u);
+  slice.chunk_begin.push_back(0);
+  for (const std::uint32_t c : chunks) {
+    const std::uint32_t begin = block.chunk_begin[c], end = block.chunk_begin[c + 1];
+    const bool last = c + 2 == block.chunk_begin.size();
+    local_chunk[c] = std::uint32_t(slice.chunk_begin.size() - 1);
+    slice.count += end - begin;
+    slice.chunk_begin.push_back(slice.count);
+    const std::size_t stride = block.reference_per_element;
+    if (stride > 0)
+      slice.reference.insert(
+          slice.reference.end(), block.reference.begin() + std::ptrdiff_t(stride * begin),
+          last ? block.reference.end() : block.reference.begin() + std::ptrdiff_t(stride * end));
+    if (!block.reference_index.empty())
+      slice.reference_index.insert(slice.reference_index.end(), block.reference_index.begin() + begin,
+                                   block.reference_index.begin() + end);
+    if (!block.row_pack.empty())
+      slice.row_pack.insert(slice.row_pack.end(), block.row_pack.begin() + begin / lanes,
+                            last ? block.row_pack.end() : block.row_pack.begin() + end / lanes);
+  }
+  slice.colours.resize(block.colours.size());
+  for (std::size_t k = 0; k < block.colours.size(); ++k)
+    for (const std::uint32_t c : block.colours[k])
+      if (local_chunk[c] != ~0u) slice.colours[k].push_back(local_chunk[c]);
+  slice.chunk_energies.assign(chunks.size(), ElementEnergies{});
+  return slice;
+}
+
+void add_chunk_forces(const ElementBlock& block, const std::vector<std::uint32_t>& chunks,
+                      const NodalVectors& u, NodalVectors& f_int, double* stress) {
+  const auto count = static_cast<std::ptrdiff_t>(chunks.size());
+#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
+  for (std::ptrdiff_t k = 0; k < count; ++k) {
+    const std::uint32_t c = chunks[static_cast<std::size_t>(k)];
+    block.chunk_energies[c] =
+        add_internal_forces(block, block.chunk_begin[c], block.chunk_begin[c + 1], u, f_int, stress);
+  }
+}
+
+ElementEnergies chunk_energy_total(const ElementBlock& block) {
+  ElementEnergies total;
   for (const ElementEnergies& e : block.chunk_energies) {
     total.strain += e.strain;
     total.hourglass += e.hourglass;

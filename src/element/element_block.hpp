@@ -45,9 +45,13 @@ struct ElementBlock {
   std::vector<double> reference;
   std::vector<double> shared;
   std::vector<std::uint32_t> reference_index;  // per element, where the family keeps its data there
-  ElementLoopFn loop = nullptr;                // the kernel loop of the layout in use
-  bool constant_jacobian = false;              // every element is a parallelepiped (a faster kernel)
-  bool axis_aligned = false;  // hex8: and has its edges along x, y, z (diagonal dxi/dx: faster still)
+  // Doubles of `reference` per element (its layout interleaves packs of elements,
+  // element_loop.hpp, but element e's data starts at e * this for e a multiple of the
+  // pack width; slice_block relies on it).
+  std::size_t reference_per_element = 0;
+  ElementLoopFn loop = nullptr;    // the kernel loop of the layout in use
+  bool constant_jacobian = false;  // every element is a parallelepiped (a faster kernel)
+  bool axis_aligned = false;       // hex8: and has its edges along x, y, z (diagonal dxi/dx: faster still)
   // Per pack of the packed loops (hex8_family.cpp, packs of 2, 4 or 8 elements): 1 when
   // the pack is a run along a node row, whose node k of lane l is node k of lane 0 plus
   // l and whose edges 0-1, 3-2, 4-5, 7-6 join consecutive nodes (the x-rows of a
@@ -84,6 +88,26 @@ ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVector
 // same order, and the energies are added in chunk order: the same bits as above.
 ElementEnergies add_internal_forces_as_tasks(const ElementBlock& block, const NodalVectors& u,
                                              NodalVectors& f_int, double* stress);
+
+// The chunks `chunks` (ascending) of a prepared block, as a block of their own for
+// one MPI rank (docs/parallel.md): the same reference data, kernels, packs and
+// colours, so each of its elements adds the same forces in the same order as in the
+// whole block. `connectivity` holds the chunks' elements' nodes (the rank's node
+// numbers, which must keep the global order, so that row packs stay rows) and must
+// outlive the block; `first_element` is the block's first element in the rank's
+// numbering. Each colour keeps its index (possibly with no chunk).
+ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint32_t>& chunks,
+                         const std::uint32_t* connectivity, std::uint32_t first_element);
+
+// f_int += the forces of the block's chunks `chunks` (local indices, all of one
+// colour: they share no node), on the threads; each chunk's energies go to
+// block.chunk_energies. The pieces of add_internal_forces, for a caller that
+// interleaves the colours with other work (solver/simulation.cpp on many ranks).
+void add_chunk_forces(const ElementBlock& block, const std::vector<std::uint32_t>& chunks,
+                      const NodalVectors& u, NodalVectors& f_int, double* stress);
+
+// The sum of block.chunk_energies in chunk order.
+ElementEnergies chunk_energy_total(const ElementBlock& block);
 
 // Smallest stable time step of the block, s, by the family's rule (docs/theory.md):
 // 8-node elements min over elements of L_e / c1, with L_e the characteristic length

@@ -197,6 +197,7 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
   hex20::derivative_table(rule, table.data());
 
   block.reference.assign(std::size_t(stride) * block.count, 0.0);
+  block.reference_per_element = std::size_t(stride);  // 0 below when the block keeps only shared matrices
   bool affine = true;
   for (std::uint32_t e = 0; e < block.count; ++e) {
     const ElementVectors20 x = gather20(x_ref, block.connectivity + 20 * std::size_t(e));
@@ -236,6 +237,7 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
                      block.material.mu, block.shared.data() + std::size_t(matrix_size) * g);
     block.reference.clear();
     block.reference.shrink_to_fit();
+    block.reference_per_element = 0;
     block.loop = packed_for_isa<affine_loop<2>, affine_loop<4>, affine_loop<8>>(selected_isa());
   } else {
     block.reference_index.clear();

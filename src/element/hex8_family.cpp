@@ -95,6 +95,7 @@ void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t 
   const std::size_t width = static_cast<std::size_t>(lanes);
   const std::size_t stored = width * ((static_cast<std::size_t>(block.count) + width - 1) / width);
   block.reference.assign(stride * stored, 0.0);
+  block.reference_per_element = stride;
   static_assert(hex8::reference_size >= hex8r::reference_size &&
                 hex8::reference_size >= hex8r::parallelepiped_reference_size &&
                 hex8::reference_size >= hex8::parallelepiped_reference_size);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -95,10 +96,17 @@ inline std::string hdf5_error_stack() {
 }
 
 // Errors name the file and the object: "HDF5: cannot write dataset
-// /steps/000010/stress in results/run.h5 (...)".
+// /steps/000010/stress in results/run.h5 (...)". It is also the file's context:
+// on many ranks (comm set) the file is opened by all of them with the MPI-IO driver,
+// every call below is collective, and the data is written collectively, each rank
+// its own rows (the root rank alone those of a whole dataset or series).
 class Hdf5Errors {
  public:
-  explicit Hdf5Errors(std::string file) : file_(std::move(file)) {}
+  explicit Hdf5Errors(std::string file, MPI_Comm comm = MPI_COMM_NULL, bool root = true)
+      : file_(std::move(file)), comm_(comm), root_(root) {}
+  MPI_Comm comm() const { return comm_; }
+  bool parallel() const { return comm_ != MPI_COMM_NULL; }
+  bool root() const { return root_; }
 
   [[noreturn]] void fail(const std::string& what) const {
     throw std::runtime_error("HDF5 file " + file_ + ": " + what + " (" + hdf5_error_stack() + ")");
@@ -114,6 +122,8 @@ class Hdf5Errors {
 
  private:
   std::string file_;
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  bool root_ = true;
 };
 
 // One session with the file: opened (or created) by the constructor, closed
@@ -127,6 +137,9 @@ class Hdf5File {
   Hdf5File(const Hdf5Errors& errors, Mode mode) : errors_(errors) {
     Handle access(errors_.check(H5Pcreate(H5P_FILE_ACCESS), "cannot create file access list for"), H5Pclose);
     errors_.check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_SEMI), "cannot set close degree of", "file");
+    if (errors_.parallel())
+      errors_.check(H5Pset_fapl_mpio(access.get(), errors_.comm(), MPI_INFO_NULL), "cannot set MPI-IO for",
+                    "file");
     if (mode == Mode::create) {
       file_ =
           Handle(errors_.check(H5Fcreate(errors_.file().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get()),
@@ -202,10 +215,56 @@ inline Handle create_step_group(const Hdf5Errors& errors, hid_t parent, const st
                 H5Gclose);
 }
 
-// Creates a fixed-size dataset `path` of shape `dims` and writes it in one call.
+// Writes rows [begin, begin + count) of `dataset` (shape `dims`, rows along the
+// first) from `data`: alone, or on many ranks collectively, each its own rows.
+inline void write_rows(const Hdf5Errors& errors, hid_t dataset, const std::string& path,
+                       const std::vector<hsize_t>& dims, hid_t memory_type, const void* data, hsize_t begin,
+                       hsize_t count) {
+  if (!errors.parallel() && begin == 0 && count == dims[0]) {
+    errors.check(H5Dwrite(dataset, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset",
+                 path);
+    return;
+  }
+  Handle file_space(errors.check(H5Dget_space(dataset), "cannot get dataspace of " + path), H5Sclose);
+  std::vector<hsize_t> offset(dims.size(), 0), block(dims);
+  offset[0] = begin;
+  block[0] = count;
+  Handle memory_space;
+  if (count == 0) {
+    errors.check(H5Sselect_none(file_space.get()), "cannot select rows of", path);
+    memory_space =
+        Handle(errors.check(H5Screate(H5S_SCALAR), "cannot create dataspace for " + path), H5Sclose);
+    errors.check(H5Sselect_none(memory_space.get()), "cannot select rows of", path);
+  } else {
+    errors.check(
+        H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, offset.data(), nullptr, block.data(), nullptr),
+        "cannot select rows of", path);
+    memory_space =
+        Handle(errors.check(H5Screate_simple(static_cast<int>(block.size()), block.data(), nullptr),
+                            "cannot create dataspace for " + path),
+               H5Sclose);
+  }
+  Handle transfer(errors.check(H5Pcreate(H5P_DATASET_XFER), "cannot create transfer list for " + path),
+                  H5Pclose);
+  if (errors.parallel())
+    errors.check(H5Pset_dxpl_mpio(transfer.get(), H5FD_MPIO_COLLECTIVE), "cannot set collective writes of",
+                 path);
+  errors.check(H5Dwrite(dataset, memory_type, memory_space.get(), file_space.get(), transfer.get(), data),
+               "cannot write dataset", path);
+}
+
+// The rows a process writes of a dataset that one rank holds whole (the mesh, the
+// history: the same on every rank): all of them alone, or on the root rank.
+inline std::pair<hsize_t, hsize_t> whole_rows(const Hdf5Errors& errors, hsize_t rows) {
+  return {0, errors.root() ? rows : 0};
+}
+
+// Creates a fixed-size dataset `path` of shape `dims` and writes rows
+// [rows.first, rows.first + rows.second) of it from `data` (by default all: the
+// whole dataset, written by the root rank on many ranks).
 inline void write_dataset(const Hdf5Errors& errors, hid_t file, const std::string& path,
                           const std::vector<hsize_t>& dims, hid_t file_type, hid_t memory_type,
-                          const void* data) {
+                          const void* data, std::optional<std::pair<hsize_t, hsize_t>> rows = std::nullopt) {
   Handle space(errors.check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
                             "cannot create dataspace for " + path),
                H5Sclose);
@@ -213,8 +272,8 @@ inline void write_dataset(const Hdf5Errors& errors, hid_t file, const std::strin
                                          H5P_DEFAULT),
                               "cannot create dataset " + path),
                  H5Dclose);
-  errors.check(H5Dwrite(dataset.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
-               "cannot write dataset", path);
+  const auto [begin, count] = rows ? *rows : whole_rows(errors, dims[0]);
+  write_rows(errors, dataset.get(), path, dims, memory_type, data, begin, count);
 }
 
 // An empty float64 series (0,) extendable without limit, chunked.
@@ -243,18 +302,13 @@ inline void append_series(const Hdf5Errors& errors, hid_t file, const std::strin
   Handle dataset(errors.check(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "cannot open dataset " + path),
                  H5Dclose);
   const hsize_t rows = values.size() / columns;
-  const hsize_t count[2] = {rows, columns};
   const hsize_t new_size[2] = {rows_on_disk + rows, columns};
   const hsize_t offset[2] = {rows_on_disk, 0};
   errors.check(H5Dset_extent(dataset.get(), new_size), "cannot extend dataset", path);
-  Handle file_space(errors.check(H5Dget_space(dataset.get()), "cannot get dataspace of " + path), H5Sclose);
-  errors.check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, offset, nullptr, count, nullptr),
-               "cannot select rows of", path);
-  Handle memory_space(
-      errors.check(H5Screate_simple(rank, count, nullptr), "cannot create dataspace for " + path), H5Sclose);
-  errors.check(H5Dwrite(dataset.get(), H5T_NATIVE_DOUBLE, memory_space.get(), file_space.get(), H5P_DEFAULT,
-                        values.data()),
-               "cannot write dataset", path);
+  std::vector<hsize_t> dims{new_size[0]};
+  if (rank == 2) dims.push_back(columns);
+  const hsize_t written = errors.parallel() && !errors.root() ? 0 : rows;
+  write_rows(errors, dataset.get(), path, dims, H5T_NATIVE_DOUBLE, values.data(), offset[0], written);
 }
 
 inline void write_scalar_attribute(const Hdf5Errors& errors, hid_t object, const std::string& object_path,

@@ -185,11 +185,14 @@ struct ResultWriter::Impl {
   bool busy = false, stopping = false;
   std::exception_ptr failure;  // the writer thread's error, thrown by the caller's next call
 
-  Impl(const fs::path& directory, const std::string& name)
+  Distribution distribution;  // comm.size > 1: this rank's rows of the step fields
+
+  Impl(const fs::path& directory, const std::string& name, const Distribution& d)
       : h5_file(directory / (name + ".h5")),
         xmf_file(directory / (name + ".xmf")),
         h5_reference(xml_escape(name + ".h5")),
-        errors(h5_file.string()) {}
+        errors(h5_file.string(), d.comm.distributed() ? d.comm.comm : MPI_COMM_NULL, d.comm.root()),
+        distribution(d) {}
 
   void write_mesh(const MeshView& mesh);
   void write_history(hid_t file, const std::vector<HistoryRow>& rows,
@@ -204,6 +207,16 @@ struct ResultWriter::Impl {
   void remove_stale_xdmf() const;
 
   std::size_t rows(Center center) const { return center == Center::node ? node_count : element_count; }
+  // The rows of the step fields this process holds and writes: [first_row, + held_rows).
+  std::size_t first_row(Center center) const {
+    if (!distribution.comm.distributed()) return 0;
+    return center == Center::node ? distribution.node_begin : distribution.element_begin;
+  }
+  std::size_t held_rows(Center center) const {
+    if (!distribution.comm.distributed()) return rows(center);
+    return center == Center::node ? distribution.node_end - distribution.node_begin
+                                  : distribution.element_end - distribution.element_begin;
+  }
 };
 
 void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
@@ -304,7 +317,7 @@ void ResultWriter::Impl::write_history(hid_t file, const std::vector<HistoryRow>
 // (N,) / (E,); zeros for a requested field the solver did not provide.
 void ResultWriter::Impl::fill_field(std::vector<double>& out, const FieldLayout& layout,
                                     const StepData& data) {
-  const std::size_t n = rows(layout.center);
+  const std::size_t n = held_rows(layout.center);
   const std::size_t count = n * static_cast<std::size_t>(layout.components);
   const double* values = nullptr;
   const NodalVectors* vectors = nullptr;
@@ -382,7 +395,8 @@ void ResultWriter::Impl::write_frame() {
       std::vector<hsize_t> dims{rows(layout.center)};
       if (layout.components > 1) dims.push_back(static_cast<hsize_t>(layout.components));
       write_dataset(errors, file.get(), group_path + "/" + layout.dataset, dims, H5T_IEEE_F64LE,
-                    H5T_NATIVE_DOUBLE, frame.values[k].data());
+                    H5T_NATIVE_DOUBLE, frame.values[k].data(),
+                    std::pair<hsize_t, hsize_t>{first_row(layout.center), held_rows(layout.center)});
     }
     append_series(errors, file.get(), "/time", steps_on_disk, {frame.time});
     write_history(file.get(), frame.history, frame.contact);
@@ -461,6 +475,7 @@ std::string ResultWriter::Impl::grid_xml(double time, const std::string& group) 
 }
 
 void ResultWriter::Impl::write_xdmf() const {
+  if (!errors.root()) return;  // on many ranks the root writes the .xmf
   std::vector<std::string_view> parts;
   parts.reserve(step_xml.size() + 2);
   parts.push_back(xdmf_head);
@@ -470,6 +485,7 @@ void ResultWriter::Impl::write_xdmf() const {
 }
 
 void ResultWriter::Impl::remove_stale_xdmf() const {
+  if (!errors.root()) return;
   for (fs::path stale : {xmf_file, fs::path(xmf_file.string() + ".tmp")}) {
     std::error_code error;
     fs::remove(stale, error);
@@ -482,7 +498,8 @@ void ResultWriter::Impl::remove_stale_xdmf() const {
 
 ResultWriter::ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
                            const std::vector<input::OutputField>& fields,
-                           const std::vector<std::string>& contact_pairs, std::size_t expected_steps) {
+                           const std::vector<std::string>& contact_pairs, std::size_t expected_steps,
+                           const Distribution& distribution) {
   // Names end up in "NAME.h5:/path" inside the .xmf, which the XDMF readers
   // split at the colon; a slash would put the files somewhere else.
   if (name.empty() || name.find_first_of(":/\\") != std::string::npos) {
@@ -535,7 +552,7 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
       throw std::invalid_argument("ResultWriter: contact pair name '" + pair + "' cannot name an HDF5 group");
 
   fs::create_directories(directory);
-  impl_ = std::make_unique<Impl>(fs::path(directory), name);
+  impl_ = std::make_unique<Impl>(fs::path(directory), name, distribution);
   impl_->node_count = node_count;
   impl_->element_count = element_count;
   impl_->expected_steps = static_cast<unsigned>(std::min<std::size_t>(expected_steps, 65535));
@@ -586,7 +603,7 @@ void ResultWriter::write_in_background(bool background) {
   Impl& w = *impl_;
   if (w.last_step >= 0)
     throw std::logic_error("ResultWriter::write_in_background: a step is already written");
-  w.background = background;
+  w.background = background && !w.distribution.comm.distributed();
 }
 
 void ResultWriter::add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact) {
@@ -613,13 +630,14 @@ void ResultWriter::write_step(const StepData& data) {
   }
 
   // Sizes are checked before the file is touched, so a caller's mistake leaves no partial step.
+  const std::size_t held_nodes = w.held_rows(Center::node);
   auto check_nodes = [&](const NodalVectors* vectors, const char* what) {
     if (vectors == nullptr) return;
-    if (vectors->x.size() != w.node_count || vectors->y.size() != w.node_count ||
-        vectors->z.size() != w.node_count) {
+    if (vectors->x.size() != held_nodes || vectors->y.size() != held_nodes ||
+        vectors->z.size() != held_nodes) {
       throw std::logic_error("ResultWriter: step " + std::to_string(data.step) + ": " + what + " has " +
                              std::to_string(vectors->size()) + " nodes, the mesh " +
-                             std::to_string(w.node_count));
+                             std::to_string(held_nodes));
     }
   };
   check_nodes(data.displacement, "displacement");

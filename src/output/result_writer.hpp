@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/mpi.hpp"
 #include "common/nodal_vectors.hpp"
 #include "input/options.hpp"
 
@@ -23,8 +24,19 @@ struct MeshView {
   const std::vector<std::uint8_t>* element_nodes = nullptr;  // E node counts (8 or 20); null = all 8
 };
 
+// On many ranks (docs/parallel.md): the ranks that write the file together, and the
+// rows of the step fields this one writes (nodes [node_begin, node_end), elements
+// [element_begin, element_end) of the global numbering). The mesh and the history
+// are given whole on every rank and written by the root rank. Default: one process,
+// every row.
+struct Distribution {
+  mpi::Communicator comm;
+  std::size_t node_begin = 0, node_end = 0, element_begin = 0, element_end = 0;
+};
+
 // The fields of one step. A null pointer is written as zeros when the field is
-// requested in the deck (e.g. contact_force in a run without contact).
+// requested in the deck (e.g. contact_force in a run without contact). On many
+// ranks: this rank's rows only (Distribution).
 struct StepData {
   long step = 0;
   double time = 0.0;
@@ -71,7 +83,8 @@ class ResultWriter {
   // (hdf5_support.hpp, create_step_group). More steps are fine.
   ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
                const std::vector<input::OutputField>& fields,
-               const std::vector<std::string>& contact_pairs = {}, std::size_t expected_steps = 64);
+               const std::vector<std::string>& contact_pairs = {}, std::size_t expected_steps = 64,
+               const Distribution& distribution = {});
   ~ResultWriter();
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
@@ -86,7 +99,8 @@ class ResultWriter {
   // on, and the next call waits for it (and throws its error, if it had one).
   void write_step(const StepData& data);
   // Steps are written by a thread of the writer's own, one at a time, instead of by
-  // the caller. Call before the first write_step. The files on disk go through the
+  // the caller (on one rank only: on many, MPI is called from the main thread).
+  // Call before the first write_step. The files on disk go through the
   // same states in the same order: a kill leaves what it leaves without the thread.
   void write_in_background(bool background);
   // Waits for a step in flight, then flushes buffered history rows (end of run).

@@ -81,7 +81,7 @@ Json to_json(const RunSummary& s) {
   j["energy"] = std::move(energy);
   j["contact"] = std::move(contact);
   Json mpi;
-  mpi["ranks"] = 1;
+  mpi["ranks"] = s.ranks;
   j["mpi"] = std::move(mpi);
   Json guards;  // ours, after the spec's keys
   guards["inversion_passes"] = s.guard_checks.inversion_passes;

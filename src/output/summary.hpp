@@ -58,7 +58,8 @@ struct RunSummary {
   std::string status = "completed";  // "completed" or "failed"
   std::string message;
   std::string exdyn_version;
-  int threads = 1;
+  int threads = 1;  // per rank
+  int ranks = 1;    // MPI ranks (mpi.ranks)
   std::string isa;  // the instruction set the element kernels ran with (common/isa.hpp)
   long nodes = 0;
   long elements = 0;

@@ -17,6 +17,9 @@ struct Model {
   std::vector<element::ElementBlock> blocks;  // one per part, deck order
   std::vector<double> mass;                   // lumped nodal mass, kg
   std::vector<double> inverse_mass;           // 1 / mass, 1/kg
+  // On many ranks (decomposition.hpp): the mass the energy sums count, the owned
+  // nodes' (0 elsewhere); empty on one rank, where it is `mass`.
+  std::vector<double> counted_mass;
   // Nodes whose x, y or z velocity is held at zero (sorted, unique).
   std::array<std::vector<std::uint32_t>, 3> fixed_nodes;
 };

@@ -21,11 +21,13 @@
 
 #include "common/errors.hpp"
 #include "common/isa.hpp"
+#include "common/mpi.hpp"
 #include "common/parallel.hpp"
 #include "common/timer.hpp"
 #include "common/version.hpp"
 #include "output/result_writer.hpp"
 #include "solver/contact_setup.hpp"
+#include "solver/decomposition.hpp"
 #include "solver/model.hpp"
 #include "solver/nodal_update.hpp"
 
@@ -87,24 +89,38 @@ void internal_force_computed(State& state, bool with_stress) {
   if (with_stress) state.stress_step = state.step;
 }
 
-element::ElementEnergies compute_internal_forces(const Model& model, State& state, bool with_stress) {
-  clear_internal_force(state);
-  element::ElementEnergies total;
-  for (const auto& block : model.blocks) {
-    const element::ElementEnergies e = element::add_internal_forces(
-        block, state.displacement, state.internal_force, with_stress ? state.stress.data() : nullptr);
+// Blocks [first, last) of the model: f_int += their forces; their energies are added to `total`.
+void add_block_forces(const Model& model, State& state, bool with_stress, std::size_t first, std::size_t last,
+                      element::ElementEnergies& total) {
+  for (std::size_t b = first; b < last; ++b) {
+    const element::ElementEnergies e =
+        element::add_internal_forces(model.blocks[b], state.displacement, state.internal_force,
+                                     with_stress ? state.stress.data() : nullptr);
     total.strain += e.strain;
     total.hourglass += e.hourglass;
   }
+}
+
+// On many ranks the running sums of the shared nodes pass from rank to rank colour
+// by colour (decomposition.hpp): the same bits as one rank.
+element::ElementEnergies compute_internal_forces(const Model& model, Decomposition& d, State& state,
+                                                 bool with_stress) {
+  clear_internal_force(state);
+  element::ElementEnergies total;
+  if (d.comm.distributed())
+    total = add_forces_across_ranks(model, d, state.displacement, state.internal_force,
+                                    with_stress ? state.stress.data() : nullptr);
+  else
+    add_block_forces(model, state, with_stress, 0, model.blocks.size(), total);
   internal_force_computed(state, with_stress);
   return total;
 }
 
 // state.stress and state.internal_force at u^n: computed again (the same bits) unless
 // this step's element pass left them.
-void forces_of_this_step(const Model& model, State& state) {
+void forces_of_this_step(const Model& model, Decomposition& d, State& state) {
   if (state.stress_step != state.step || state.force_step != state.step)
-    compute_internal_forces(model, state, true);
+    compute_internal_forces(model, d, state, true);
 }
 
 // The contact pass of every pair at x^n = x_ref + u^n with v^{n-1/2}; then the
@@ -166,6 +182,7 @@ element::ElementEnergies compute_forces_side_by_side(const Model& model, Contact
   std::vector<element::ElementEnergies>& block_energies = state.block_energies;
   block_energies.resize(model.blocks.size());
   double* stress = with_stress ? state.stress.data() : nullptr;
+
   // Two tasks: the element pass, which makes a task of each chunk and waits for each
   // colour's, and the contact pass. Each thread takes one; the element chunks are
   // taken by whichever thread is free, so the thread that finishes the contact pass
@@ -275,7 +292,8 @@ NodalUpdate update_velocities(const Model& model, State& state, double dt, bool 
     arrays.flags[c] = state.flags[c].data();
     arrays.velocity[c] = state.velocity.component(component).data();
   }
-  arrays.mass = model.mass.data();
+  // The energy sums count each node once: on many ranks only the owned nodes' mass.
+  arrays.mass = model.counted_mass.empty() ? model.mass.data() : model.counted_mass.data();
   arrays.inverse_mass = model.inverse_mass.data();
   for_each_chunk(model.mesh.node_count(), [&](std::size_t begin, std::size_t end, std::size_t k) {
     const NodalSums sums = passes.velocity(arrays, begin, end, dt, first_step, !keep_internal_force);
@@ -319,40 +337,59 @@ void add_scaled(NodalVectors& y, double scale, const NodalVectors& x) {
   });
 }
 
-// The node with the largest |v|_1 (m/s): where an instability grows fastest.
-std::string describe_fastest_node(const NodalVectors& velocity) {
+// The node with the largest |v|_1 (m/s): where an instability grows fastest. On
+// many ranks the fastest of every rank's owned nodes (ties: the lowest node).
+std::string describe_fastest_node(const Decomposition& d, const NodalVectors& velocity) {
   std::size_t fastest = 0;
   double largest = -1.0;
   for (std::size_t i = 0; i < velocity.size(); ++i) {
+    if (!d.owned.empty() && d.owned[i] == 0) continue;
     const double speed = std::abs(velocity.x[i]) + std::abs(velocity.y[i]) + std::abs(velocity.z[i]);
     if (speed > largest) largest = speed, fastest = i;
   }
+  const double mine[2] = {largest, double(global_node_id(d, static_cast<std::uint32_t>(fastest)))};
+  const std::vector<double> all = mpi::all_gather(d.comm, mine, 2);
+  double node = all[1];
+  largest = all[0];
+  for (std::size_t r = 1; r < all.size() / 2; ++r)
+    if (all[2 * r] > largest || (all[2 * r] == largest && all[2 * r + 1] < node))
+      largest = all[2 * r], node = all[2 * r + 1];
   char text[96];
-  std::snprintf(text, sizeof text, "the fastest node is %zu, |v|_1 = %.3g m/s", fastest, largest);
+  std::snprintf(text, sizeof text, "the fastest node is %.0f, |v|_1 = %.3g m/s", node, largest);
   return text;
 }
 
 // Names the first node with a non-finite acceleration, velocity or displacement,
-// else the first element with a non-finite stress, else the fastest node.
-std::string describe_non_finite(const Model& model, State& state) {
-  forces_of_this_step(model, state);
+// else the first element with a non-finite stress, else the fastest node. Every
+// rank calls it; the message is that of the lowest rank that found one.
+std::string describe_non_finite(const Model& model, Decomposition& d, State& state) {
+  forces_of_this_step(model, d, state);
   compute_accelerations(model, state);
   const std::pair<const char*, const NodalVectors*> fields[] = {{"acceleration", &state.acceleration},
                                                                 {"velocity", &state.velocity},
                                                                 {"displacement", &state.displacement}};
-  for (const auto& [label, field] : fields)
-    for (int c = 0; c < 3; ++c) {
+  std::string found;
+  for (const auto& [label, field] : fields) {
+    for (int c = 0; c < 3 && found.empty(); ++c) {
       const auto& values = field->component(c);
       for (std::size_t i = 0; i < values.size(); ++i)
-        if (!std::isfinite(values[i]))
-          return std::string("non-finite ") + label + " at node " + std::to_string(i) + " (component " +
-                 "xyz"[c] + ")";
+        if (!std::isfinite(values[i])) {
+          found = std::string("non-finite ") + label + " at node " +
+                  std::to_string(global_node_id(d, static_cast<std::uint32_t>(i))) + " (component " +
+                  "xyz"[c] + ")";
+          break;
+        }
     }
-  for (std::size_t k = 0; k < state.stress.size(); ++k)
+    if (!found.empty()) break;
+  }
+  for (std::size_t k = 0; k < state.stress.size() && found.empty(); ++k)
     if (!std::isfinite(state.stress[k]))
-      return "non-finite stress in element " + std::to_string(k / 6) + " (component " +
-             std::to_string(k % 6) + " of xx yy zz xy yz xz)";
-  return "non-finite energy (" + describe_fastest_node(state.velocity) + ")";
+      found = "non-finite stress in element " +
+              std::to_string(global_element_id(d, static_cast<std::uint32_t>(k / 6))) + " (component " +
+              std::to_string(k % 6) + " of xx yy zz xy yz xz)";
+  found = mpi::first_message(d.comm, found);
+  if (!found.empty()) return found;
+  return "non-finite energy (" + describe_fastest_node(d, state.velocity) + ")";
 }
 
 std::string format_time(double seconds) {
@@ -368,15 +405,18 @@ std::string format_number(double value) {
 }
 
 // Writes the fields of step n: v^n = v^{n+1/2} - dt/2 a^n (the velocity update is done).
+// On many ranks every rank calls it: the owners' values travel to the ranks that
+// write their rows (decomposition.hpp, rows_of), which write them together.
 class StepWriter {
  public:
-  StepWriter(output::ResultWriter& writer, const Model& model) : writer_(writer), model_(model) {
+  StepWriter(output::ResultWriter& writer, const Model& model, Decomposition& d)
+      : writer_(writer), model_(model), d_(d) {
     velocity_.resize(model.mesh.node_count());
     von_mises_.resize(model.mesh.element_count());
   }
   void write(State& state, double dt) {
-    forces_of_this_step(model_, state);    // f_int and sigma at u^n
-    compute_accelerations(model_, state);  // a^n: the nodal update does not store it
+    forces_of_this_step(model_, d_, state);  // f_int and sigma at u^n
+    compute_accelerations(model_, state);    // a^n: the nodal update does not store it
     for_each_chunk(velocity_.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
       for (int c = 0; c < 3; ++c) {
         const double* v = state.velocity.component(c).data();
@@ -395,21 +435,42 @@ class StepWriter {
     output::StepData data;
     data.step = state.step;
     data.time = state.time;
-    data.displacement = &state.displacement;
-    data.velocity = &velocity_;
-    data.acceleration = &state.acceleration;
-    data.contact_force = &state.contact_force;
-    data.gap = state.gap.data();
-    data.stress = state.stress.data();
-    data.von_mises = von_mises_.data();
+    if (!d_.comm.distributed()) {
+      data.displacement = &state.displacement;
+      data.velocity = &velocity_;
+      data.acceleration = &state.acceleration;
+      data.contact_force = &state.contact_force;
+      data.gap = state.gap.data();
+      data.stress = state.stress.data();
+      data.von_mises = von_mises_.data();
+    } else {
+      const std::pair<const NodalVectors*, NodalVectors*> vectors[] = {{&state.displacement, &rows_[0]},
+                                                                       {&velocity_, &rows_[1]},
+                                                                       {&state.acceleration, &rows_[2]},
+                                                                       {&state.contact_force, &rows_[3]}};
+      for (const auto& [local, rows] : vectors) rows_of(d_, *local, *rows);
+      rows_of(d_, state.gap.data(), 1, true, gap_rows_);
+      rows_of(d_, state.stress.data(), 6, false, stress_rows_);
+      rows_of(d_, von_mises_.data(), 1, false, von_mises_rows_);
+      data.displacement = &rows_[0];
+      data.velocity = &rows_[1];
+      data.acceleration = &rows_[2];
+      data.contact_force = &rows_[3];
+      data.gap = gap_rows_.data();
+      data.stress = stress_rows_.data();
+      data.von_mises = von_mises_rows_.data();
+    }
     writer_.write_step(data);
   }
 
  private:
   output::ResultWriter& writer_;
   const Model& model_;
+  Decomposition& d_;
   NodalVectors velocity_;
   std::vector<double> von_mises_;
+  std::array<NodalVectors, 4> rows_;  // many ranks: this rank's rows of u, v, a, f_contact
+  std::vector<double> gap_rows_, stress_rows_, von_mises_rows_;
 };
 
 output::ContactFigures contact_figures(const contact::ContactStatistics& statistics) {
@@ -449,6 +510,45 @@ void summarise_contact(const ContactModel& contact, const contact::ContactStatis
   summary.phase_seconds.contact_forces = forces;
 }
 
+// The figures of a step summed over the ranks, in rank order (the same bits on every
+// rank, so all take the same decisions): the nodal update's sums, the element
+// energies (in `energy`) and the stop signal any rank has seen. Identity on one rank.
+NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update, Energies& energy,
+                              const volatile std::sig_atomic_t* stop_signal, int& stop_requested) {
+  const int signal = stop_signal != nullptr ? int(*stop_signal) : 0;
+  if (!comm.distributed()) {
+    stop_requested = signal;
+    return update;
+  }
+  const double mine[7] = {update.finite ? 0.0 : 1.0,
+                          update.kinetic,
+                          update.mass_acceleration_squared,
+                          update.largest_component,
+                          energy.internal,
+                          energy.hourglass,
+                          double(signal)};
+  const std::vector<double> all = mpi::all_gather(comm, mine, 7);
+  NodalUpdate total;
+  total.finite = all[0] == 0.0;
+  total.kinetic = all[1];
+  total.mass_acceleration_squared = all[2];
+  total.largest_component = all[3];
+  energy.internal = all[4];
+  energy.hourglass = all[5];
+  stop_requested = int(all[6]);
+  for (std::size_t r = 1; r < std::size_t(comm.size); ++r) {
+    const double* f = all.data() + 7 * r;
+    total.finite = total.finite && f[0] == 0.0;
+    total.kinetic += f[1];
+    total.mass_acceleration_squared += f[2];
+    total.largest_component = std::max(total.largest_component, f[3]);
+    energy.internal += f[4];
+    energy.hourglass += f[5];
+    stop_requested = std::max(stop_requested, int(f[6]));
+  }
+  return total;
+}
+
 }  // namespace
 
 output::RunSummary run_simulation(const input::Deck& deck, const RunControls& controls) {
@@ -460,7 +560,17 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   summary.isa = isa_name(selected_isa());
   summary.end_time = deck.time.end_time;
 
-  const Model model = build_model(deck);
+  // On many ranks every rank builds the whole model, cuts out its part (with every
+  // contact node) and keeps only that (decomposition.hpp). The stable step comes from
+  // the whole model on every rank: the 20-node rule takes one element per group of
+  // equal Jacobians, the group's first in the whole block, so a rank's part could
+  // give another last bit (docs/parallel.md).
+  const mpi::Communicator& comm = controls.comm;
+  summary.ranks = comm.size;
+  Model model = build_model(deck);
+  NodalVectors initial_v = initial_velocity(deck, model);
+  LocalRun local;
+  if (comm.distributed()) local = localize(model, contact_face_nodes(deck, model.mesh), initial_v, comm);
   const double critical_dt = critical_time_step(model);
   const TimeStepping stepping = time_stepping(deck.time, critical_dt);
   const double dt = stepping.dt;
@@ -476,14 +586,34 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
     element_nodes[e] = static_cast<std::uint8_t>(model.mesh.nodes_of(e));
   std::vector<std::string> pair_names;
   for (const auto& pair : contact.pairs) pair_names.push_back(pair.name);
+  output::Distribution distribution;
+  if (comm.distributed()) {
+    distribution.comm = comm;
+    distribution.node_begin = local.decomposition.node_rows.begin;
+    distribution.node_end = local.decomposition.node_rows.end;
+    distribution.element_begin = local.decomposition.element_rows.begin;
+    distribution.element_end = local.decomposition.element_rows.end;
+  }
   output::ResultWriter writer(
       directory, deck.name,
       output::MeshView{&model.mesh.x_ref, &model.mesh.connectivity, &model.mesh.element_part, &element_nodes},
       deck.output.fields, pair_names,
       // steps 0, every, 2 every, ..., the last, and one more a stop may write
-      static_cast<std::size_t>(stepping.steps / std::max(deck.output.every, 1) + 3));
+      static_cast<std::size_t>(stepping.steps / std::max(deck.output.every, 1) + 3), distribution);
   writer.write_in_background(deck.output.background);
   const std::string summary_path = (std::filesystem::path(directory) / (deck.name + ".json")).string();
+  // Only the root rank writes the summary (the figures are the same on every rank).
+  const auto write_summary = [&] {
+    if (comm.root()) output::write_summary(summary_path, summary);
+  };
+  // From here on this rank's part only.
+  Decomposition& decomposition = local.decomposition;
+  decomposition.comm = comm;
+  if (comm.distributed()) {
+    contact = localize_contact(contact, decomposition);
+    model = std::move(local.model);
+    initial_v = std::move(local.initial_velocity);
+  }
 
   State state;
   const std::size_t node_count = model.mesh.node_count();
@@ -500,9 +630,9 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   state.gap.assign(node_count, 0.0);
   state.previous_gap.assign(node_count, 0.0);
   state.stress.assign(6 * model.mesh.element_count(), 0.0);
-  state.velocity = initial_velocity(deck, model);
+  state.velocity = std::move(initial_v);
   for (auto& p : state.partial) p.assign(chunk_count(node_count), 0.0);
-  StepWriter step_writer(writer, model);
+  StepWriter step_writer(writer, model, decomposition);
   const NodalUpdateFns nodal_update = nodal_update_for(selected_isa());  // the element blocks' ISA
   // The element and contact passes side by side, as tasks (compute_forces_side_by_side),
   // where the element pass runs on the threads anyway (a colour of more than one chunk):
@@ -514,7 +644,10 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
         return std::any_of(block.colours.begin(), block.colours.end(),
                            [](const auto& colour) { return colour.size() > 1; });
       });
-  const bool side_by_side = !contact.pairs.empty() && max_threads() > 1 && element_pass_threaded;
+  // (On many ranks the element pass talks to other ranks between its colours, from
+  // the main thread: not as tasks.)
+  const bool side_by_side =
+      !contact.pairs.empty() && max_threads() > 1 && element_pass_threaded && !comm.distributed();
 
   output::PhaseSeconds& phase = summary.phase_seconds;
   contact::ContactStatistics contact_statistics;  // all pairs together, updated every step
@@ -533,6 +666,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   double moved_since_check = std::numeric_limits<double>::infinity(), safety_radius = 0.0,
          largest_speed = 0.0;
   Energies energy;
+  int stop_requested = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
 
   // "..., at step n, time t s"
   const auto when = [&] {
@@ -568,7 +702,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       }
     });
     add_scaled(state.displacement, -dt, state.velocity);  // u^{n-1} = u^n - dt v^{n-1/2}
-    compute_internal_forces(model, state, true);
+    compute_internal_forces(model, decomposition, state, true);
     std::swap(state.contact_force, state.previous_contact_force);
     std::swap(state.gap, state.previous_gap);
     compute_accelerations(model, state);
@@ -593,7 +727,8 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
         energy.hourglass = element_energy.hourglass;
       } else {
         ScopedTimer timer(phase.element_forces);
-        const element::ElementEnergies element_energy = compute_internal_forces(model, state, output_step);
+        const element::ElementEnergies element_energy =
+            compute_internal_forces(model, decomposition, state, output_step);
         energy.internal = element_energy.strain;
         energy.hourglass = element_energy.hourglass;
       }
@@ -604,16 +739,17 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       }
       {
         ScopedTimer timer(phase.time_integration);
-        const NodalUpdate update =
-            update_velocities(model, state, dt, state.step == 0, output_step, nodal_update);
-        if (!update.finite) step_back_and_stop(describe_non_finite(model, state) + when());
+        const NodalUpdate update = reduce_over_ranks(
+            comm, update_velocities(model, state, dt, state.step == 0, output_step, nodal_update), energy,
+            controls.stop_signal, stop_requested);
+        if (!update.finite) step_back_and_stop(describe_non_finite(model, decomposition, state) + when());
         energy.kinetic = update.kinetic;
         mean_energy = energy.total() + dt * dt * update.mass_acceleration_squared;
         largest_speed = std::sqrt(3.0) * update.largest_component;  // >= |v^{n+1/2}|_2 of every node
       }
       const double total = energy.total();
       if (!std::isfinite(total)) {
-        step_back_and_stop(describe_non_finite(model, state) + when());
+        step_back_and_stop(describe_non_finite(model, decomposition, state) + when());
       }
       if (state.step == 0) initial_total = total, initial_mean_energy = mean_energy;
       largest_mean_energy = std::max(largest_mean_energy, std::abs(mean_energy));
@@ -641,29 +777,41 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
           if (!contact.pairs.empty())
             advice += ", the stiffest contact node pair " +
                       format_number(contact_statistics.max_pair_stiffness) + " N/m";
-          stop_run(detail + describe_fastest_node(state.velocity) + when() + advice);
+          stop_run(detail + describe_fastest_node(decomposition, state.velocity) + when() + advice);
         }
         if (contact_statistics.max_penetration_over_h > deck.guards.max_penetration) {
           char detail[200];
           std::snprintf(detail, sizeof detail, " penetrates by %.3g h (guards.max_penetration = %.3g h)",
                         contact_statistics.max_penetration_over_h, deck.guards.max_penetration);
           stop_run("contact pair " + contact.pair_of(contact_statistics.deepest_node) + ": slave node " +
-                   std::to_string(contact_statistics.deepest_node) + detail + when());
+                   std::to_string(global_node_id(decomposition, contact_statistics.deepest_node)) + detail +
+                   when());
         }
         if (moved_since_check >= safety_radius) {
+          // Every rank checks its elements; the lowest element found is named (on
+          // many ranks: by the lowest rank that found one).
           safety_radius = std::numeric_limits<double>::infinity();
+          std::string inverted_message;
+          std::uint32_t inverted_element = std::numeric_limits<std::uint32_t>::max();
           for (const auto& block : model.blocks) {
             const element::InvertedElement inverted =
                 element::find_inverted_element(block, model.mesh.x_ref, state.displacement);
-            if (inverted.found) {
-              const std::uint32_t node = model.mesh.element_nodes(inverted.element)[inverted.corner];
-              char detail[160];
-              std::snprintf(detail, sizeof detail, " (det J = %.3g m^3 at its corner node %u)",
-                            inverted.det_jacobian, node);
-              stop_run("element " + std::to_string(inverted.element) + " is inverted" + detail + when());
-            }
             safety_radius = std::min(safety_radius, inverted.safety_radius);
+            if (!inverted.found) continue;
+            const std::uint32_t element = global_element_id(decomposition, inverted.element);
+            if (element >= inverted_element) continue;
+            inverted_element = element;
+            const std::uint32_t node = block.connectivity[std::size_t(block.nodes_per_element) *
+                                                              (inverted.element - block.first_element) +
+                                                          std::size_t(inverted.corner)];
+            char detail[160];
+            std::snprintf(detail, sizeof detail, " (det J = %.3g m^3 at its corner node %u)",
+                          inverted.det_jacobian, global_node_id(decomposition, node));
+            inverted_message = "element " + std::to_string(element) + " is inverted" + detail + when();
           }
+          inverted_message = mpi::first_message(comm, inverted_message);
+          if (!inverted_message.empty()) stop_run(inverted_message);
+          safety_radius = mpi::min(comm, safety_radius);
           moved_since_check = 0.0;
           ++summary.guard_checks.inversion_passes;
         }
@@ -687,12 +835,13 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
         controls.on_progress({state.step, stepping.steps, state.time, dt, last_progress});
       }
       if (last) break;
-      if (controls.stop_signal != nullptr && *controls.stop_signal != 0)
-        stop_run(std::string("interrupted by ") + (*controls.stop_signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                 when() + "; the results up to this step are written");
+      if (stop_requested != 0)
+        stop_run(std::string("interrupted by ") + (stop_requested == SIGINT ? "SIGINT" : "SIGTERM") + when() +
+                 "; the results up to this step are written");
       {
         ScopedTimer timer(phase.time_integration);
-        update_positions(state, dt, nodal_update);  // u^{n+1}
+        update_positions(state, dt, nodal_update);                                // u^{n+1}
+        gather_contact_nodes(decomposition, state.displacement, state.velocity);  // many ranks
       }
     }
   } catch (const RunFailure& failure) {
@@ -701,7 +850,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
     summary.message = failure.what();
     summary.steps = state.step;
     summary.wall_seconds = total_watch.seconds();
-    output::write_summary(summary_path, summary);
+    write_summary();
     throw;
   }
   writer.flush();
@@ -712,7 +861,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       loop_seconds > 0.0
           ? static_cast<double>(summary.elements) * static_cast<double>(stepping.steps) / loop_seconds
           : 0.0;
-  output::write_summary(summary_path, summary);
+  write_summary();
   return summary;
 }
 

@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "common/mpi.hpp"
 #include "input/options.hpp"
 #include "output/summary.hpp"
 
@@ -22,7 +23,10 @@ struct Progress {
 
 struct RunControls {
   std::string output_directory;  // empty: the deck's output.directory
-  int threads = 1;
+  int threads = 1;               // per rank
+  // The ranks of the run (docs/parallel.md); default one process without MPI. Every
+  // rank calls run_simulation with the same deck and controls.
+  mpi::Communicator comm;
   // Set to a signal number (SIGINT, SIGTERM) by the caller's signal handler: the run
   // finishes its step, writes it, and stops with a RunFailure. May be null.
   const volatile std::sig_atomic_t* stop_signal = nullptr;

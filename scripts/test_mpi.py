@@ -1,0 +1,292 @@
+#!/usr/bin/python3
+"""Many ranks (issue 14, docs/parallel.md), through `mpirun -n N exdyn run`:
+
+- equal fields: the plate contact (hex8, nodes), a hex20 contact deck (quadrature points
+  on 8-node segments) and a curved deck (the Hertz ball, hex20) on 1, 2 and 3 ranks (and
+  3 ranks x 2 threads) give every field of every step, and the mesh, bit for bit as one
+  process; the history (sums over the ranks) to 1e-12; the summary says mpi.ranks and
+  the same contact figures;
+- two passes on two mirror-image cylinders stay mirror images to 1e-12 on 2 and 3 ranks;
+- the guards stop every rank with the message of one rank: an unstable run and an
+  inverted element (exit 1, the same message as one process, the file readable);
+- SIGTERM to mpirun: the step is finished, written, and the run stops (exit 1);
+- SIGKILL of one rank at random moments: the file still opens, every listed step the
+  same bits as the one-process run's;
+- ParaView opens a result written by 3 ranks;
+- more ranks than the mesh has chunks, and an mpirun that cannot start the ranks, end
+  with a clear error.
+
+  scripts/test_mpi.py --exdyn build/release/src/app/exdyn [--quick]
+
+--quick (the sanitizer build): the equal-fields cases on shorter runs, no kills.
+Exit 0 when every check passes.
+"""
+import argparse
+import json
+import os
+import random
+import re
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+import h5py
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+CHECKER = os.path.join(ROOT, "..", "shared", "tools", "paraview", "run_pvpython.sh")
+sys.path.insert(0, HERE)
+
+results = []
+
+
+def check(name, ok, detail=""):
+    results.append(bool(ok))
+    print(f"{'ok  ' if ok else 'FAIL'} {name}" + (f": {detail}" if detail and not ok else ""), flush=True)
+    return bool(ok)
+
+
+def mpirun(ranks, oversubscribe=True):
+    cmd = ["mpirun", "-n", str(ranks)]
+    if oversubscribe:
+        cmd.append("--oversubscribe")
+    if os.geteuid() == 0:
+        cmd.append("--allow-run-as-root")
+    return cmd
+
+
+def command(exdyn, deck, out, ranks, threads=1, sets=()):
+    """ranks 0: the executable alone, without mpirun."""
+    cmd = (mpirun(ranks) if ranks > 0 else []) + [exdyn, "run", os.path.join(ROOT, "input", deck + ".yaml"),
+                                                  "--quiet", "--output", out, "--threads", str(threads)]
+    for s in sets:
+        cmd += ["--set", s]
+    return cmd
+
+
+def run(exdyn, deck, out, ranks, threads=1, sets=()):
+    proc = subprocess.run(command(exdyn, deck, out, ranks, threads, sets), capture_output=True, text=True,
+                          timeout=1800)
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+def summary(out, name):
+    with open(os.path.join(out, name + ".json")) as f:
+        return json.load(f)
+
+
+def compare(reference, other):
+    """(fields and mesh bit for bit, the largest relative difference of the history, detail)."""
+    with h5py.File(reference, "r") as a, h5py.File(other, "r") as b:
+        if sorted(a["steps"]) != sorted(b["steps"]):
+            return False, float("inf"), "different steps"
+        for path in ["mesh/coordinates", "mesh/connectivity", "mesh/part", "time"]:
+            if not np.array_equal(a[path][...], b[path][...]):
+                return False, float("inf"), path
+        for step in a["steps"]:
+            for field in a["steps"][step]:
+                x, y = a["steps"][step][field][...], b["steps"][step][field][...]
+                if not np.array_equal(x, y):
+                    return False, float("inf"), (f"steps/{step}/{field}: max difference "
+                                                 f"{np.abs(x - y).max():.3e} of {np.abs(x).max():.3e}")
+        worst = 0.0
+        def visit(name, item):
+            nonlocal worst
+            if isinstance(item, h5py.Dataset):
+                x, y = item[...], b["history"][name][...]
+                scale = np.abs(x).max() if x.size else 0.0
+                if scale > 0:
+                    worst = max(worst, float(np.abs(x - y).max() / scale))
+        a["history"].visititems(visit)
+    return True, worst, ""
+
+
+def test_equal_fields(exdyn, work, quick):
+    cases = [("plate_impact", []),
+             ("contact_patch_hex20", ["time.end_time=3.0e-7"] if quick else []),
+             ("hertz_ball", ["time.end_time=3.0e-6" if quick else "time.end_time=1.2e-5", "output.every=100"])]
+    for deck, sets in cases:
+        reference = os.path.join(work, f"{deck}_1")
+        code, text = run(exdyn, deck, reference, 0, sets=sets)
+        check(f"{deck}: one process runs", code == 0, text[-400:])
+        if code != 0:
+            continue
+        one = summary(reference, deck)
+        variants = [(1, 1), (2, 1), (3, 1), (3, 2)] if not quick else [(2, 1), (3, 1)]
+        for ranks, threads in variants:
+            out = os.path.join(work, f"{deck}_{ranks}x{threads}")
+            code, text = run(exdyn, deck, out, ranks, threads, sets)
+            if not check(f"{deck}: {ranks} ranks x {threads} threads run", code == 0, text[-600:]):
+                continue
+            same, history, detail = compare(os.path.join(reference, deck + ".h5"), os.path.join(out, deck + ".h5"))
+            check(f"{deck}: {ranks} ranks x {threads} threads: every field of every step bit for bit", same, detail)
+            check(f"{deck}: {ranks} ranks: the history to 1e-12 ({history:.1e})", history <= 1e-12)
+            s = summary(out, deck)
+            check(f"{deck}: {ranks} ranks: mpi.ranks = {s['mpi']['ranks']}", s["mpi"]["ranks"] == ranks)
+            same_contact = all(s["contact"][k] == one["contact"][k]
+                               for k in ("projections", "mean_iterations", "max_iterations", "not_converged",
+                                         "saddle_points", "max_penetration_over_h"))
+            check(f"{deck}: {ranks} ranks: the contact figures of one process", same_contact,
+                  f"{s['contact']} vs {one['contact']}")
+
+
+def test_mirror(exdyn, work, quick):
+    import cylinders_study
+    for ranks, n_around in ([(2, 16)] if quick else [(2, 16), (3, 80)]):
+        out = os.path.join(work, f"cylinders_{ranks}")
+        sets = [f"parts[0].elements=[{n_around}, 8, 1]", f"parts[1].elements=[{n_around}, 8, 1]",
+                "time.end_time=5.0e-6"]
+        code, text = run(exdyn, "cylinders", out, ranks, 1, sets)
+        if not check(f"cylinders n_around {n_around}: {ranks} ranks run", code == 0, text[-600:]):
+            continue
+        m = cylinders_study.measure(out, summary(out, "cylinders"))
+        for field in ("displacement", "velocity", "stress"):
+            check(f"cylinders, two passes on {ranks} ranks: mirror images, {field} to "
+                  f"{m['mirror'][field]:.1e} (1e-12)", m["mirror"][field] <= 1e-12)
+        check(f"cylinders on {ranks} ranks: in contact", m["force_per_length"] > 0.0)
+
+
+def first_line(text, pattern):
+    for line in text.splitlines():
+        if re.search(pattern, line):
+            return line
+    return ""
+
+
+def test_guards(exdyn, work):
+    for deck, sets, ranks in [("unstable_plate", [], 2), ("inverting_bar", ["parts[0].elements=[1200,1,1]"], 3)]:
+        one = os.path.join(work, f"{deck}_one")
+        code1, text1 = run(exdyn, deck, one, 0, sets=sets)
+        many = os.path.join(work, f"{deck}_many")
+        code, text = run(exdyn, deck, many, ranks, sets=sets)
+        message = first_line(text, "exdyn: run failed")
+        check(f"{deck} on {ranks} ranks: exit 1 (one process: {code1})", code == 1 and code1 == 1, text[-600:])
+        check(f"{deck}: the message once, as one process says it",
+              text.count("exdyn: run failed") == 1 and message == first_line(text1, "exdyn: run failed"),
+              f"{message!r} vs {first_line(text1, 'exdyn: run failed')!r}")
+        s = summary(many, deck)
+        check(f"{deck}: the summary says failed", s["status"] == "failed" and s["message"] in message)
+        same, _, detail = compare(os.path.join(one, deck + ".h5"), os.path.join(many, deck + ".h5"))
+        check(f"{deck}: the steps written are those of one process", same, detail)
+
+
+def xmf_steps(path):
+    try:
+        return sorted({int(m) for m in re.findall(r":/steps/(\d{6})/", open(path).read())})
+    except OSError:
+        return []
+
+
+def wait_for_step(proc, xmf, step, timeout=300.0):
+    end = time.time() + timeout
+    while time.time() < end and proc.poll() is None:
+        steps = xmf_steps(xmf)
+        if steps and steps[-1] >= step:
+            return True
+        time.sleep(0.02)
+    return False
+
+
+LONG = ["time.end_time=4.0e-5", "output.every=16"]  # plate_impact: about 77,000 steps
+
+
+def test_sigterm(exdyn, work, reference_dir):
+    out = os.path.join(work, "term")
+    proc = subprocess.Popen(command(exdyn, "plate_impact", out, 2, 1, LONG), stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True)
+    started = wait_for_step(proc, os.path.join(out, "plate_impact.xmf"), 960)
+    proc.send_signal(signal.SIGTERM)
+    text, _ = proc.communicate(timeout=300)
+    check("SIGTERM to mpirun: the run had started", started)
+    match = re.search(r"interrupted by SIGTERM at step (\d+)", text)
+    check("SIGTERM: exit 1, 'interrupted by SIGTERM at step N'", proc.returncode == 1 and match, text[-600:])
+    if match:
+        step = int(match.group(1))
+        steps = xmf_steps(os.path.join(out, "plate_impact.xmf"))
+        check(f"SIGTERM: step {step} is the last written", steps and steps[-1] == step, str(steps[-3:]))
+        with h5py.File(os.path.join(out, "plate_impact.h5"), "r") as f:
+            check("SIGTERM: the file opens with every step", len(f["steps"]) == len(steps))
+
+
+def test_kills(exdyn, work, reference_dir, kills, rng):
+    reference = os.path.join(reference_dir, "plate_impact.h5")
+    for k in range(kills):
+        out = os.path.join(work, f"kill{k}")
+        proc = subprocess.Popen(command(exdyn, "plate_impact", out, 2, 1, LONG), stdout=subprocess.DEVNULL,
+                                stderr=subprocess.DEVNULL)
+        wait_for_step(proc, os.path.join(out, "plate_impact.xmf"), 16)
+        time.sleep(rng.uniform(0.0, 1.5))
+        ranks = subprocess.run(["pgrep", "-P", str(proc.pid)], capture_output=True, text=True).stdout.split()
+        victim = rng.choice(ranks) if ranks else None
+        if victim:
+            os.kill(int(victim), signal.SIGKILL)
+        proc.wait(timeout=120)
+        try:
+            with h5py.File(os.path.join(out, "plate_impact.h5"), "r") as f, h5py.File(reference, "r") as r:
+                listed = xmf_steps(os.path.join(out, "plate_impact.xmf"))
+                same = all(np.array_equal(f["steps"][f"{s:06d}"]["displacement"][...],
+                                          r["steps"][f"{s:06d}"]["displacement"][...])
+                           for s in listed if f"{s:06d}" in r["steps"])
+                check(f"kill {k} (rank pid {victim}): the file opens, {len(listed)} steps listed, "
+                      f"the bits of one process", victim and same)
+        except OSError as error:
+            check(f"kill {k}: the file opens", False, str(error))
+
+
+def test_paraview(work):
+    xmf = os.path.join(work, "plate_impact_3x1", "plate_impact.xmf")
+    if not os.access(CHECKER, os.X_OK):
+        check("ParaView check", False, f"{CHECKER} not found (../shared must sit beside the repository)")
+        return
+    proc = subprocess.run([CHECKER, "check_xdmf.py", xmf, "--strict", "--compact"], capture_output=True,
+                          text=True, timeout=600)
+    check("ParaView opens the result of 3 ranks (every reader)", proc.returncode == 0,
+          (proc.stdout + proc.stderr)[-1500:])
+
+
+def test_errors(exdyn, work):
+    out = os.path.join(work, "too_many")
+    code, text = run(exdyn, "contact_patch", out, 3)
+    check("more ranks than chunks: exit 2", code == 2, text[-400:])
+    check("more ranks than chunks: one clear message",
+          text.count("every rank needs a chunk") == 1 and "run on at most 2 ranks" in text, text[-400:])
+    check("more ranks than chunks: no result", not os.path.exists(os.path.join(out, "contact_patch.h5")))
+    if (os.cpu_count() or 1) < 4:
+        cmd = mpirun(4, oversubscribe=False) + [exdyn, "run", os.path.join(ROOT, "input", "plate_impact.yaml"),
+                                                "--quiet", "--output", os.path.join(work, "no_start")]
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+        check("mpirun that cannot start 4 ranks on this machine: an error, no result",
+              proc.returncode != 0 and "slots" in proc.stdout + proc.stderr
+              and not os.path.exists(os.path.join(work, "no_start")), (proc.stdout + proc.stderr)[-400:])
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--exdyn", required=True)
+    p.add_argument("--quick", action="store_true")
+    p.add_argument("--kills", type=int, default=4)
+    p.add_argument("--seed", type=int, default=14)
+    args = p.parse_args()
+    rng = random.Random(args.seed)
+    with tempfile.TemporaryDirectory(prefix="exdyn_mpi_") as work:
+        test_errors(args.exdyn, work)
+        test_equal_fields(args.exdyn, work, args.quick)
+        test_mirror(args.exdyn, work, args.quick)
+        test_guards(args.exdyn, work)
+        if not args.quick:
+            reference = os.path.join(work, "long")
+            code, text = run(args.exdyn, "plate_impact", reference, 0, sets=LONG + ["time.end_time=2.0e-6"])
+            check("the one-process reference of the kills runs", code == 0, text[-400:])
+            test_sigterm(args.exdyn, work, reference)
+            test_kills(args.exdyn, work, reference, args.kills, rng)
+            test_paraview(work)
+    failed = results.count(False)
+    print(f"test_mpi: {len(results) - failed} passed, {failed} failed")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

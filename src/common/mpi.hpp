@@ -1,0 +1,122 @@
+// Many processes (docs/parallel.md): the MPI session and the few collective
+// operations the solver and the writer need, on one communicator.
+//
+// A process started by mpirun (OpenMPI's or another launcher's environment) joins
+// MPI_COMM_WORLD; a process started without it does not initialise MPI at all and is
+// rank 0 of 1, so that `exdyn run` and every test run as before, with no launcher
+// and nothing of MPI's start-up cost. MPI is called from the main thread only
+// (MPI_THREAD_FUNNELED): the OpenMP threads of a rank never talk to other ranks.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace exdyn::mpi {
+
+// The ranks of one run. Without MPI (comm = MPI_COMM_NULL) it is rank 0 of 1 and
+// every operation below is the identity.
+struct Communicator {
+  MPI_Comm comm = MPI_COMM_NULL;
+  int rank = 0;
+  int size = 1;
+
+  bool distributed() const { return size > 1; }
+  bool root() const { return rank == 0; }
+};
+
+// True when a launcher started this process as one rank of a job: OpenMPI's mpirun
+// (OMPI_COMM_WORLD_SIZE), a PMIx launcher (PMIX_RANK) or an MPICH-style one (PMI_RANK).
+inline bool launched_by_mpirun() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+    if (std::getenv(name) != nullptr) return true;
+  return false;
+}
+
+// Initialises MPI for the process's lifetime when launched by mpirun (else does
+// nothing) and finalises it at the end. One per process, in main.
+class Session {
+ public:
+  Session() {
+    if (!launched_by_mpirun()) return;
+    int provided = MPI_THREAD_SINGLE;
+    if (MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS)
+      throw std::runtime_error("MPI could not start (MPI_Init_thread failed): check the mpirun command");
+    initialised_ = true;
+    if (provided < MPI_THREAD_FUNNELED)
+      throw std::runtime_error("MPI gives no thread support (MPI_THREAD_FUNNELED): exdyn's threads need it");
+    // Errors come back as codes and are turned into exceptions with a message (check).
+    MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
+    world_.comm = MPI_COMM_WORLD;
+    MPI_Comm_rank(MPI_COMM_WORLD, &world_.rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &world_.size);
+  }
+  ~Session() {
+    if (initialised_) MPI_Finalize();
+  }
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  const Communicator& world() const { return world_; }
+  // Ends every rank at once with `code` (an error that not every rank saw).
+  void abort(int code) const {
+    if (initialised_) MPI_Abort(MPI_COMM_WORLD, code);
+  }
+
+ private:
+  bool initialised_ = false;
+  Communicator world_;
+};
+
+// Throws std::runtime_error naming the call when an MPI call failed.
+inline void check(int code, const char* what) {
+  if (code == MPI_SUCCESS) return;
+  char text[MPI_MAX_ERROR_STRING];
+  int length = 0;
+  MPI_Error_string(code, text, &length);
+  throw std::runtime_error(std::string("MPI: ") + what +
+                           " failed: " + std::string(text, std::size_t(length)));
+}
+
+// Every rank's `count` values, rank after rank (the same array on every rank, so
+// sums formed from it in rank order are the same bits everywhere: unlike
+// MPI_Allreduce, whose order of additions may differ from rank to rank).
+inline std::vector<double> all_gather(const Communicator& c, const double* values, int count) {
+  std::vector<double> all(std::size_t(count) * std::size_t(c.size));
+  if (!c.distributed()) {
+    std::copy(values, values + count, all.begin());
+    return all;
+  }
+  check(MPI_Allgather(values, count, MPI_DOUBLE, all.data(), count, MPI_DOUBLE, c.comm), "MPI_Allgather");
+  return all;
+}
+
+// The message of the lowest rank whose `local` is not empty ("" if none): every rank
+// gets it, so all stop together, with the words of the rank that saw the fault.
+inline std::string first_message(const Communicator& c, const std::string& local) {
+  if (!c.distributed()) return local;
+  const int length = static_cast<int>(local.size());
+  std::vector<int> lengths(std::size_t(c.size));
+  check(MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, c.comm), "MPI_Allgather");
+  for (int r = 0; r < c.size; ++r) {
+    if (lengths[std::size_t(r)] == 0) continue;
+    std::string message(std::size_t(lengths[std::size_t(r)]), '\0');
+    if (r == c.rank) message = local;
+    check(MPI_Bcast(message.data(), lengths[std::size_t(r)], MPI_CHAR, r, c.comm), "MPI_Bcast");
+    return message;
+  }
+  return {};
+}
+
+// The smallest of every rank's value (exact: the same on every rank).
+inline double min(const Communicator& c, double value) {
+  if (!c.distributed()) return value;
+  double result = value;
+  check(MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, MPI_MIN, c.comm), "MPI_Allreduce");
+  return result;
+}
+
+}  // namespace exdyn::mpi

@@ -1,0 +1,518 @@
+// Domain decomposition: the partition, a rank's part of the model, and the
+// exchanges of a step (decomposition.hpp, docs/parallel.md).
+#include "solver/decomposition.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <string>
+
+#include "common/errors.hpp"
+
+namespace exdyn::solver {
+
+std::vector<int> partition_chunks(const Model& model, int ranks) {
+  // The chunks, block after block: centroid (mean of their elements' corner nodes, m)
+  // and weight (elements).
+  std::vector<std::array<double, 3>> centroid;
+  std::vector<double> weight;
+  const mesh::Mesh& mesh = model.mesh;
+  for (const element::ElementBlock& block : model.blocks)
+    for (std::size_t c = 0; c + 1 < block.chunk_begin.size(); ++c) {
+      std::array<double, 3> sum{};
+      for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e) {
+        const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
+        for (int k = 0; k < 8; ++k)
+          for (int x = 0; x < 3; ++x) sum[std::size_t(x)] += mesh.x_ref.component(x)[nodes[k]];
+      }
+      const double elements = double(block.chunk_begin[c + 1] - block.chunk_begin[c]);
+      for (double& v : sum) v /= 8.0 * elements;
+      centroid.push_back(sum);
+      weight.push_back(elements);
+    }
+  const std::size_t chunks = centroid.size();
+  if (ranks < 1 || static_cast<std::size_t>(ranks) > chunks)
+    throw InputError(std::to_string(ranks) + " MPI ranks for a mesh of " +
+                     std::to_string(mesh.element_count()) + " elements in " + std::to_string(chunks) +
+                     " chunks of at most " + std::to_string(element::element_chunk) +
+                     ": every rank needs a chunk (docs/parallel.md); run on at most " +
+                     std::to_string(chunks) + " ranks");
+  std::vector<std::uint32_t> order(chunks);
+  std::iota(order.begin(), order.end(), 0u);
+  std::vector<int> rank_of(chunks, 0);
+  // Chunks order[begin, end) go to ranks [first, first + count).
+  auto bisect = [&](auto&& self, std::size_t begin, std::size_t end, int first, int count) -> void {
+    if (count == 1) {
+      for (std::size_t k = begin; k < end; ++k) rank_of[order[k]] = first;
+      return;
+    }
+    std::array<double, 3> low, high;
+    low.fill(std::numeric_limits<double>::infinity());
+    high.fill(-std::numeric_limits<double>::infinity());
+    double total = 0.0;
+    for (std::size_t k = begin; k < end; ++k) {
+      total += weight[order[k]];
+      for (std::size_t c = 0; c < 3; ++c) {
+        low[c] = std::min(low[c], centroid[order[k]][c]);
+        high[c] = std::max(high[c], centroid[order[k]][c]);
+      }
+    }
+    std::size_t axis = 0;
+    for (std::size_t c = 1; c < 3; ++c)
+      if (high[c] - low[c] > high[axis] - low[axis]) axis = c;
+    std::sort(order.begin() + std::ptrdiff_t(begin), order.begin() + std::ptrdiff_t(end),
+              [&](std::uint32_t a, std::uint32_t b) {
+                return centroid[a][axis] < centroid[b][axis] ||
+                       (centroid[a][axis] == centroid[b][axis] && a < b);
+              });
+    const int left = count / 2;
+    // The first chunks whose weight reaches the left ranks' share; each side keeps a chunk per rank.
+    const double share = total * double(left) / double(count);
+    std::size_t split = begin;
+    for (double sum = 0.0; split < end && sum + 0.5 * weight[order[split]] < share; ++split)
+      sum += weight[order[split]];
+    split = std::clamp(split, begin + std::size_t(left), end - std::size_t(count - left));
+    self(self, begin, split, first, left);
+    self(self, split, end, first + left, count - left);
+  };
+  bisect(bisect, 0, chunks, 0, ranks);
+  return rank_of;
+}
+
+namespace {
+
+// Rank r's rows of a dataset of n rows on p ranks: [n r / p, n (r + 1) / p).
+std::size_t first_row(std::size_t n, int r, int p) { return n * std::size_t(r) / std::size_t(p); }
+
+// How the owners' items (owner_of[global], sent in ascending global order) reach
+// the ranks that write their rows. `mine`: this rank's owned items, local ids
+// sorted by global id (global_of).
+RowExchange row_exchange(const mpi::Communicator& comm, std::size_t n, const std::vector<int>& owner_of,
+                         std::vector<std::uint32_t> mine, const std::vector<std::uint32_t>& global_of) {
+  RowExchange x;
+  const int p = comm.size;
+  x.begin = first_row(n, comm.rank, p);
+  x.end = first_row(n, comm.rank + 1, p);
+  std::sort(mine.begin(), mine.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return global_of[a] < global_of[b]; });
+  x.send_items = std::move(mine);
+  x.send_counts.assign(std::size_t(p), 0);
+  int destination = 0;
+  for (const std::uint32_t item : x.send_items) {
+    while (global_of[item] >= first_row(n, destination + 1, p)) ++destination;
+    ++x.send_counts[std::size_t(destination)];
+  }
+  x.receive_counts.assign(std::size_t(p), 0);
+  for (std::size_t g = x.begin; g < x.end; ++g) ++x.receive_counts[std::size_t(owner_of[g])];
+  x.send_displacements.assign(std::size_t(p), 0);
+  x.receive_displacements.assign(std::size_t(p), 0);
+  for (int r = 1; r < p; ++r) {
+    x.send_displacements[std::size_t(r)] =
+        x.send_displacements[std::size_t(r - 1)] + x.send_counts[std::size_t(r - 1)];
+    x.receive_displacements[std::size_t(r)] =
+        x.receive_displacements[std::size_t(r - 1)] + x.receive_counts[std::size_t(r - 1)];
+  }
+  x.receive_rows.resize(x.end - x.begin);
+  std::vector<int> next = x.receive_displacements;
+  for (std::size_t g = x.begin; g < x.end; ++g)
+    x.receive_rows[std::size_t(next[std::size_t(owner_of[g])]++)] = static_cast<std::uint32_t>(g - x.begin);
+  return x;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mesh::Mesh& mesh) {
+  std::vector<std::uint32_t> nodes;
+  for (const input::ContactOptions& pair : deck.contact)
+    for (const auto* faces : {&pair.slave, &pair.master})
+      for (const input::FaceRef& f : *faces) {
+        const mesh::Face face = mesh::face_of(mesh, f.part, f.side);
+        nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
+      }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
+ContactModel localize_contact(const ContactModel& global, const Decomposition& d) {
+  // The local numbering keeps the global order: sorted lists stay sorted.
+  auto renumber = [&](std::uint32_t& node) {
+    const auto at = std::lower_bound(d.global_node.begin(), d.global_node.end(), node);
+    EXDYN_ASSERT(at != d.global_node.end() && *at == node);
+    node = static_cast<std::uint32_t>(at - d.global_node.begin());
+  };
+  ContactModel contact = global;
+  for (std::uint32_t& node : contact.nodes) renumber(node);
+  for (ContactPair& pair : contact.pairs)
+    for (contact::ContactSurfaces& s : pair.passes) {
+      for (std::uint32_t& node : s.slave_nodes) renumber(node);
+      for (std::uint32_t& node : s.moving_nodes) renumber(node);
+      for (auto* segments : {&s.slave_segments, &s.segments})
+        for (contact::SegmentNodes& segment : *segments)
+          for (int k = 0; k < contact::node_count(segment.type); ++k) renumber(segment.nodes[std::size_t(k)]);
+    }
+  return contact;
+}
+
+LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
+                  const NodalVectors& global_initial_velocity, const mpi::Communicator& comm) {
+  const mesh::Mesh& gm = global.mesh;
+  const std::size_t node_count = gm.node_count(), element_count = gm.element_count();
+  const int me = comm.rank;
+  const std::vector<int> chunk_rank = partition_chunks(global, comm.size);
+  // Calls visit(block, chunk, rank, colour) for every chunk of the model.
+  std::vector<std::vector<int>> colour_of(global.blocks.size());
+  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
+    const element::ElementBlock& block = global.blocks[b];
+    colour_of[b].assign(block.chunk_begin.size() - 1, 0);
+    for (std::size_t k = 0; k < block.colours.size(); ++k)
+      for (const std::uint32_t c : block.colours[k]) colour_of[b][c] = int(k);
+  }
+  auto for_each_chunk_of_model = [&](auto visit) {
+    std::size_t unit = 0;
+    for (std::size_t b = 0; b < global.blocks.size(); ++b)
+      for (std::size_t c = 0; c + 1 < global.blocks[b].chunk_begin.size(); ++c, ++unit)
+        visit(b, c, chunk_rank[unit], colour_of[b][c]);
+  };
+  auto for_each_node_of_chunk = [&](std::size_t b, std::size_t c, auto visit) {
+    const element::ElementBlock& block = global.blocks[b];
+    const auto n = std::size_t(block.nodes_per_element);
+    for (std::size_t k = n * block.chunk_begin[c]; k < n * block.chunk_begin[c + 1]; ++k)
+      visit(block.connectivity[k]);
+  };
+
+  // The lowest rank with a chunk on each node (its owner), and the nodes of this rank's chunks.
+  std::vector<int> owner(node_count, std::numeric_limits<int>::max());
+  std::vector<std::uint8_t> mine(node_count, 0);
+  for_each_chunk_of_model([&](std::size_t b, std::size_t c, int rank, int) {
+    for_each_node_of_chunk(b, c, [&](std::uint32_t node) {
+      owner[node] = std::min(owner[node], rank);
+      if (rank == me) mine[node] = 1;
+    });
+  });
+  // Local nodes: this rank's chunks' nodes and every contact node, in global order.
+  std::vector<std::uint8_t> held = mine;
+  for (const std::uint32_t node : contact_nodes) held[node] = 1;
+  LocalRun run;
+  Decomposition& d = run.decomposition;
+  d.comm = comm;
+  d.global_nodes = node_count;
+  d.global_elements = element_count;
+  std::vector<std::int64_t> local_of(node_count, -1);
+  for (std::size_t g = 0; g < node_count; ++g)
+    if (held[g] != 0) {
+      local_of[g] = static_cast<std::int64_t>(d.global_node.size());
+      d.global_node.push_back(static_cast<std::uint32_t>(g));
+    }
+  const std::size_t local_nodes = d.global_node.size();
+
+  // The chain of each of this rank's nodes: (colour, rank) of every chunk on it, in
+  // colour order (the order of its additions on one rank), and its block.
+  std::vector<std::vector<std::pair<int, int>>> chain(local_nodes);
+  std::vector<std::uint32_t> block_of(local_nodes, 0);
+  for_each_chunk_of_model([&](std::size_t b, std::size_t c, int rank, int colour) {
+    for_each_node_of_chunk(b, c, [&](std::uint32_t node) {
+      if (mine[node] == 0) return;
+      const auto i = std::size_t(local_of[node]);
+      block_of[i] = std::uint32_t(b);
+      if (chain[i].empty() || chain[i].back() != std::pair{colour, rank}) chain[i].emplace_back(colour, rank);
+    });
+  });
+  d.owned.assign(local_nodes, 0);
+  d.steps.resize(global.blocks.size());
+  int tag = 1;
+  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
+    d.steps[b].resize(global.blocks[b].colours.size() + 1);
+    for (auto& step : d.steps[b]) step.tag = tag++;
+  }
+  // [block][step] -> peer -> nodes
+  std::vector<std::vector<std::map<int, std::vector<std::uint32_t>>>> receive(global.blocks.size()),
+      send(global.blocks.size());
+  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
+    receive[b].resize(d.steps[b].size());
+    send[b].resize(d.steps[b].size());
+  }
+  for (std::size_t i = 0; i < local_nodes; ++i) {
+    const std::uint32_t g = d.global_node[i];
+    d.owned[i] = mine[g] != 0 && owner[g] == me;
+    if (mine[g] == 0) continue;
+    auto& links = chain[i];
+    std::sort(links.begin(), links.end());
+    links.erase(std::unique(links.begin(), links.end()), links.end());
+    std::vector<int> holders;
+    for (const auto& link : links) holders.push_back(link.second);
+    std::sort(holders.begin(), holders.end());
+    holders.erase(std::unique(holders.begin(), holders.end()), holders.end());
+    if (holders.size() < 2) continue;
+    ++d.shared_nodes;
+    const std::size_t b = block_of[i];
+    const auto node = static_cast<std::uint32_t>(i);
+    // The running sum passes to the next chunk's rank before its colour ...
+    for (std::size_t j = 1; j < links.size(); ++j) {
+      const auto [colour, rank] = links[j];
+      const int previous = links[j - 1].second;
+      if (rank == previous) continue;
+      if (rank == me) receive[b][std::size_t(colour)][previous].push_back(node);
+      if (previous == me) send[b][std::size_t(colour) - 1][rank].push_back(node);
+    }
+    // ... and the last one's total to every other holder, after the last colour.
+    const std::size_t last_step = d.steps[b].size() - 1;
+    const int last = links.back().second;
+    for (const int rank : holders) {
+      if (rank == last) continue;
+      if (rank == me) receive[b][last_step][last].push_back(node);
+      if (last == me) send[b][last_step - 1][rank].push_back(node);
+    }
+  }
+  for (std::size_t b = 0; b < global.blocks.size(); ++b)
+    for (std::size_t k = 0; k < d.steps[b].size(); ++k) {
+      for (auto& [rank, nodes] : receive[b][k])
+        d.steps[b][k].receive.push_back({rank, nodes, std::vector<double>(3 * nodes.size())});
+      for (auto& [rank, nodes] : send[b][k])
+        d.steps[b][k].send.push_back({rank, nodes, std::vector<double>(3 * nodes.size())});
+    }
+
+  // This rank's blocks: its chunks of each block, elements renumbered in that order.
+  Model& m = run.model;
+  m.mesh.x_ref.resize(local_nodes);
+  for (std::size_t i = 0; i < local_nodes; ++i)
+    for (int c = 0; c < 3; ++c) m.mesh.x_ref.component(c)[i] = gm.x_ref.component(c)[d.global_node[i]];
+  m.mesh.parts = gm.parts;  // for the node counts of the elements (nodes_of) only
+  std::vector<std::vector<std::uint32_t>> my_chunks(global.blocks.size());
+  for_each_chunk_of_model([&](std::size_t b, std::size_t c, int rank, int) {
+    if (rank == me) my_chunks[b].push_back(std::uint32_t(c));
+  });
+  std::vector<std::size_t> first_connectivity;
+  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
+    const element::ElementBlock& block = global.blocks[b];
+    first_connectivity.push_back(m.mesh.connectivity.size());
+    for (const std::uint32_t c : my_chunks[b])
+      for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e) {
+        d.global_element.push_back(block.first_element + e);
+        m.mesh.element_part.push_back(gm.element_part[block.first_element + e]);
+        const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
+        for (int k = 0; k < block.nodes_per_element; ++k)
+          m.mesh.connectivity.push_back(static_cast<std::uint32_t>(local_of[nodes[k]]));
+      }
+  }
+  std::size_t first_element = 0;
+  std::vector<std::size_t> kept;  // global blocks with chunks here
+  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
+    if (my_chunks[b].empty()) continue;
+    m.blocks.push_back(element::slice_block(global.blocks[b], my_chunks[b],
+                                            m.mesh.connectivity.data() + first_connectivity[b],
+                                            static_cast<std::uint32_t>(first_element)));
+    first_element += m.blocks.back().count;
+    kept.push_back(b);
+  }
+  // The steps of the kept blocks, with each colour's chunks split into free and waiting.
+  std::vector<int> stamp(local_nodes, -1);
+  std::vector<std::vector<Decomposition::ColourStep>> steps;
+  for (std::size_t kb = 0; kb < kept.size(); ++kb) {
+    const std::size_t b = kept[kb];
+    const element::ElementBlock& block = m.blocks[kb];
+    for (std::size_t k = 0; k + 1 < d.steps[b].size(); ++k) {
+      Decomposition::ColourStep& step = d.steps[b][k];
+      const int mark = int(1000 * kb + k);
+      for (const auto& message : step.receive)
+        for (const std::uint32_t node : message.nodes) stamp[node] = mark;
+      for (const std::uint32_t c : block.colours[k]) {
+        bool waits = false;
+        for (std::size_t n = std::size_t(block.nodes_per_element) * block.chunk_begin[c];
+             n < std::size_t(block.nodes_per_element) * block.chunk_begin[c + 1] && !waits; ++n)
+          waits = stamp[block.connectivity[n]] == mark;
+        (waits ? step.waiting_chunks : step.free_chunks).push_back(c);
+      }
+    }
+    steps.push_back(std::move(d.steps[b]));
+  }
+  for (std::size_t b = 0; b < global.blocks.size(); ++b)  // a block without chunks here takes no part
+    EXDYN_ASSERT(!my_chunks[b].empty() ||
+                 std::all_of(d.steps[b].begin(), d.steps[b].end(),
+                             [](const auto& s) { return s.receive.empty() && s.send.empty(); }));
+  d.steps = std::move(steps);
+
+  // Masses: the global ones (the same bits as one rank); a contact ghost, which no
+  // chunk of this rank moves, gets 1/m = 0 (its u and v come from the gather), and
+  // only owned nodes count in the energies.
+  m.mass.resize(local_nodes);
+  m.inverse_mass.resize(local_nodes);
+  m.counted_mass.resize(local_nodes);
+  run.initial_velocity.resize(local_nodes);
+  for (std::size_t i = 0; i < local_nodes; ++i) {
+    const std::uint32_t g = d.global_node[i];
+    m.mass[i] = global.mass[g];
+    m.inverse_mass[i] = mine[g] != 0 ? global.inverse_mass[g] : 0.0;
+    m.counted_mass[i] = d.owned[i] != 0 ? global.mass[g] : 0.0;
+    for (int c = 0; c < 3; ++c)
+      run.initial_velocity.component(c)[i] = global_initial_velocity.component(c)[g];
+  }
+  for (std::size_t c = 0; c < 3; ++c)
+    for (const std::uint32_t g : global.fixed_nodes[c])
+      if (local_of[g] >= 0) m.fixed_nodes[c].push_back(static_cast<std::uint32_t>(local_of[g]));
+
+  // The contact gather: owned contact nodes, rank after rank.
+  d.contact_counts.assign(std::size_t(comm.size), 0);
+  for (const std::uint32_t g : contact_nodes) ++d.contact_counts[std::size_t(owner[g])];
+  d.contact_displacements.assign(std::size_t(comm.size), 0);
+  for (int r = 1; r < comm.size; ++r)
+    d.contact_displacements[std::size_t(r)] =
+        d.contact_displacements[std::size_t(r - 1)] + d.contact_counts[std::size_t(r - 1)];
+  d.contact_received.resize(contact_nodes.size());
+  std::vector<int> next = d.contact_displacements;
+  for (const std::uint32_t g : contact_nodes) {
+    d.contact_received[std::size_t(next[std::size_t(owner[g])]++)] = static_cast<std::uint32_t>(local_of[g]);
+    if (owner[g] == me) d.contact_sent.push_back(static_cast<std::uint32_t>(local_of[g]));
+  }
+  d.contact_out.resize(6 * d.contact_sent.size());
+  d.contact_in.resize(6 * d.contact_received.size());
+
+  // The output rows.
+  std::vector<int> element_rank(element_count, 0);
+  for_each_chunk_of_model([&](std::size_t b, std::size_t c, int rank, int) {
+    const element::ElementBlock& block = global.blocks[b];
+    for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e)
+      element_rank[block.first_element + e] = rank;
+  });
+  std::vector<std::uint32_t> owned_nodes, local_elements(d.global_element.size());
+  for (std::size_t i = 0; i < local_nodes; ++i)
+    if (d.owned[i] != 0) owned_nodes.push_back(static_cast<std::uint32_t>(i));
+  std::iota(local_elements.begin(), local_elements.end(), 0u);
+  d.node_rows = row_exchange(comm, node_count, owner, std::move(owned_nodes), d.global_node);
+  d.element_rows =
+      row_exchange(comm, element_count, element_rank, std::move(local_elements), d.global_element);
+  return run;
+}
+
+element::ElementEnergies add_forces_across_ranks(const Model& model, Decomposition& d, const NodalVectors& u,
+                                                 NodalVectors& f_int, double* stress) {
+  element::ElementEnergies total;
+  for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+    const element::ElementBlock& block = model.blocks[b];
+    std::vector<Decomposition::ColourStep>& steps = d.steps[b];
+    d.sends.clear();
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      Decomposition::ColourStep& step = steps[k];
+      const bool colour = k + 1 < steps.size();  // else the totals' step
+      d.receives.clear();
+      for (Decomposition::Message& m : step.receive) {
+        d.receives.emplace_back();
+        mpi::check(MPI_Irecv(m.values.data(), int(m.values.size()), MPI_DOUBLE, m.rank, step.tag, d.comm.comm,
+                             &d.receives.back()),
+                   "MPI_Irecv of the shared forces");
+      }
+      if (colour) element::add_chunk_forces(block, step.free_chunks, u, f_int, stress);  // while they come
+      mpi::check(MPI_Waitall(int(d.receives.size()), d.receives.data(), MPI_STATUSES_IGNORE),
+                 "MPI_Waitall of the shared forces");
+      for (const Decomposition::Message& m : step.receive)
+        for (std::size_t j = 0; j < m.nodes.size(); ++j)
+          for (int c = 0; c < 3; ++c) f_int.component(c)[m.nodes[j]] = m.values[3 * j + std::size_t(c)];
+      if (!colour) break;
+      element::add_chunk_forces(block, step.waiting_chunks, u, f_int, stress);
+      for (Decomposition::Message& m : step.send) {
+        for (std::size_t j = 0; j < m.nodes.size(); ++j)
+          for (int c = 0; c < 3; ++c) m.values[3 * j + std::size_t(c)] = f_int.component(c)[m.nodes[j]];
+        d.sends.emplace_back();
+        mpi::check(MPI_Isend(m.values.data(), int(m.values.size()), MPI_DOUBLE, m.rank, steps[k + 1].tag,
+                             d.comm.comm, &d.sends.back()),
+                   "MPI_Isend of the shared forces");
+      }
+    }
+    mpi::check(MPI_Waitall(int(d.sends.size()), d.sends.data(), MPI_STATUSES_IGNORE),
+               "MPI_Waitall of the shared forces");
+    const element::ElementEnergies e = element::chunk_energy_total(block);
+    total.strain += e.strain;
+    total.hourglass += e.hourglass;
+  }
+  return total;
+}
+
+void gather_contact_nodes(Decomposition& d, NodalVectors& u, NodalVectors& v) {
+  if (!d.comm.distributed() || d.contact_received.empty()) return;
+  for (std::size_t k = 0; k < d.contact_sent.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      d.contact_out[6 * k + std::size_t(c)] = u.component(c)[d.contact_sent[k]];
+      d.contact_out[6 * k + 3 + std::size_t(c)] = v.component(c)[d.contact_sent[k]];
+    }
+  std::vector<int> counts(d.contact_counts), displacements(d.contact_displacements);
+  for (int& n : counts) n *= 6;
+  for (int& n : displacements) n *= 6;
+  mpi::check(
+      MPI_Allgatherv(d.contact_out.data(), static_cast<int>(d.contact_out.size()), MPI_DOUBLE,
+                     d.contact_in.data(), counts.data(), displacements.data(), MPI_DOUBLE, d.comm.comm),
+      "MPI_Allgatherv of the contact nodes");
+  for (std::size_t k = 0; k < d.contact_received.size(); ++k)
+    for (int c = 0; c < 3; ++c) {
+      u.component(c)[d.contact_received[k]] = d.contact_in[6 * k + std::size_t(c)];
+      v.component(c)[d.contact_received[k]] = d.contact_in[6 * k + 3 + std::size_t(c)];
+    }
+}
+
+namespace {
+
+// Sends `per_item` values of each item of x.send_items (pack(item, out)) to the
+// ranks that write their rows; unpack(row, in) places each received item.
+template <class Pack, class Unpack>
+void exchange_rows(const Decomposition& d, const RowExchange& x, int per_item, Pack pack, Unpack unpack) {
+  std::vector<double> out(std::size_t(per_item) * x.send_items.size());
+  for (std::size_t k = 0; k < x.send_items.size(); ++k)
+    pack(x.send_items[k], out.data() + std::size_t(per_item) * k);
+  std::vector<double> in(std::size_t(per_item) * x.receive_rows.size());
+  auto scaled = [&](const std::vector<int>& v) {
+    std::vector<int> s(v);
+    for (int& n : s) n *= per_item;
+    return s;
+  };
+  const std::vector<int> sc = scaled(x.send_counts), sd = scaled(x.send_displacements),
+                         rc = scaled(x.receive_counts), rd = scaled(x.receive_displacements);
+  mpi::check(MPI_Alltoallv(out.data(), sc.data(), sd.data(), MPI_DOUBLE, in.data(), rc.data(), rd.data(),
+                           MPI_DOUBLE, d.comm.comm),
+             "MPI_Alltoallv of the output rows");
+  for (std::size_t k = 0; k < x.receive_rows.size(); ++k)
+    unpack(x.receive_rows[k], in.data() + std::size_t(per_item) * k);
+}
+
+}  // namespace
+
+void rows_of(Decomposition& d, const NodalVectors& local, NodalVectors& rows) {
+  const RowExchange& x = d.node_rows;
+  rows.resize(x.end - x.begin);
+  exchange_rows(
+      d, x, 3,
+      [&](std::uint32_t item, double* out) {
+        for (int c = 0; c < 3; ++c) out[c] = local.component(c)[item];
+      },
+      [&](std::uint32_t row, const double* in) {
+        for (int c = 0; c < 3; ++c) rows.component(c)[row] = in[c];
+      });
+}
+
+void rows_of(Decomposition& d, const double* local, int k, bool nodal, std::vector<double>& rows) {
+  const RowExchange& x = nodal ? d.node_rows : d.element_rows;
+  rows.resize(std::size_t(k) * (x.end - x.begin));
+  const auto n = std::size_t(k);
+  exchange_rows(
+      d, x, k, [&](std::uint32_t item, double* out) { std::copy_n(local + n * item, n, out); },
+      [&](std::uint32_t row, const double* in) { std::copy_n(in, n, rows.data() + n * row); });
+}
+
+HaloFigures halo_figures(const Decomposition& d) {
+  HaloFigures h;
+  h.shared_nodes = d.shared_nodes;
+  std::vector<int> peers;
+  for (const auto& block : d.steps)
+    for (const auto& step : block)
+      for (const auto& m : step.send) {
+        ++h.messages_sent;
+        h.bytes_sent += sizeof(double) * m.values.size();
+        peers.push_back(m.rank);
+      }
+  std::sort(peers.begin(), peers.end());
+  h.neighbours = std::size_t(std::unique(peers.begin(), peers.end()) - peers.begin());
+  h.contact_nodes_sent = d.contact_sent.size();
+  return h;
+}
+
+}  // namespace exdyn::solver

@@ -1,0 +1,136 @@
+// Domain decomposition for many ranks (docs/parallel.md).
+//
+// The unit of work is a chunk of an element block (element_chunk consecutive
+// elements, the unit of the threaded schedule): the chunks are split among the ranks
+// by recursive coordinate bisection of their centroids, and each rank keeps its
+// chunks as blocks of their own (element::slice_block: the same kernels, packs and
+// colours) and the nodes they touch, numbered locally in ascending global order. A
+// node touched by the chunks of several ranks is shared; each of them holds it and
+// computes its update, and the lowest of them owns it (counts its energy, writes it).
+//
+// The internal force of a node is the sum of its chunks' forces, added colour by
+// colour (on one rank, the colours one after the other). On many ranks that sum is
+// passed along: the rank of a shared node's first chunk adds it and sends the running
+// sum to the rank of the next chunk (a non-blocking message per neighbour and colour),
+// which goes on from it, and the last one sends the total to every other holder. So
+// every node gets the same additions in the same order as on one rank: the fields are
+// the same bits. While a rank waits for a colour's running sums it computes that
+// colour's chunks that need none (the interior work).
+//
+// Contact works on the gathered surfaces: every rank also holds every contact node
+// (a contact ghost when no chunk of its own touches it), the owners send the
+// positions and velocities of their contact nodes to all ranks each step, and every
+// rank runs the whole contact pass on them, as one rank would.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/mpi.hpp"
+#include "common/nodal_vectors.hpp"
+#include "input/options.hpp"
+#include "solver/contact_setup.hpp"
+#include "solver/model.hpp"
+
+namespace exdyn::solver {
+
+// The rank of each chunk of each block of the (whole) model, blocks one after the
+// other: recursive coordinate bisection of the chunk centroids, each cut across the
+// longest side of the box of its chunks and placed so that the two sides get elements
+// in proportion to their ranks. Ties are broken by chunk number, so every rank
+// computes the same partition. Throws InputError when there are more ranks than chunks.
+std::vector<int> partition_chunks(const Model& model, int ranks);
+
+// The rows of one dataset (nodes or elements) this rank writes, and how the values
+// of its owned items travel there: rank r writes rows [N r / P, N (r + 1) / P).
+struct RowExchange {
+  std::size_t begin = 0, end = 0;         // this rank's rows
+  std::vector<std::uint32_t> send_items;  // local ids of the owned items, ascending global id
+  std::vector<int> send_counts, send_displacements, receive_counts, receive_displacements;  // items
+  std::vector<std::uint32_t> receive_rows;  // each received item's row minus `begin`
+};
+
+struct Decomposition {
+  mpi::Communicator comm;
+  std::size_t global_nodes = 0, global_elements = 0;
+  std::vector<std::uint32_t> global_node;     // local node -> global node, ascending
+  std::vector<std::uint32_t> global_element;  // local element -> global element
+  std::vector<std::uint8_t> owned;            // per local node: 1 if this rank owns it
+
+  // The force exchange of each block, per colour step k = 0 .. colours (the last:
+  // the totals): the running sums received before colour k's waiting chunks, the
+  // chunks that need none (computed first), and the sums sent after colour k (for
+  // the receivers' step k + 1). Nodes of a message in ascending global order.
+  struct Message {
+    int rank = 0;
+    std::vector<std::uint32_t> nodes;  // local ids
+    std::vector<double> values;        // 3 per node: the buffer
+  };
+  struct ColourStep {
+    std::vector<Message> receive, send;
+    std::vector<std::uint32_t> free_chunks, waiting_chunks;  // local chunks of the colour
+    int tag = 0;                                             // of the messages received at this step
+  };
+  std::vector<std::vector<ColourStep>> steps;  // [block][k]
+  std::size_t shared_nodes = 0;                // nodes held by more than one rank
+
+  // The contact gather: this rank's owned contact nodes, and where every rank's
+  // arrive (local ids, rank after rank).
+  std::vector<std::uint32_t> contact_sent;
+  std::vector<int> contact_counts, contact_displacements;  // nodes per rank
+  std::vector<std::uint32_t> contact_received;
+
+  RowExchange node_rows, element_rows;
+
+  // Buffers and requests of the exchanges in flight.
+  std::vector<double> contact_out, contact_in;
+  std::vector<MPI_Request> receives, sends;
+};
+
+// The part of a run one rank holds: its model (local numbering) and initial velocities.
+struct LocalRun {
+  Model model;
+  NodalVectors initial_velocity;
+  Decomposition decomposition;
+};
+
+// Every node of the faces of the deck's contact pairs (global ids, ascending).
+std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mesh::Mesh& mesh);
+
+// Cuts the global model (built by every rank) into this rank's part, which also holds
+// every node of `contact_nodes`: a block per global block with chunks here.
+LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
+                  const NodalVectors& global_initial_velocity, const mpi::Communicator& comm);
+
+// The contact pairs with this rank's node ids (every contact node is held).
+ContactModel localize_contact(const ContactModel& global, const Decomposition& d);
+
+// The global id of local node `node` (itself on one rank).
+inline std::uint32_t global_node_id(const Decomposition& d, std::uint32_t node) {
+  return d.global_node.empty() ? node : d.global_node[node];
+}
+inline std::uint32_t global_element_id(const Decomposition& d, std::uint32_t element) {
+  return d.global_element.empty() ? element : d.global_element[element];
+}
+
+// f_int (N) of this rank's blocks with the running sums of the shared nodes passed
+// along (the header); returns the rank's element energies. Every rank calls it.
+element::ElementEnergies add_forces_across_ranks(const Model& model, Decomposition& d, const NodalVectors& u,
+                                                 NodalVectors& f_int, double* stress);
+
+// The contact gather: u and v of every contact node from its owner (after the
+// position update).
+void gather_contact_nodes(Decomposition& d, NodalVectors& u, NodalVectors& v);
+
+// The rows this rank writes of a nodal vector field / of a field of k values per
+// element (stress: 6) or per node (k = 1, `nodal`), from the owners.
+void rows_of(Decomposition& d, const NodalVectors& local, NodalVectors& rows);
+void rows_of(Decomposition& d, const double* local, int k, bool nodal, std::vector<double>& rows);
+
+// Messages and bytes of one step's force exchange on this rank (docs/parallel.md).
+struct HaloFigures {
+  std::size_t shared_nodes = 0, neighbours = 0, messages_sent = 0, bytes_sent = 0, contact_nodes_sent = 0;
+};
+HaloFigures halo_figures(const Decomposition& d);
+
+}  // namespace exdyn::solver
