@@ -67,9 +67,19 @@ def command(exdyn, deck, out, ranks, threads=1, sets=()):
     return cmd
 
 
+def environment(ranks):
+    """The sanitizer build's leak check stays on for one process (which starts no MPI);
+    under mpirun it is off: OpenMPI leaves its own allocations (of components it has
+    unloaded) at MPI_Finalize. Address and undefined-behaviour errors are still reported."""
+    env = dict(os.environ)
+    if ranks > 0:
+        env["ASAN_OPTIONS"] = (env.get("ASAN_OPTIONS", "") + ":detect_leaks=0").lstrip(":")
+    return env
+
+
 def run(exdyn, deck, out, ranks, threads=1, sets=()):
     proc = subprocess.run(command(exdyn, deck, out, ranks, threads, sets), capture_output=True, text=True,
-                          timeout=1800)
+                          timeout=1800, env=environment(ranks))
     return proc.returncode, proc.stdout + proc.stderr
 
 
@@ -143,9 +153,17 @@ def test_mirror(exdyn, work, quick):
         if not check(f"cylinders n_around {n_around}: {ranks} ranks run", code == 0, text[-600:]):
             continue
         m = cylinders_study.measure(out, summary(out, "cylinders"))
-        for field in ("displacement", "velocity", "stress"):
+        # As scripts/cylinders_study.py asks (the velocity, near 0 at the mirror plane's
+        # ends, is mirrored to a few 1e-12 on one process too: the mapped mesh is
+        # symmetric to round-off).
+        for field in ("displacement", "stress"):
             check(f"cylinders, two passes on {ranks} ranks: mirror images, {field} to "
                   f"{m['mirror'][field]:.1e} (1e-12)", m["mirror"][field] <= 1e-12)
+        one = os.path.join(work, f"cylinders_{ranks}_one")
+        code, text = run(exdyn, "cylinders", one, 0, 1, sets)
+        same, _, detail = compare(os.path.join(one, "cylinders.h5"), os.path.join(out, "cylinders.h5"))
+        check(f"cylinders n_around {n_around}: {ranks} ranks give the fields of one process bit for bit "
+              f"(velocity mirrored to {m['mirror']['velocity']:.1e} on both)", code == 0 and same, detail)
         check(f"cylinders on {ranks} ranks: in contact", m["force_per_length"] > 0.0)
 
 
@@ -196,7 +214,7 @@ LONG = ["time.end_time=4.0e-5", "output.every=16"]  # plate_impact: about 77,000
 def test_sigterm(exdyn, work, reference_dir):
     out = os.path.join(work, "term")
     proc = subprocess.Popen(command(exdyn, "plate_impact", out, 2, 1, LONG), stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, text=True)
+                            stderr=subprocess.STDOUT, text=True, env=environment(2))
     started = wait_for_step(proc, os.path.join(out, "plate_impact.xmf"), 960)
     proc.send_signal(signal.SIGTERM)
     text, _ = proc.communicate(timeout=300)
@@ -216,7 +234,7 @@ def test_kills(exdyn, work, reference_dir, kills, rng):
     for k in range(kills):
         out = os.path.join(work, f"kill{k}")
         proc = subprocess.Popen(command(exdyn, "plate_impact", out, 2, 1, LONG), stdout=subprocess.DEVNULL,
-                                stderr=subprocess.DEVNULL)
+                                stderr=subprocess.DEVNULL, env=environment(2))
         wait_for_step(proc, os.path.join(out, "plate_impact.xmf"), 16)
         time.sleep(rng.uniform(0.0, 1.5))
         ranks = subprocess.run(["pgrep", "-P", str(proc.pid)], capture_output=True, text=True).stdout.split()
@@ -257,7 +275,7 @@ def test_errors(exdyn, work):
     if (os.cpu_count() or 1) < 4:
         cmd = mpirun(4, oversubscribe=False) + [exdyn, "run", os.path.join(ROOT, "input", "plate_impact.yaml"),
                                                 "--quiet", "--output", os.path.join(work, "no_start")]
-        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=120, env=environment(4))
         check("mpirun that cannot start 4 ranks on this machine: an error, no result",
               proc.returncode != 0 and "slots" in proc.stdout + proc.stderr
               and not os.path.exists(os.path.join(work, "no_start")), (proc.stdout + proc.stderr)[-400:])

@@ -158,8 +158,12 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     // process holds the other core (measured: 5 ms a step on 54 candidates).
     const auto candidates = static_cast<std::ptrdiff_t>(state.candidates.size());
     state.results.resize(state.candidates.size());
-#pragma omp parallel for schedule(dynamic, 64) if (candidates >= 512)
-    for (std::ptrdiff_t k = 0; k < candidates; ++k) {
+    std::pair<std::size_t, std::size_t> mine{0, state.candidates.size()};  // many processes: a share
+    if (settings.share) mine = settings.share.range(state.candidates.size());
+    const auto first = static_cast<std::ptrdiff_t>(mine.first),
+               last = static_cast<std::ptrdiff_t>(mine.second);
+#pragma omp parallel for schedule(dynamic, 64) if (last - first >= 512)
+    for (std::ptrdiff_t k = first; k < last; ++k) {
       const auto c = static_cast<std::size_t>(k);
       const CandidatePair pair = state.candidates[c];
       const Segment segment = current_segment(surfaces.segments[pair.segment], x_ref, u);
@@ -173,6 +177,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         start = state.previous_xi[c];
       state.results[c] = settings.project(segment, point, start, settings.projection);
     }
+    if (settings.share) settings.share.complete(state.results);
     // The choice: per slave point, its candidates in order (ties to the first), so the
     // same on any number of threads; the statistics are integer sums and a max.
     state.contacts.assign(n_points, ContactPassState::Contact{});

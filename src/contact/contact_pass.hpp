@@ -12,6 +12,8 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "common/nodal_vectors.hpp"
@@ -44,6 +46,17 @@ struct ContactSurfaces {
   std::size_t point_count() const { return quadrature ? quadrature_points.size() : slave_nodes.size(); }
 };
 
+// Many processes (docs/parallel.md): every process runs the whole pass on the same
+// data, but each projects only its share of the candidates, range(n) = [first, last)
+// of the n, and complete(results) fills in the others' results from the processes
+// that computed them. The results, and so everything after, are the same bits as one
+// process's. Empty (the default): this process projects every candidate.
+struct ProjectionShare {
+  std::function<std::pair<std::size_t, std::size_t>(std::size_t)> range;
+  std::function<void(std::vector<ProjectionResult>&)> complete;
+  explicit operator bool() const { return static_cast<bool>(range); }
+};
+
 struct ContactPassSettings {
   ProjectFn project = nullptr;  // chosen once from the deck's method
   ProjectionSettings projection;
@@ -60,6 +73,7 @@ struct ContactPassSettings {
   double search_distance = 0.0;  // largest gap that is searched for, m
   double margin = 0.0;           // extra capture: rebuild once a node has moved margin / 2, m
   double cell_size = 0.0;        // bucket cell edge, m (<= 0: automatic)
+  ProjectionShare share;         // many processes: the candidates this one projects
 };
 
 // What the pass keeps from step to step.

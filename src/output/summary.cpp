@@ -82,6 +82,11 @@ Json to_json(const RunSummary& s) {
   j["contact"] = std::move(contact);
   Json mpi;
   mpi["ranks"] = s.ranks;
+  mpi["shared_nodes"] = s.mpi.shared_nodes;  // ours, after the spec's key
+  mpi["messages_per_step"] = s.mpi.messages_per_step;
+  mpi["bytes_per_step"] = number(s.mpi.bytes_per_step);
+  mpi["contact_nodes"] = s.mpi.contact_nodes;
+  mpi["exchange_seconds"] = number(s.mpi.exchange_seconds);
   j["mpi"] = std::move(mpi);
   Json guards;  // ours, after the spec's keys
   guards["inversion_passes"] = s.guard_checks.inversion_passes;

@@ -53,6 +53,16 @@ struct GuardSummary {
   double largest_energy_growth = 0.0;  // largest growth of the guard's energy / the largest energy seen
 };
 
+// Many ranks (docs/parallel.md): what one step's exchanges cost, over all ranks;
+// an addition to the spec's mpi.ranks.
+struct MpiSummary {
+  long shared_nodes = 0;          // nodes held by more than one rank (counted once per holder)
+  long messages_per_step = 0;     // force messages of one step, all ranks
+  double bytes_per_step = 0.0;    // their bytes
+  long contact_nodes = 0;         // contact nodes gathered to every rank each step
+  double exchange_seconds = 0.0;  // the longest time a rank waited in the exchanges, s
+};
+
 struct RunSummary {
   std::string name;
   std::string status = "completed";  // "completed" or "failed"
@@ -60,6 +70,7 @@ struct RunSummary {
   std::string exdyn_version;
   int threads = 1;  // per rank
   int ranks = 1;    // MPI ranks (mpi.ranks)
+  MpiSummary mpi;
   std::string isa;  // the instruction set the element kernels ran with (common/isa.hpp)
   long nodes = 0;
   long elements = 0;

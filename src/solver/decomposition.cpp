@@ -8,8 +8,11 @@
 #include <map>
 #include <numeric>
 #include <string>
+#include <tuple>
+#include <type_traits>
 
 #include "common/errors.hpp"
+#include "common/timer.hpp"
 
 namespace exdyn::solver {
 
@@ -18,8 +21,10 @@ std::vector<int> partition_chunks(const Model& model, int ranks) {
   // and weight (elements).
   std::vector<std::array<double, 3>> centroid;
   std::vector<double> weight;
+  std::vector<std::uint32_t> block_of;
   const mesh::Mesh& mesh = model.mesh;
-  for (const element::ElementBlock& block : model.blocks)
+  for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+    const element::ElementBlock& block = model.blocks[b];
     for (std::size_t c = 0; c + 1 < block.chunk_begin.size(); ++c) {
       std::array<double, 3> sum{};
       for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e) {
@@ -31,7 +36,9 @@ std::vector<int> partition_chunks(const Model& model, int ranks) {
       for (double& v : sum) v /= 8.0 * elements;
       centroid.push_back(sum);
       weight.push_back(elements);
+      block_of.push_back(std::uint32_t(b));
     }
+  }
   const std::size_t chunks = centroid.size();
   if (ranks < 1 || static_cast<std::size_t>(ranks) > chunks)
     throw InputError(std::to_string(ranks) + " MPI ranks for a mesh of " +
@@ -62,11 +69,40 @@ std::vector<int> partition_chunks(const Model& model, int ranks) {
     std::size_t axis = 0;
     for (std::size_t c = 1; c < 3; ++c)
       if (high[c] - low[c] > high[axis] - low[axis]) axis = c;
+    // The chunks of a block are strips of consecutive elements (a part's x-rows), whose
+    // centroids barely differ across the strips: sorted by coordinate alone, two blocks
+    // side by side along the axis would have their chunks interleaved by that noise. So
+    // the blocks are ordered by their mean along the axis, and each block's chunks along
+    // the block's own longest spread (for one block: plain bisection).
+    std::map<std::uint32_t, std::array<double, 3>> block_low, block_high;
+    std::map<std::uint32_t, std::pair<double, double>> block_sum;  // weighted coordinate, weight
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t u = order[k], b = block_of[u];
+      auto [lo, new_lo] = block_low.try_emplace(b, centroid[u]);
+      auto [hi, new_hi] = block_high.try_emplace(b, centroid[u]);
+      for (std::size_t c = 0; c < 3; ++c) {
+        lo->second[c] = std::min(lo->second[c], centroid[u][c]);
+        hi->second[c] = std::max(hi->second[c], centroid[u][c]);
+      }
+      block_sum[b].first += weight[u] * centroid[u][axis];
+      block_sum[b].second += weight[u];
+    }
+    std::map<std::uint32_t, std::size_t> block_axis;
+    std::map<std::uint32_t, double> block_mean;
+    for (const auto& [b, lo] : block_low) {
+      const auto& hi = block_high[b];
+      std::size_t a = 0;
+      for (std::size_t c = 1; c < 3; ++c)
+        if (hi[c] - lo[c] > hi[a] - lo[a]) a = c;
+      block_axis[b] = a;
+      block_mean[b] = block_sum[b].first / block_sum[b].second;
+    }
+    auto key = [&](std::uint32_t u) {
+      const std::uint32_t b = block_of[u];
+      return std::tuple(block_mean[b], b, centroid[u][block_axis[b]], u);
+    };
     std::sort(order.begin() + std::ptrdiff_t(begin), order.begin() + std::ptrdiff_t(end),
-              [&](std::uint32_t a, std::uint32_t b) {
-                return centroid[a][axis] < centroid[b][axis] ||
-                       (centroid[a][axis] == centroid[b][axis] && a < b);
-              });
+              [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
     const int left = count / 2;
     // The first chunks whose weight reaches the left ranks' share; each side keeps a chunk per rank.
     const double share = total * double(left) / double(count);
@@ -404,8 +440,11 @@ element::ElementEnergies add_forces_across_ranks(const Model& model, Decompositi
                    "MPI_Irecv of the shared forces");
       }
       if (colour) element::add_chunk_forces(block, step.free_chunks, u, f_int, stress);  // while they come
-      mpi::check(MPI_Waitall(int(d.receives.size()), d.receives.data(), MPI_STATUSES_IGNORE),
-                 "MPI_Waitall of the shared forces");
+      {
+        const ScopedTimer timer(d.exchange_seconds);
+        mpi::check(MPI_Waitall(int(d.receives.size()), d.receives.data(), MPI_STATUSES_IGNORE),
+                   "MPI_Waitall of the shared forces");
+      }
       for (const Decomposition::Message& m : step.receive)
         for (std::size_t j = 0; j < m.nodes.size(); ++j)
           for (int c = 0; c < 3; ++c) f_int.component(c)[m.nodes[j]] = m.values[3 * j + std::size_t(c)];
@@ -420,8 +459,11 @@ element::ElementEnergies add_forces_across_ranks(const Model& model, Decompositi
                    "MPI_Isend of the shared forces");
       }
     }
-    mpi::check(MPI_Waitall(int(d.sends.size()), d.sends.data(), MPI_STATUSES_IGNORE),
-               "MPI_Waitall of the shared forces");
+    {
+      const ScopedTimer timer(d.exchange_seconds);
+      mpi::check(MPI_Waitall(int(d.sends.size()), d.sends.data(), MPI_STATUSES_IGNORE),
+                 "MPI_Waitall of the shared forces");
+    }
     const element::ElementEnergies e = element::chunk_energy_total(block);
     total.strain += e.strain;
     total.hourglass += e.hourglass;
@@ -448,6 +490,30 @@ void gather_contact_nodes(Decomposition& d, NodalVectors& u, NodalVectors& v) {
       u.component(c)[d.contact_received[k]] = d.contact_in[6 * k + std::size_t(c)];
       v.component(c)[d.contact_received[k]] = d.contact_in[6 * k + 3 + std::size_t(c)];
     }
+}
+
+contact::ProjectionShare share_projections(Decomposition& d) {
+  contact::ProjectionShare share;
+  auto range = [&d](std::size_t n, int rank) {
+    return std::pair{n * std::size_t(rank) / std::size_t(d.comm.size),
+                     n * std::size_t(rank + 1) / std::size_t(d.comm.size)};
+  };
+  share.range = [range, &d](std::size_t n) { return range(n, d.comm.rank); };
+  share.complete = [range, &d](std::vector<contact::ProjectionResult>& results) {
+    const ScopedTimer timer(d.exchange_seconds);
+    static_assert(std::is_trivially_copyable_v<contact::ProjectionResult>);  // sent as bytes
+    constexpr std::size_t bytes = sizeof(contact::ProjectionResult);
+    std::vector<int> counts(std::size_t(d.comm.size)), displacements(std::size_t(d.comm.size));
+    for (int r = 0; r < d.comm.size; ++r) {
+      const auto [first, last] = range(results.size(), r);
+      counts[std::size_t(r)] = static_cast<int>(bytes * (last - first));
+      displacements[std::size_t(r)] = static_cast<int>(bytes * first);
+    }
+    mpi::check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, results.data(), counts.data(),
+                              displacements.data(), MPI_BYTE, d.comm.comm),
+               "MPI_Allgatherv of the projections");
+  };
+  return share;
 }
 
 namespace {

@@ -35,10 +35,13 @@
 namespace exdyn::solver {
 
 // The rank of each chunk of each block of the (whole) model, blocks one after the
-// other: recursive coordinate bisection of the chunk centroids, each cut across the
-// longest side of the box of its chunks and placed so that the two sides get elements
-// in proportion to their ranks. Ties are broken by chunk number, so every rank
-// computes the same partition. Throws InputError when there are more ranks than chunks.
+// other: recursive coordinate bisection of the chunk centroids. Each cut goes across
+// the longest side of the box of its chunks and is placed so that the two sides get
+// elements in proportion to their ranks; the chunks are taken block by block (in the
+// order of the blocks' means along that side) and, within a block, along the block's
+// own longest side, so a cut runs between parts or straight across one. Ties are
+// broken by chunk number: every rank computes the same partition. Throws InputError
+// when there are more ranks than chunks.
 std::vector<int> partition_chunks(const Model& model, int ranks);
 
 // The rows of one dataset (nodes or elements) this rank writes, and how the values
@@ -85,6 +88,7 @@ struct Decomposition {
   // Buffers and requests of the exchanges in flight.
   std::vector<double> contact_out, contact_in;
   std::vector<MPI_Request> receives, sends;
+  double exchange_seconds = 0.0;  // waited for the force messages and the contact gather, s
 };
 
 // The part of a run one rank holds: its model (local numbering) and initial velocities.
@@ -117,6 +121,10 @@ inline std::uint32_t global_element_id(const Decomposition& d, std::uint32_t ele
 // along (the header); returns the rank's element energies. Every rank calls it.
 element::ElementEnergies add_forces_across_ranks(const Model& model, Decomposition& d, const NodalVectors& u,
                                                  NodalVectors& f_int, double* stress);
+
+// The local search of the contact passes shared out: each rank projects a contiguous
+// share of the candidates and the results are gathered to all (contact::ProjectionShare).
+contact::ProjectionShare share_projections(Decomposition& d);
 
 // The contact gather: u and v of every contact node from its owner (after the
 // position update).

@@ -549,6 +549,22 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
   return total;
 }
 
+// The exchanges' figures of all ranks (summary mpi: sums, and the longest wait).
+void summarise_ranks(const Decomposition& d, output::MpiSummary& out) {
+  if (!d.comm.distributed()) return;
+  const HaloFigures h = halo_figures(d);
+  const double mine[4] = {double(h.shared_nodes), double(h.messages_sent), double(h.bytes_sent),
+                          d.exchange_seconds};
+  const std::vector<double> all = mpi::all_gather(d.comm, mine, 4);
+  for (std::size_t r = 0; r < all.size() / 4; ++r) {
+    out.shared_nodes += long(all[4 * r]);
+    out.messages_per_step += long(all[4 * r + 1]);
+    out.bytes_per_step += all[4 * r + 2];
+    out.exchange_seconds = std::max(out.exchange_seconds, all[4 * r + 3]);
+  }
+  out.contact_nodes = long(d.contact_received.size());
+}
+
 }  // namespace
 
 output::RunSummary run_simulation(const input::Deck& deck, const RunControls& controls) {
@@ -611,6 +627,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   decomposition.comm = comm;
   if (comm.distributed()) {
     contact = localize_contact(contact, decomposition);
+    for (ContactPair& pair : contact.pairs) pair.settings.share = share_projections(decomposition);
     model = std::move(local.model);
     initial_v = std::move(local.initial_velocity);
   }
@@ -854,6 +871,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
     throw;
   }
   writer.flush();
+  summarise_ranks(decomposition, summary.mpi);
   const double loop_seconds = loop_watch.seconds();
   summary.steps = stepping.steps;
   summary.wall_seconds = total_watch.seconds();

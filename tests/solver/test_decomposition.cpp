@@ -1,0 +1,195 @@
+// The domain decomposition (solver/decomposition.hpp, docs/parallel.md), for virtual
+// ranks in one process: localize only reads the communicator's rank and size, so every
+// rank's part of a model can be built and checked here. The exchanges themselves run
+// through mpirun (scripts/test_mpi.py: every field bit for bit as one process).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+#include <tuple>
+
+#include "common/errors.hpp"
+#include "element/element_block.hpp"
+#include "input/deck_reader.hpp"
+#include "solver/contact_setup.hpp"
+#include "solver/decomposition.hpp"
+#include "solver/model.hpp"
+
+namespace {
+
+using namespace exdyn;
+using solver::Decomposition;
+
+input::Deck deck_of(const std::string& file) {
+  return input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/" + file, {});
+}
+
+std::vector<solver::LocalRun> parts_of(const solver::Model& model, const input::Deck& deck, int ranks) {
+  const NodalVectors v = solver::initial_velocity(deck, model);
+  const std::vector<std::uint32_t> contact = solver::contact_face_nodes(deck, model.mesh);
+  std::vector<solver::LocalRun> runs;
+  for (int r = 0; r < ranks; ++r) {
+    mpi::Communicator comm;
+    comm.rank = r;
+    comm.size = ranks;
+    runs.push_back(solver::localize(model, contact, v, comm));
+  }
+  return runs;
+}
+
+TEST(PartitionChunks, EveryRankGetsChunksInProportionAndEveryRankComputesTheSame) {
+  const input::Deck deck = deck_of("plate_impact.yaml");
+  const solver::Model model = solver::build_model(deck);
+  std::size_t chunks = 0;
+  for (const auto& block : model.blocks) chunks += block.chunk_begin.size() - 1;
+  for (int ranks = 1; ranks <= 7; ++ranks) {
+    const std::vector<int> rank = solver::partition_chunks(model, ranks);
+    ASSERT_EQ(rank.size(), chunks);
+    EXPECT_EQ(rank, solver::partition_chunks(model, ranks));
+    std::vector<double> elements(std::size_t(ranks), 0.0);
+    std::size_t unit = 0;
+    for (const auto& block : model.blocks)
+      for (std::size_t c = 0; c + 1 < block.chunk_begin.size(); ++c, ++unit) {
+        ASSERT_GE(rank[unit], 0);
+        ASSERT_LT(rank[unit], ranks);
+        elements[std::size_t(rank[unit])] += block.chunk_begin[c + 1] - block.chunk_begin[c];
+      }
+    const double ideal = double(model.mesh.element_count()) / ranks;
+    for (const double e : elements) {
+      EXPECT_GT(e, 0.0) << ranks << " ranks";
+      // Each cut is placed to half a chunk of its share; log2(ranks) cuts above a rank.
+      EXPECT_LE(std::abs(e - ideal), 2.0 * element::element_chunk) << ranks << " ranks";
+    }
+  }
+}
+
+TEST(PartitionChunks, MoreRanksThanChunksIsBadInput) {
+  const input::Deck deck = deck_of("contact_patch.yaml");  // 2 parts of one chunk each
+  const solver::Model model = solver::build_model(deck);
+  EXPECT_NO_THROW(solver::partition_chunks(model, 2));
+  try {
+    solver::partition_chunks(model, 3);
+    FAIL() << "3 ranks for 2 chunks";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("run on at most 2 ranks"), std::string::npos) << error.what();
+  }
+}
+
+// Every element on one rank; every node owned by one rank, held by every rank with a
+// chunk on it; the masses and coordinates are the global ones, bit for bit.
+TEST(Localize, ElementsOnceNodesOwnedOnceMassesTheGlobalBits) {
+  const input::Deck deck = deck_of("contact_patch_hex20.yaml");
+  const solver::Model model = solver::build_model(deck);
+  const std::vector<std::uint32_t> contact = solver::contact_face_nodes(deck, model.mesh);
+  for (int ranks : {2, 3, 5}) {
+    const std::vector<solver::LocalRun> runs = parts_of(model, deck, ranks);
+    std::vector<int> element_seen(model.mesh.element_count(), 0), node_owned(model.mesh.node_count(), 0);
+    for (const solver::LocalRun& run : runs) {
+      const Decomposition& d = run.decomposition;
+      EXPECT_TRUE(std::is_sorted(d.global_node.begin(), d.global_node.end()));
+      for (const std::uint32_t e : d.global_element) ++element_seen[e];
+      for (std::size_t i = 0; i < d.global_node.size(); ++i) {
+        const std::uint32_t g = d.global_node[i];
+        node_owned[g] += d.owned[i];
+        EXPECT_EQ(run.model.mass[i], model.mass[g]);
+        EXPECT_EQ(run.model.mesh.x_ref.z[i], model.mesh.x_ref.z[g]);
+        EXPECT_EQ(run.model.counted_mass[i], d.owned[i] ? model.mass[g] : 0.0);
+      }
+      for (const std::uint32_t g : contact)  // every contact node is held
+        EXPECT_TRUE(std::binary_search(d.global_node.begin(), d.global_node.end(), g));
+      std::size_t elements = 0;
+      for (const auto& block : run.model.blocks) elements += block.count;
+      EXPECT_EQ(elements, d.global_element.size());
+    }
+    EXPECT_TRUE(std::all_of(element_seen.begin(), element_seen.end(), [](int n) { return n == 1; }));
+    EXPECT_TRUE(std::all_of(node_owned.begin(), node_owned.end(), [](int n) { return n == 1; }));
+  }
+}
+
+// Every message sent is received: the same nodes (global ids, in the same order), from
+// the sender's step k to the receiver's step k + 1 (the tag names the block and step).
+TEST(Localize, EverySentRunningSumIsReceivedAtTheNextColourStep) {
+  const input::Deck deck = deck_of("hertz_ball.yaml");
+  const solver::Model model = solver::build_model(deck);
+  for (int ranks : {2, 3, 4}) {
+    const std::vector<solver::LocalRun> runs = parts_of(model, deck, ranks);
+    // (from, to, tag) -> global nodes
+    std::map<std::tuple<int, int, int>, std::vector<std::uint32_t>> sent, received;
+    std::size_t messages = 0;
+    for (int r = 0; r < ranks; ++r) {
+      const Decomposition& d = runs[std::size_t(r)].decomposition;
+      for (const auto& steps : d.steps)
+        for (std::size_t k = 0; k < steps.size(); ++k) {
+          for (const auto& m : steps[k].send) {
+            ASSERT_LT(k + 1, steps.size());
+            auto& nodes = sent[{r, m.rank, steps[k + 1].tag}];
+            for (const std::uint32_t i : m.nodes) nodes.push_back(d.global_node[i]);
+            ++messages;
+          }
+          for (const auto& m : steps[k].receive) {
+            auto& nodes = received[{m.rank, r, steps[k].tag}];
+            for (const std::uint32_t i : m.nodes) nodes.push_back(d.global_node[i]);
+          }
+        }
+    }
+    EXPECT_GT(messages, 0u) << ranks << " ranks share nodes";
+    EXPECT_EQ(sent, received) << ranks << " ranks";
+  }
+}
+
+std::mt19937_64 rng{14};
+
+NodalVectors random_displacement(std::size_t n) {
+  std::uniform_real_distribution<double> value(-1e-6, 1e-6);
+  NodalVectors u(n);
+  for (int c = 0; c < 3; ++c)
+    for (double& x : u.component(c)) x = value(rng);
+  return u;
+}
+
+// A slice of a block's chunks adds, at every node that only its chunks touch, the same
+// bits as the whole block; a slice of all of them, the same bits everywhere.
+TEST(SliceBlock, TheSameBitsAtTheNodesOfItsChunksAlone) {
+  for (const char* file : {"plate_impact.yaml", "hertz_ball.yaml", "cylinders.yaml"}) {
+    const input::Deck deck = deck_of(file);
+    const solver::Model model = solver::build_model(deck);
+    const NodalVectors u = random_displacement(model.mesh.node_count());
+    for (const element::ElementBlock& block : model.blocks) {
+      NodalVectors whole(model.mesh.node_count());
+      element::add_internal_forces(block, u, whole, nullptr);
+      const std::size_t chunks = block.chunk_begin.size() - 1;
+      std::vector<std::uint32_t> all(chunks), odd;
+      for (std::uint32_t c = 0; c < chunks; ++c) {
+        all[c] = c;
+        if (c % 2 == 1 || chunks == 1) odd.push_back(c);
+      }
+      for (const auto* subset : {&all, &odd}) {
+        std::vector<std::uint32_t> connectivity;
+        std::vector<int> touched(model.mesh.node_count(), 0);  // by chunks of the slice (1) or others (2)
+        const auto n = std::size_t(block.nodes_per_element);
+        for (std::uint32_t c = 0; c < chunks; ++c) {
+          const bool in = std::binary_search(subset->begin(), subset->end(), c);
+          for (std::size_t k = n * block.chunk_begin[c]; k < n * block.chunk_begin[c + 1]; ++k) {
+            touched[block.connectivity[k]] |= in ? 1 : 2;
+            if (in) connectivity.push_back(block.connectivity[k]);
+          }
+        }
+        const element::ElementBlock slice = element::slice_block(block, *subset, connectivity.data(), 0);
+        NodalVectors part(model.mesh.node_count());
+        element::add_internal_forces(slice, u, part, nullptr);
+        std::size_t compared = 0;
+        for (std::size_t i = 0; i < touched.size(); ++i) {
+          if (touched[i] != 1) continue;
+          ++compared;
+          for (int c = 0; c < 3; ++c)
+            ASSERT_EQ(part.component(c)[i], whole.component(c)[i]) << file << " node " << i;
+        }
+        EXPECT_GT(compared, 0u) << file;
+      }
+    }
+  }
+}
+
+}  // namespace
