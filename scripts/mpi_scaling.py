@@ -31,24 +31,24 @@ import batch_plate_impact as batch  # noqa: E402
 CORES = os.cpu_count() or 1
 
 
-def run(exdyn, ranks, threads, sets, out):
+def run(exdyn, ranks, threads, sets, out, deck="plate_impact"):
     cmd = []
     if ranks > 1:
         cmd = ["mpirun", "-n", str(ranks), "--oversubscribe"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
-    cmd += [exdyn, "run", os.path.join(REPO, "input", "plate_impact.yaml"), "--quiet", "--output", out,
+    cmd += [exdyn, "run", os.path.join(REPO, "input", deck + ".yaml"), "--quiet", "--output", out,
             "--threads", str(threads), "--set", "output.every=100000"]
     for s in sets:
         cmd += ["--set", s]
     subprocess.run(cmd, check=True, capture_output=True, text=True)
-    with open(os.path.join(out, "plate_impact.json")) as f:
+    with open(os.path.join(out, deck + ".json")) as f:
         return json.load(f)
 
 
-def measure(exdyn, ranks, threads, sets, repeat):
+def measure(exdyn, ranks, threads, sets, repeat, deck="plate_impact"):
     rates, waits, summary = [], [], None
     with tempfile.TemporaryDirectory(prefix="exdyn_scaling_") as out:
         for _ in range(repeat):
-            summary = run(exdyn, ranks, threads, sets, out)
+            summary = run(exdyn, ranks, threads, sets, out, deck)
             rates.append(summary["element_cycles_per_second"])
             waits.append(summary["mpi"].get("exchange_seconds", 0.0))
     return statistics.median(rates), statistics.median(waits), summary
@@ -63,22 +63,27 @@ def main():
     args = p.parse_args()
 
     m = args.mesh
-    strong_sets = [f"parts[0].elements=[{m}, 1, {m}]", f"parts[1].elements=[{m}, 1, {m}]"]
-    rows = []
-    base = None
-    for ranks, threads in [(1, 1), (1, 2), (2, 1), (2, 2), (3, 1)]:
-        rate, wait, s = measure(args.exdyn, ranks, threads, strong_sets, args.repeat)
-        base = base or rate
-        cores = min(ranks * threads, CORES)
-        over = ranks * threads > CORES
-        rows.append([f"{ranks} x {threads}" + (" (oversubscribed)" if over else ""), s["mesh"]["elements"],
-                     s["steps"], f"{rate:.3g}", f"{rate / base:.2f}", f"{rate / base / cores:.2f}",
-                     f"{wait:.3f}", s["mpi"].get("messages_per_step", 0),
-                     f"{s['mpi'].get('bytes_per_step', 0) / 1e3:.1f}", s["mpi"].get("contact_nodes", 0)])
-        print(rows[-1], flush=True)
-    strong = batch.table(["ranks x threads", "elements", "steps", "element-cycles/s", "speed-up",
-                          "efficiency per core", "exchange wait (s)", "messages/step", "kB/step",
-                          "contact nodes gathered"], rows)
+
+    def strong_table(deck, sets):
+        rows = []
+        base = None
+        for ranks, threads in [(1, 1), (1, 2), (2, 1), (2, 2), (3, 1)]:
+            rate, wait, s = measure(args.exdyn, ranks, threads, sets, args.repeat, deck)
+            base = base or rate
+            cores = min(ranks * threads, CORES)
+            over = ranks * threads > CORES
+            rows.append([f"{ranks} x {threads}" + (" (oversubscribed)" if over else ""), s["mesh"]["elements"],
+                         s["steps"], f"{rate:.3g}", f"{rate / base:.2f}", f"{rate / base / cores:.2f}",
+                         f"{wait:.3f}", s["mpi"].get("messages_per_step", 0),
+                         f"{s['mpi'].get('bytes_per_step', 0) / 1e3:.1f}", s["mpi"].get("contact_nodes", 0)])
+            print(deck, rows[-1], flush=True)
+        return batch.table(["ranks x threads", "elements", "steps", "element-cycles/s", "speed-up",
+                            "efficiency per core", "exchange wait (s)", "messages/step", "kB/step",
+                            "contact nodes gathered"], rows)
+
+    strong = strong_table("plate_impact", [f"parts[0].elements=[{m}, 1, {m}]", f"parts[1].elements=[{m}, 1, {m}]"])
+    # One plate (the reference calculation: no contact), which 2 ranks must cut.
+    strong_one = strong_table("plate_impact_reference", [f"parts[0].elements=[{m}, 1, {m}]"])
 
     rows = []
     base = None
@@ -102,7 +107,8 @@ def main():
                        rows)
     text = (f"Written by `/usr/bin/python3 scripts/mpi_scaling.py --mesh {m} --repeat {args.repeat}` on "
             f"{CORES} cores (medians of {args.repeat} runs).\n\nStrong scaling, the plate impact at mesh {m}:\n\n"
-            + strong + "\n\nWeak scaling, two 100 x 1 x 100 plates per rank:\n\n" + weak)
+            + strong + f"\n\nStrong scaling, one plate (the reference calculation, no contact) at mesh {m}:\n\n"
+            + strong_one + "\n\nWeak scaling, two 100 x 1 x 100 plates per rank:\n\n" + weak)
     batch.write_doc(os.path.join(args.docs, "parallel.md"), {"mpi_scaling": text})
     print(f"mpi_scaling: wrote the tables in {os.path.join(args.docs, 'parallel.md')}")
     return 0

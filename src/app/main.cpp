@@ -6,7 +6,9 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <algorithm>
 #include <memory>
+#include <thread>
 #include <string>
 #include <vector>
 
@@ -98,6 +100,10 @@ int run_command(const RunArguments& arguments, const exdyn::mpi::Communicator& c
   exdyn::solver::RunControls controls;
   controls.output_directory = arguments.output;
   controls.threads = arguments.threads;
+  // Every core by default; on many ranks each gets its share of its machine's cores.
+  if (controls.threads == 0 && comm.distributed())
+    controls.threads =
+        std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / comm.ranks_on_this_machine);
   controls.comm = comm;
   controls.stop_signal = &stop_signal;
   std::signal(SIGINT, request_stop);
@@ -150,7 +156,8 @@ int main(int argc, char** argv) {
   run->add_option("--set", run_arguments.sets, "Override one deck value before validation: KEY=VALUE")
       ->allow_extra_args(false);
   run->add_option("--threads", run_arguments.threads,
-                  "Threads (default 0: every core); the results are the same bits for any number")
+                  "Threads (default 0: every core; under mpirun the cores of the machine shared by its ranks); the "
+                  "results are the same bits for any number")
       ->check(CLI::Range(0, 4096));
   run->add_option("--isa", run_arguments.isa,
                   "Instruction set of the element kernels: x86-64-v2 (SSE4.2), x86-64-v3 (AVX2 + FMA) or "

@@ -23,6 +23,7 @@ struct Communicator {
   MPI_Comm comm = MPI_COMM_NULL;
   int rank = 0;
   int size = 1;
+  int ranks_on_this_machine = 1;  // the ranks that share this rank's machine (its cores)
 
   bool distributed() const { return size > 1; }
   bool root() const { return rank == 0; }
@@ -53,6 +54,11 @@ class Session {
     world_.comm = MPI_COMM_WORLD;
     MPI_Comm_rank(MPI_COMM_WORLD, &world_.rank);
     MPI_Comm_size(MPI_COMM_WORLD, &world_.size);
+    MPI_Comm machine = MPI_COMM_NULL;
+    if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine) == MPI_SUCCESS) {
+      MPI_Comm_size(machine, &world_.ranks_on_this_machine);
+      MPI_Comm_free(&machine);
+    }
   }
   ~Session() {
     if (initialised_) MPI_Finalize();
