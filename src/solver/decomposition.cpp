@@ -192,88 +192,92 @@ ContactModel localize_contact(const ContactModel& global, const Decomposition& d
   return contact;
 }
 
-LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
-                  const NodalVectors& global_initial_velocity, const mpi::Communicator& comm) {
-  const mesh::Mesh& gm = global.mesh;
-  const std::size_t node_count = gm.node_count(), element_count = gm.element_count();
-  const int me = comm.rank;
-  const std::vector<int> chunk_rank = partition_chunks(global, comm.size);
-  // Calls visit(block, chunk, rank, colour) for every chunk of the model.
-  std::vector<std::vector<int>> colour_of(global.blocks.size());
-  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
-    const element::ElementBlock& block = global.blocks[b];
-    colour_of[b].assign(block.chunk_begin.size() - 1, 0);
-    for (std::size_t k = 0; k < block.colours.size(); ++k)
-      for (const std::uint32_t c : block.colours[k]) colour_of[b][c] = int(k);
-  }
-  auto for_each_chunk_of_model = [&](auto visit) {
+namespace {
+
+// What every rank knows of the whole model: the rank and colour of every chunk, each
+// node's owner (the lowest rank with a chunk on it), the nodes of this rank's chunks,
+// and the local number of each node this rank holds (-1: not held).
+struct WholeModel {
+  const Model& model;
+  int me = 0;
+  std::vector<int> chunk_rank;           // blocks one after the other
+  std::vector<std::vector<int>> colour;  // [block][chunk]
+  std::vector<int> owner;                // per global node
+  std::vector<std::uint8_t> mine;        // per global node: a chunk of this rank is on it
+  std::vector<std::int64_t> local_of;    // per global node
+
+  // visit(block, chunk, rank, colour) for every chunk of the model.
+  template <class Visit>
+  void for_each_chunk(Visit visit) const {
     std::size_t unit = 0;
-    for (std::size_t b = 0; b < global.blocks.size(); ++b)
-      for (std::size_t c = 0; c + 1 < global.blocks[b].chunk_begin.size(); ++c, ++unit)
-        visit(b, c, chunk_rank[unit], colour_of[b][c]);
-  };
-  auto for_each_node_of_chunk = [&](std::size_t b, std::size_t c, auto visit) {
-    const element::ElementBlock& block = global.blocks[b];
+    for (std::size_t b = 0; b < model.blocks.size(); ++b)
+      for (std::size_t c = 0; c + 1 < model.blocks[b].chunk_begin.size(); ++c, ++unit)
+        visit(b, c, chunk_rank[unit], colour[b][c]);
+  }
+  // visit(node) for every node of every element of chunk c of block b (global ids).
+  template <class Visit>
+  void for_each_node(std::size_t b, std::size_t c, Visit visit) const {
+    const element::ElementBlock& block = model.blocks[b];
     const auto n = std::size_t(block.nodes_per_element);
     for (std::size_t k = n * block.chunk_begin[c]; k < n * block.chunk_begin[c + 1]; ++k)
       visit(block.connectivity[k]);
-  };
+  }
+};
 
-  // The lowest rank with a chunk on each node (its owner), and the nodes of this rank's chunks.
-  std::vector<int> owner(node_count, std::numeric_limits<int>::max());
-  std::vector<std::uint8_t> mine(node_count, 0);
-  for_each_chunk_of_model([&](std::size_t b, std::size_t c, int rank, int) {
-    for_each_node_of_chunk(b, c, [&](std::uint32_t node) {
-      owner[node] = std::min(owner[node], rank);
-      if (rank == me) mine[node] = 1;
+WholeModel whole_model(const Model& global, const mpi::Communicator& comm) {
+  WholeModel w{global, comm.rank, partition_chunks(global, comm.size), {}, {}, {}, {}};
+  w.colour.resize(global.blocks.size());
+  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
+    const element::ElementBlock& block = global.blocks[b];
+    w.colour[b].assign(block.chunk_begin.size() - 1, 0);
+    for (std::size_t k = 0; k < block.colours.size(); ++k)
+      for (const std::uint32_t c : block.colours[k]) w.colour[b][c] = int(k);
+  }
+  w.owner.assign(global.mesh.node_count(), std::numeric_limits<int>::max());
+  w.mine.assign(global.mesh.node_count(), 0);
+  w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int) {
+    w.for_each_node(b, c, [&](std::uint32_t node) {
+      w.owner[node] = std::min(w.owner[node], rank);
+      if (rank == w.me) w.mine[node] = 1;
     });
   });
-  // Local nodes: this rank's chunks' nodes and every contact node, in global order.
-  std::vector<std::uint8_t> held = mine;
-  for (const std::uint32_t node : contact_nodes) held[node] = 1;
-  LocalRun run;
-  Decomposition& d = run.decomposition;
-  d.comm = comm;
-  d.global_nodes = node_count;
-  d.global_elements = element_count;
-  std::vector<std::int64_t> local_of(node_count, -1);
-  for (std::size_t g = 0; g < node_count; ++g)
-    if (held[g] != 0) {
-      local_of[g] = static_cast<std::int64_t>(d.global_node.size());
-      d.global_node.push_back(static_cast<std::uint32_t>(g));
-    }
-  const std::size_t local_nodes = d.global_node.size();
+  return w;
+}
 
-  // The chain of each of this rank's nodes: (colour, rank) of every chunk on it, in
-  // colour order (the order of its additions on one rank), and its block.
+// The running sums (decomposition.hpp): from the chain of each node of this rank's
+// chunks, the (colour, rank) of every chunk on it in colour order (the order of its
+// additions on one rank), the messages of each block and colour step (d.steps, by
+// global block); and which nodes are shared and owned.
+void plan_force_exchange(const WholeModel& w, Decomposition& d) {
+  const std::size_t local_nodes = d.global_node.size(), blocks = w.model.blocks.size();
   std::vector<std::vector<std::pair<int, int>>> chain(local_nodes);
   std::vector<std::uint32_t> block_of(local_nodes, 0);
-  for_each_chunk_of_model([&](std::size_t b, std::size_t c, int rank, int colour) {
-    for_each_node_of_chunk(b, c, [&](std::uint32_t node) {
-      if (mine[node] == 0) return;
-      const auto i = std::size_t(local_of[node]);
+  w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int colour) {
+    w.for_each_node(b, c, [&](std::uint32_t node) {
+      if (w.mine[node] == 0) return;
+      const auto i = std::size_t(w.local_of[node]);
       block_of[i] = std::uint32_t(b);
       if (chain[i].empty() || chain[i].back() != std::pair{colour, rank}) chain[i].emplace_back(colour, rank);
     });
   });
-  d.owned.assign(local_nodes, 0);
-  d.steps.resize(global.blocks.size());
+  d.steps.resize(blocks);
   int tag = 1;
-  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
-    d.steps[b].resize(global.blocks[b].colours.size() + 1);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    d.steps[b].resize(w.model.blocks[b].colours.size() + 1);
     for (auto& step : d.steps[b]) step.tag = tag++;
   }
   // [block][step] -> peer -> nodes
-  std::vector<std::vector<std::map<int, std::vector<std::uint32_t>>>> receive(global.blocks.size()),
-      send(global.blocks.size());
-  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
+  std::vector<std::vector<std::map<int, std::vector<std::uint32_t>>>> receive(blocks), send(blocks);
+  for (std::size_t b = 0; b < blocks; ++b) {
     receive[b].resize(d.steps[b].size());
     send[b].resize(d.steps[b].size());
   }
+  const int me = w.me;
+  d.owned.assign(local_nodes, 0);
   for (std::size_t i = 0; i < local_nodes; ++i) {
     const std::uint32_t g = d.global_node[i];
-    d.owned[i] = mine[g] != 0 && owner[g] == me;
-    if (mine[g] == 0) continue;
+    d.owned[i] = w.mine[g] != 0 && w.owner[g] == me;
+    if (w.mine[g] == 0) continue;
     auto& links = chain[i];
     std::sort(links.begin(), links.end());
     links.erase(std::unique(links.begin(), links.end()), links.end());
@@ -302,56 +306,60 @@ LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact
       if (last == me) send[b][last_step - 1][rank].push_back(node);
     }
   }
-  for (std::size_t b = 0; b < global.blocks.size(); ++b)
+  for (std::size_t b = 0; b < blocks; ++b)
     for (std::size_t k = 0; k < d.steps[b].size(); ++k) {
       for (auto& [rank, nodes] : receive[b][k])
         d.steps[b][k].receive.push_back({rank, nodes, std::vector<double>(3 * nodes.size())});
       for (auto& [rank, nodes] : send[b][k])
         d.steps[b][k].send.push_back({rank, nodes, std::vector<double>(3 * nodes.size())});
     }
+}
 
-  // This rank's blocks: its chunks of each block, elements renumbered in that order.
-  Model& m = run.model;
+// This rank's blocks: its chunks of each block (element::slice_block), elements
+// renumbered in that order; d.steps kept for these blocks only, each colour's chunks
+// split into those that wait for a running sum and those that do not.
+void cut_blocks(const WholeModel& w, Model& m, Decomposition& d) {
+  const Model& global = w.model;
+  const std::size_t local_nodes = d.global_node.size(), blocks = global.blocks.size();
   m.mesh.x_ref.resize(local_nodes);
   for (std::size_t i = 0; i < local_nodes; ++i)
-    for (int c = 0; c < 3; ++c) m.mesh.x_ref.component(c)[i] = gm.x_ref.component(c)[d.global_node[i]];
-  m.mesh.parts = gm.parts;  // for the node counts of the elements (nodes_of) only
-  std::vector<std::vector<std::uint32_t>> my_chunks(global.blocks.size());
-  for_each_chunk_of_model([&](std::size_t b, std::size_t c, int rank, int) {
-    if (rank == me) my_chunks[b].push_back(std::uint32_t(c));
+    for (int c = 0; c < 3; ++c)
+      m.mesh.x_ref.component(c)[i] = global.mesh.x_ref.component(c)[d.global_node[i]];
+  m.mesh.parts = global.mesh.parts;  // for the node counts of the elements (nodes_of) only
+  std::vector<std::vector<std::uint32_t>> my_chunks(blocks);
+  w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int) {
+    if (rank == w.me) my_chunks[b].push_back(std::uint32_t(c));
   });
   std::vector<std::size_t> first_connectivity;
-  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
+  for (std::size_t b = 0; b < blocks; ++b) {
     const element::ElementBlock& block = global.blocks[b];
     first_connectivity.push_back(m.mesh.connectivity.size());
     for (const std::uint32_t c : my_chunks[b])
       for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e) {
         d.global_element.push_back(block.first_element + e);
-        m.mesh.element_part.push_back(gm.element_part[block.first_element + e]);
+        m.mesh.element_part.push_back(global.mesh.element_part[block.first_element + e]);
         const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
         for (int k = 0; k < block.nodes_per_element; ++k)
-          m.mesh.connectivity.push_back(static_cast<std::uint32_t>(local_of[nodes[k]]));
+          m.mesh.connectivity.push_back(static_cast<std::uint32_t>(w.local_of[nodes[k]]));
       }
   }
   std::size_t first_element = 0;
-  std::vector<std::size_t> kept;  // global blocks with chunks here
-  for (std::size_t b = 0; b < global.blocks.size(); ++b) {
-    if (my_chunks[b].empty()) continue;
+  std::vector<int> stamp(local_nodes, -1);
+  std::vector<std::vector<Decomposition::ColourStep>> steps;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    if (my_chunks[b].empty()) {  // a block without chunks here takes no part in the exchange
+      EXDYN_ASSERT(std::all_of(d.steps[b].begin(), d.steps[b].end(),
+                               [](const auto& s) { return s.receive.empty() && s.send.empty(); }));
+      continue;
+    }
     m.blocks.push_back(element::slice_block(global.blocks[b], my_chunks[b],
                                             m.mesh.connectivity.data() + first_connectivity[b],
                                             static_cast<std::uint32_t>(first_element)));
-    first_element += m.blocks.back().count;
-    kept.push_back(b);
-  }
-  // The steps of the kept blocks, with each colour's chunks split into free and waiting.
-  std::vector<int> stamp(local_nodes, -1);
-  std::vector<std::vector<Decomposition::ColourStep>> steps;
-  for (std::size_t kb = 0; kb < kept.size(); ++kb) {
-    const std::size_t b = kept[kb];
-    const element::ElementBlock& block = m.blocks[kb];
+    const element::ElementBlock& block = m.blocks.back();
+    first_element += block.count;
     for (std::size_t k = 0; k + 1 < d.steps[b].size(); ++k) {
       Decomposition::ColourStep& step = d.steps[b][k];
-      const int mark = int(1000 * kb + k);
+      const int mark = int(1000 * b + k);
       for (const auto& message : step.receive)
         for (const std::uint32_t node : message.nodes) stamp[node] = mark;
       for (const std::uint32_t c : block.colours[k]) {
@@ -364,15 +372,75 @@ LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact
     }
     steps.push_back(std::move(d.steps[b]));
   }
-  for (std::size_t b = 0; b < global.blocks.size(); ++b)  // a block without chunks here takes no part
-    EXDYN_ASSERT(!my_chunks[b].empty() ||
-                 std::all_of(d.steps[b].begin(), d.steps[b].end(),
-                             [](const auto& s) { return s.receive.empty() && s.send.empty(); }));
   d.steps = std::move(steps);
+}
+
+// The contact gather: this rank's owned contact nodes, and every rank's, rank after rank.
+void plan_contact_gather(const WholeModel& w, const std::vector<std::uint32_t>& contact_nodes,
+                         Decomposition& d) {
+  const auto ranks = std::size_t(d.comm.size);
+  d.contact_counts.assign(ranks, 0);
+  for (const std::uint32_t g : contact_nodes) ++d.contact_counts[std::size_t(w.owner[g])];
+  d.contact_displacements.assign(ranks, 0);
+  for (std::size_t r = 1; r < ranks; ++r)
+    d.contact_displacements[r] = d.contact_displacements[r - 1] + d.contact_counts[r - 1];
+  d.contact_received.resize(contact_nodes.size());
+  std::vector<int> next = d.contact_displacements;
+  for (const std::uint32_t g : contact_nodes) {
+    const auto local = static_cast<std::uint32_t>(w.local_of[g]);
+    d.contact_received[std::size_t(next[std::size_t(w.owner[g])]++)] = local;
+    if (w.owner[g] == w.me) d.contact_sent.push_back(local);
+  }
+  d.contact_out.resize(6 * d.contact_sent.size());
+  d.contact_in.resize(6 * d.contact_received.size());
+}
+
+// The rows of the output datasets this rank writes, and where its owned values go.
+void plan_output_rows(const WholeModel& w, Decomposition& d) {
+  std::vector<int> element_rank(w.model.mesh.element_count(), 0);
+  w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int) {
+    const element::ElementBlock& block = w.model.blocks[b];
+    for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e)
+      element_rank[block.first_element + e] = rank;
+  });
+  std::vector<std::uint32_t> owned_nodes, local_elements(d.global_element.size());
+  for (std::size_t i = 0; i < d.owned.size(); ++i)
+    if (d.owned[i] != 0) owned_nodes.push_back(static_cast<std::uint32_t>(i));
+  std::iota(local_elements.begin(), local_elements.end(), 0u);
+  d.node_rows = row_exchange(d.comm, d.global_nodes, w.owner, std::move(owned_nodes), d.global_node);
+  d.element_rows =
+      row_exchange(d.comm, d.global_elements, element_rank, std::move(local_elements), d.global_element);
+}
+
+}  // namespace
+
+LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
+                  const NodalVectors& global_initial_velocity, const mpi::Communicator& comm) {
+  WholeModel w = whole_model(global, comm);
+  LocalRun run;
+  Decomposition& d = run.decomposition;
+  d.comm = comm;
+  d.global_nodes = global.mesh.node_count();
+  d.global_elements = global.mesh.element_count();
+  // Local nodes: this rank's chunks' nodes and every contact node, in global order.
+  std::vector<std::uint8_t> held = w.mine;
+  for (const std::uint32_t node : contact_nodes) held[node] = 1;
+  w.local_of.assign(d.global_nodes, -1);
+  for (std::size_t g = 0; g < d.global_nodes; ++g)
+    if (held[g] != 0) {
+      w.local_of[g] = static_cast<std::int64_t>(d.global_node.size());
+      d.global_node.push_back(static_cast<std::uint32_t>(g));
+    }
+  plan_force_exchange(w, d);
+  Model& m = run.model;
+  cut_blocks(w, m, d);
+  plan_contact_gather(w, contact_nodes, d);
+  plan_output_rows(w, d);
 
   // Masses: the global ones (the same bits as one rank); a contact ghost, which no
   // chunk of this rank moves, gets 1/m = 0 (its u and v come from the gather), and
   // only owned nodes count in the energies.
+  const std::size_t local_nodes = d.global_node.size();
   m.mass.resize(local_nodes);
   m.inverse_mass.resize(local_nodes);
   m.counted_mass.resize(local_nodes);
@@ -380,45 +448,14 @@ LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact
   for (std::size_t i = 0; i < local_nodes; ++i) {
     const std::uint32_t g = d.global_node[i];
     m.mass[i] = global.mass[g];
-    m.inverse_mass[i] = mine[g] != 0 ? global.inverse_mass[g] : 0.0;
+    m.inverse_mass[i] = w.mine[g] != 0 ? global.inverse_mass[g] : 0.0;
     m.counted_mass[i] = d.owned[i] != 0 ? global.mass[g] : 0.0;
     for (int c = 0; c < 3; ++c)
       run.initial_velocity.component(c)[i] = global_initial_velocity.component(c)[g];
   }
   for (std::size_t c = 0; c < 3; ++c)
     for (const std::uint32_t g : global.fixed_nodes[c])
-      if (local_of[g] >= 0) m.fixed_nodes[c].push_back(static_cast<std::uint32_t>(local_of[g]));
-
-  // The contact gather: owned contact nodes, rank after rank.
-  d.contact_counts.assign(std::size_t(comm.size), 0);
-  for (const std::uint32_t g : contact_nodes) ++d.contact_counts[std::size_t(owner[g])];
-  d.contact_displacements.assign(std::size_t(comm.size), 0);
-  for (int r = 1; r < comm.size; ++r)
-    d.contact_displacements[std::size_t(r)] =
-        d.contact_displacements[std::size_t(r - 1)] + d.contact_counts[std::size_t(r - 1)];
-  d.contact_received.resize(contact_nodes.size());
-  std::vector<int> next = d.contact_displacements;
-  for (const std::uint32_t g : contact_nodes) {
-    d.contact_received[std::size_t(next[std::size_t(owner[g])]++)] = static_cast<std::uint32_t>(local_of[g]);
-    if (owner[g] == me) d.contact_sent.push_back(static_cast<std::uint32_t>(local_of[g]));
-  }
-  d.contact_out.resize(6 * d.contact_sent.size());
-  d.contact_in.resize(6 * d.contact_received.size());
-
-  // The output rows.
-  std::vector<int> element_rank(element_count, 0);
-  for_each_chunk_of_model([&](std::size_t b, std::size_t c, int rank, int) {
-    const element::ElementBlock& block = global.blocks[b];
-    for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e)
-      element_rank[block.first_element + e] = rank;
-  });
-  std::vector<std::uint32_t> owned_nodes, local_elements(d.global_element.size());
-  for (std::size_t i = 0; i < local_nodes; ++i)
-    if (d.owned[i] != 0) owned_nodes.push_back(static_cast<std::uint32_t>(i));
-  std::iota(local_elements.begin(), local_elements.end(), 0u);
-  d.node_rows = row_exchange(comm, node_count, owner, std::move(owned_nodes), d.global_node);
-  d.element_rows =
-      row_exchange(comm, element_count, element_rank, std::move(local_elements), d.global_element);
+      if (w.local_of[g] >= 0) m.fixed_nodes[c].push_back(static_cast<std::uint32_t>(w.local_of[g]));
   return run;
 }
 
