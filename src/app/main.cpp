@@ -3,13 +3,13 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
-#include <algorithm>
 #include <memory>
-#include <thread>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "app/project_command.hpp"
@@ -155,9 +155,10 @@ int main(int argc, char** argv) {
   run->add_option("--output", run_arguments.output, "Output directory (overrides output.directory)");
   run->add_option("--set", run_arguments.sets, "Override one deck value before validation: KEY=VALUE")
       ->allow_extra_args(false);
-  run->add_option("--threads", run_arguments.threads,
-                  "Threads (default 0: every core; under mpirun the cores of the machine shared by its ranks); the "
-                  "results are the same bits for any number")
+  run->add_option(
+         "--threads", run_arguments.threads,
+         "Threads (default 0: every core; under mpirun the cores of the machine shared by its ranks); the "
+         "results are the same bits for any number")
       ->check(CLI::Range(0, 4096));
   run->add_option("--isa", run_arguments.isa,
                   "Instruction set of the element kernels: x86-64-v2 (SSE4.2), x86-64-v3 (AVX2 + FMA) or "

@@ -55,7 +55,8 @@ class Session {
     MPI_Comm_rank(MPI_COMM_WORLD, &world_.rank);
     MPI_Comm_size(MPI_COMM_WORLD, &world_.size);
     MPI_Comm machine = MPI_COMM_NULL;
-    if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine) == MPI_SUCCESS) {
+    if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &machine) ==
+        MPI_SUCCESS) {
       MPI_Comm_size(machine, &world_.ranks_on_this_machine);
       MPI_Comm_free(&machine);
     }

@@ -91,12 +91,7 @@ ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVector
           add_internal_forces(block, block.chunk_begin[c], block.chunk_begin[c + 1], u, f_int, stress);
     }
   }
-  ElementEnergies total;  // in chunk order, whatever the threads
-  for (const ElementEnergies& e : block.chunk_energies) {
-    total.strain += e.strain;
-    total.hourglass += e.hourglass;
-  }
-  return total;
+  return chunk_energy_total(block);  // in chunk order, whatever the threads
 }
 
 ElementEnergies add_internal_forces_as_tasks(const ElementBlock& block, const NodalVectors& u,
@@ -114,12 +109,7 @@ ElementEnergies add_internal_forces_as_tasks(const ElementBlock& block, const No
       }
     }
   }
-  ElementEnergies total;  // in chunk order, whatever the threads
-  for (const ElementEnergies& e : block.chunk_energies) {
-    total.strain += e.strain;
-    total.hourglass += e.hourglass;
-  }
-  return total;
+  return chunk_energy_total(block);  // in chunk order, whatever the threads
 }
 
 ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint32_t>& chunks,

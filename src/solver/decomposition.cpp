@@ -604,17 +604,12 @@ void rows_of(Decomposition& d, const double* local, int k, bool nodal, std::vect
 HaloFigures halo_figures(const Decomposition& d) {
   HaloFigures h;
   h.shared_nodes = d.shared_nodes;
-  std::vector<int> peers;
   for (const auto& block : d.steps)
     for (const auto& step : block)
       for (const auto& m : step.send) {
         ++h.messages_sent;
         h.bytes_sent += sizeof(double) * m.values.size();
-        peers.push_back(m.rank);
       }
-  std::sort(peers.begin(), peers.end());
-  h.neighbours = std::size_t(std::unique(peers.begin(), peers.end()) - peers.begin());
-  h.contact_nodes_sent = d.contact_sent.size();
   return h;
 }
 

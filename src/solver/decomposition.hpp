@@ -137,7 +137,7 @@ void rows_of(Decomposition& d, const double* local, int k, bool nodal, std::vect
 
 // Messages and bytes of one step's force exchange on this rank (docs/parallel.md).
 struct HaloFigures {
-  std::size_t shared_nodes = 0, neighbours = 0, messages_sent = 0, bytes_sent = 0, contact_nodes_sent = 0;
+  std::size_t shared_nodes = 0, messages_sent = 0, bytes_sent = 0;
 };
 HaloFigures halo_figures(const Decomposition& d);
 
