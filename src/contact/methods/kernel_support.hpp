@@ -128,19 +128,10 @@ inline StationaryKind classify(const Local& l, double size) {
   return StationaryKind::none;
 }
 
-// Fills stationary, inside, distance, gap (and singular_jacobian) at r.xi.
+// Fills stationary, inside, distance, gap (and singular_jacobian) at r.xi from l, the
+// local values there (a kernel that has them saves finish's evaluation).
 template <int Terms>
-inline void finish(const Surface<Terms>& s, const Vec3& ys, ProjectionResult& result) {
-  if (!finite(result.xi)) {
-    if (result.failure == FailureReason::none) result.failure = FailureReason::non_finite;
-    result.converged = false;
-    result.stationary = StationaryKind::none;
-    result.inside = false;
-    result.distance = std::numeric_limits<double>::infinity();
-    result.gap = std::numeric_limits<double>::quiet_NaN();
-    return;
-  }
-  const Local l = evaluate_local(s, ys, result.xi);
+inline void finish_at(const Surface<Terms>& s, const Local& l, ProjectionResult& result) {
   const double s2 = size2(s);
   result.stationary = classify(l, std::sqrt(s2));
   result.inside = is_inside(result.xi);
@@ -155,19 +146,35 @@ inline void finish(const Surface<Terms>& s, const Vec3& ys, ProjectionResult& re
   }
 }
 
-// Converts the segment once, runs the method's kernel, finishes the result.
-template <class Kernel>
+// The same at r.xi, evaluated here.
+template <int Terms>
+inline void finish(const Surface<Terms>& s, const Vec3& ys, ProjectionResult& result) {
+  if (!finite(result.xi)) {
+    if (result.failure == FailureReason::none) result.failure = FailureReason::non_finite;
+    result.converged = false;
+    result.stationary = StationaryKind::none;
+    result.inside = false;
+    result.distance = std::numeric_limits<double>::infinity();
+    result.gap = std::numeric_limits<double>::quiet_NaN();
+    return;
+  }
+  finish_at(s, evaluate_local(s, ys, result.xi), result);
+}
+
+// Converts the segment once, runs the method's kernel, finishes the result (unless
+// the kernel does: finished = true).
+template <bool finished = false, class Kernel>
 inline ProjectionResult dispatch(const Segment& segment, const Vec3& ys, Xi xi0,
                                  const ProjectionSettings& settings, Kernel kernel) {
   if (segment.type == SegmentType::quad4) {
     const Quad4Surface s = make_surface<4>(segment);
     ProjectionResult r = kernel(s, ys, xi0, settings);
-    finish(s, ys, r);
+    if constexpr (!finished) finish(s, ys, r);
     return r;
   }
   const Quad8Surface s = make_surface<8>(segment);
   ProjectionResult r = kernel(s, ys, xi0, settings);
-  finish(s, ys, r);
+  if constexpr (!finished) finish(s, ys, r);
   return r;
 }
 

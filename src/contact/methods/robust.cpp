@@ -483,6 +483,7 @@ bool certified_newton(const Surface<Terms>& s, const Vec3& ys, Xi xi, const Proj
       result.converged = true;
       result.failure = FailureReason::none;
       result.on_boundary = false;  // |g| within epsilon growth: stationary, not pushed out
+      finish_at(s, l, result);     // l is at xi: no evaluation again
       return true;
     }
   }
@@ -749,11 +750,15 @@ ProjectionResult robust_kernel(const Surface<Terms>& s, const Vec3& ys, Xi xi0,
     return result;
   // 0b. f strictly convex on the square has one minimum there.
   if (convex_bound(s, ys) &&
-      convex_newton(s, ys, finite(xi0) ? clamp_box(xi0) : Xi{0.0, 0.0}, settings, result))
+      convex_newton(s, ys, finite(xi0) ? clamp_box(xi0) : Xi{0.0, 0.0}, settings, result)) {
+    finish(s, ys, result);
     return result;
+  }
   // Not proven convex, or the projected Newton stalled: the full search (its counts
   // add to the fast path's).
-  return full_search(s, ys, xi0, settings, result, newton_point);
+  result = full_search(s, ys, xi0, settings, result, newton_point);
+  finish(s, ys, result);
+  return result;
 }
 
 }  // namespace
@@ -775,10 +780,10 @@ template bool closest_point_proven<8>(const Surface<8>&, const Vec3&, Xi, double
 
 ProjectionResult project_robust(const Segment& segment, const Vec3& point, Xi xi0,
                                 const ProjectionSettings& settings) {
-  return detail::dispatch(segment, point, xi0, settings,
-                          [](const auto& s, const Vec3& ys, Xi x, const ProjectionSettings& st) {
-                            return robust_kernel(s, ys, x, st);
-                          });
+  return detail::dispatch<true>(segment, point, xi0, settings,
+                                [](const auto& s, const Vec3& ys, Xi x, const ProjectionSettings& st) {
+                                  return robust_kernel(s, ys, x, st);
+                                });
 }
 
 }  // namespace exdyn::contact
