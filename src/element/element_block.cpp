@@ -86,8 +86,8 @@ ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVector
     // when another process holds the other core). Static: thread t takes the t-th
     // run of the colour's chunks every step, so the nodes it adds forces to are the
     // ones its nodal passes (for_each_chunk, static too) update, and stay in its core's
-    // cache; with dynamic chunks half of them came from the other core's, and the
-    // one-plate reference ran 10-18 % slower on two threads (docs/performance.md,
+    // cache; with dynamic chunks half of them came from the other core's. Static ran
+    // the one-plate reference 13-18 % faster on two threads (docs/performance.md,
     // "Two threads on the plate impact: the ceiling").
 #pragma omp parallel for schedule(static) if (chunks > 1)
     for (std::ptrdiff_t k = 0; k < chunks; ++k) {
