@@ -80,22 +80,8 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
 ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVectors& u, NodalVectors& f_int,
                                     double* stress) {
   EXDYN_ASSERT(block.chunk_energies.size() + 1 == block.chunk_begin.size());
-  for (const std::vector<std::uint32_t>& colour : block.colours) {
-    const auto chunks = static_cast<std::ptrdiff_t>(colour.size());
-    // One chunk is serial work: no parallel region (whose barrier costs milliseconds
-    // when another process holds the other core). Static: thread t takes the t-th
-    // run of the colour's chunks every step, so the nodes it adds forces to are the
-    // ones its nodal passes (for_each_chunk, static too) update, and stay in its core's
-    // cache; with dynamic chunks half of them came from the other core's. Static ran
-    // the one-plate reference 13-18 % faster on two threads (docs/performance.md,
-    // "Two threads on the plate impact: the ceiling").
-#pragma omp parallel for schedule(static) if (chunks > 1)
-    for (std::ptrdiff_t k = 0; k < chunks; ++k) {
-      const std::uint32_t c = colour[static_cast<std::size_t>(k)];
-      block.chunk_energies[c] =
-          add_internal_forces(block, block.chunk_begin[c], block.chunk_begin[c + 1], u, f_int, stress);
-    }
-  }
+  for (const std::vector<std::uint32_t>& colour : block.colours)
+    add_chunk_forces(block, colour, u, f_int, stress);
   return chunk_energy_total(block);  // in chunk order, whatever the threads
 }
 
@@ -165,7 +151,14 @@ ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint3
 void add_chunk_forces(const ElementBlock& block, const std::vector<std::uint32_t>& chunks,
                       const NodalVectors& u, NodalVectors& f_int, double* stress) {
   const auto count = static_cast<std::ptrdiff_t>(chunks.size());
-#pragma omp parallel for schedule(dynamic, 1) if (count > 1)
+  // One chunk is serial work: no parallel region (whose barrier costs milliseconds
+  // when another process holds the other core). Static: thread t takes the t-th run
+  // of the chunks every step, so the nodes it adds forces to are the ones its nodal
+  // passes (for_each_chunk, static too) update, and stay in its core's cache; with
+  // dynamic chunks half of them came from the other core's. Static ran the one-plate
+  // reference 13-18 % faster on two threads (docs/performance.md, "Two threads on the
+  // plate impact: the ceiling").
+#pragma omp parallel for schedule(static) if (count > 1)
   for (std::ptrdiff_t k = 0; k < count; ++k) {
     const std::uint32_t c = chunks[static_cast<std::size_t>(k)];
     block.chunk_energies[c] =

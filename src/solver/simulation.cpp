@@ -89,18 +89,6 @@ void internal_force_computed(State& state, bool with_stress) {
   if (with_stress) state.stress_step = state.step;
 }
 
-// Blocks [first, last) of the model: f_int += their forces; their energies are added to `total`.
-void add_block_forces(const Model& model, State& state, bool with_stress, std::size_t first, std::size_t last,
-                      element::ElementEnergies& total) {
-  for (std::size_t b = first; b < last; ++b) {
-    const element::ElementEnergies e =
-        element::add_internal_forces(model.blocks[b], state.displacement, state.internal_force,
-                                     with_stress ? state.stress.data() : nullptr);
-    total.strain += e.strain;
-    total.hourglass += e.hourglass;
-  }
-}
-
 // On many ranks the running sums of the shared nodes pass from rank to rank colour
 // by colour (decomposition.hpp): the same bits as one rank.
 element::ElementEnergies compute_internal_forces(const Model& model, Decomposition& d, State& state,
@@ -111,7 +99,12 @@ element::ElementEnergies compute_internal_forces(const Model& model, Decompositi
     total = add_forces_across_ranks(model, d, state.displacement, state.internal_force,
                                     with_stress ? state.stress.data() : nullptr);
   else
-    add_block_forces(model, state, with_stress, 0, model.blocks.size(), total);
+    for (const auto& block : model.blocks) {
+      const element::ElementEnergies e = element::add_internal_forces(
+          block, state.displacement, state.internal_force, with_stress ? state.stress.data() : nullptr);
+      total.strain += e.strain;
+      total.hourglass += e.hourglass;
+    }
   internal_force_computed(state, with_stress);
   return total;
 }
