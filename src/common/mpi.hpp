@@ -126,4 +126,12 @@ inline double min(const Communicator& c, double value) {
   return result;
 }
 
+// The largest of every rank's value.
+inline double max(const Communicator& c, double value) {
+  if (!c.distributed()) return value;
+  double result = value;
+  check(MPI_Allreduce(&value, &result, 1, MPI_DOUBLE, MPI_MAX, c.comm), "MPI_Allreduce");
+  return result;
+}
+
 }  // namespace exdyn::mpi

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstring>
+#include <type_traits>
 
 namespace exdyn {
 
@@ -71,6 +72,64 @@ inline Real load(const double* data, int k) {
 template <class Real>
 inline void store(double* data, const Real& value) {
   std::memcpy(data, &value, sizeof value);
+}
+
+// Lane-wise helpers for the kernels written for both double and Pack<L>: the same
+// source runs one element or a pack of them.
+
+// value of lane `lane` (0 for a double), and setting it.
+template <class Real>
+inline double lane(const Real& value, int index) {
+  if constexpr (lanes_of<Real> == 1) {
+    (void)index;
+    return value;
+  } else {
+    return value[index];
+  }
+}
+template <class Real>
+inline void set_lane(Real& value, int index, double lane_value) {
+  if constexpr (lanes_of<Real> == 1) {
+    (void)index;
+    value = lane_value;
+  } else {
+    value[index] = lane_value;
+  }
+}
+
+// condition ? a : b lane by lane, for the conditions of comparisons of packs (a < b).
+template <class Real, class Mask>
+inline Real select(const Mask& condition, const Real& a, const Real& b) {
+  return condition ? a : b;  // for packs GCC's vector select (a mask of -1 or 0 per lane)
+}
+
+template <class Real>
+inline Real lane_max(const Real& a, const Real& b) {
+  return select(a > b, a, b);
+}
+
+// sqrt lane by lane (vsqrtpd where the compiler vectorises the loop).
+template <class Real>
+inline Real lane_sqrt(const Real& value) {
+  if constexpr (lanes_of<Real> == 1) {
+    return __builtin_sqrt(value);
+  } else {
+    Real result;
+    for (int k = 0; k < lanes_of<Real>; ++k) result[k] = __builtin_sqrt(value[k]);
+    return result;
+  }
+}
+
+// True when any lane of a comparison's mask is set.
+template <class Mask>
+inline bool any_lane(const Mask& mask) {
+  if constexpr (std::is_integral_v<Mask>) {
+    return mask != 0;
+  } else {
+    for (int k = 0; k < int(sizeof(Mask) / sizeof(long long)); ++k)
+      if (mask[k] != 0) return true;
+    return false;
+  }
 }
 
 }  // namespace exdyn

@@ -13,6 +13,7 @@
 #include "element/element_family.hpp"
 #include "element/element_isa.hpp"
 #include "element/element_loop.hpp"
+#include "element/hex8.hpp"
 
 namespace exdyn::element {
 
@@ -49,17 +50,40 @@ void build_schedule(ElementBlock& block, std::size_t node_count) {
   block.chunk_energies.assign(chunks, ElementEnergies{});
 }
 
+// The initial states of every point (material/j2.hpp, initial_state), interleaved by
+// packs of the ISA's lanes as the law loops read them: value k of point g of element
+// e (pack p, lane l) at ((p G + g) S + k) L + l.
+void allocate_material_state(ElementBlock& block) {
+  MaterialState& state = block.material_state;
+  state.plastic_strain.assign(block.count, 0.0);
+  const int size = block.law.state_size();
+  if (size == 0) return;
+  state.points_per_element = block.formulation == input::Formulation::hex8r   ? 1
+                             : block.formulation == input::Formulation::hex20 ? 27
+                                                                              : 8;
+  const std::size_t lanes = std::size_t(lanes_for(selected_isa()));
+  const std::size_t packs = (block.count + lanes - 1) / lanes;
+  const std::size_t per_pack = lanes * std::size_t(state.points_per_element) * std::size_t(size);
+  double initial[material::j2_state_size];
+  material::initial_state(block.law.finite, initial);
+  std::vector<double> values(packs * per_pack);
+  for (std::size_t k = 0; k < values.size(); ++k) values[k] = initial[(k / lanes) % std::size_t(size)];
+  state.points = {values, values};
+  state.committed = 0;
+}
+
 }  // namespace
 
 ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
                                 double hourglass_coefficient, std::uint32_t first_element,
                                 std::uint32_t count, const std::uint32_t* connectivity,
-                                const NodalVectors& x_ref) {
+                                const NodalVectors& x_ref, const material::MaterialLaw& law) {
   ElementBlock block;
   block.formulation = formulation;
   block.family = &element_family(formulation);
   block.nodes_per_element = block.family->nodes_per_element;
   block.material = material;
+  block.law = law;
   block.hourglass_coefficient = hourglass_coefficient;
   block.first_element = first_element;
   block.count = count;
@@ -67,7 +91,35 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
   block.family->prepare(block, x_ref);
   EXDYN_ASSERT(block.loop != nullptr);
   build_schedule(block, x_ref.size());
+  allocate_material_state(block);
+  if (block.nodes_per_element != 8 && count > 0) {
+    NodalVectors zero(x_ref.size());
+    const double corner_step = current_time_step(block, x_ref, zero).dt;
+    block.step_scale = block.family->critical_time_step(block, x_ref) / corner_step;
+  }
   return block;
+}
+
+void commit_material_state(const ElementBlock& block) {
+  if (!block.material_state.points[0].empty()) block.material_state.committed ^= 1;
+}
+
+void set_material_time_step(const ElementBlock& block, double dt) { block.material_state.dt = dt; }
+
+CurrentStep current_time_step(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
+  CurrentStep result{std::numeric_limits<double>::infinity(), block.first_element};
+  const double wave_speed = block.material.dilatational_wave_speed();
+  for (std::uint32_t e = 0; e < block.count; ++e) {
+    const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
+    ElementVectors x{ElementVectors::Uninitialized{}};
+    for (int k = 0; k < 8; ++k) {
+      const std::uint32_t n = nodes[k];
+      x.x[k] = x_ref.x[n] + u.x[n], x.y[k] = x_ref.y[n] + u.y[n], x.z[k] = x_ref.z[n] + u.z[n];
+    }
+    const double dt = block.step_scale * hex8::characteristic_length(x) / wave_speed;
+    if (dt < result.dt) result = {dt, block.first_element + e};
+  }
+  return result;
 }
 
 ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t element_begin,
@@ -110,6 +162,8 @@ ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint3
   slice.family = block.family;
   slice.nodes_per_element = block.nodes_per_element;
   slice.material = block.material;
+  slice.law = block.law;
+  slice.step_scale = block.step_scale;
   slice.hourglass_coefficient = block.hourglass_coefficient;
   slice.first_element = first_element;
   slice.connectivity = connectivity;
@@ -145,6 +199,7 @@ ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint3
     for (const std::uint32_t c : block.colours[k])
       if (local_chunk[c] != ~0u) slice.colours[k].push_back(local_chunk[c]);
   slice.chunk_energies.assign(chunks.size(), ElementEnergies{});
+  allocate_material_state(slice);  // every point in its initial state, as the whole block's
   return slice;
 }
 
@@ -169,8 +224,7 @@ void add_chunk_forces(const ElementBlock& block, const std::vector<std::uint32_t
 ElementEnergies chunk_energy_total(const ElementBlock& block) {
   ElementEnergies total;
   for (const ElementEnergies& e : block.chunk_energies) {
-    total.strain += e.strain;
-    total.hourglass += e.hourglass;
+    total += e;
   }
   return total;
 }

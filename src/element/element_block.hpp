@@ -11,12 +11,33 @@
 #include "common/nodal_vectors.hpp"
 #include "input/options.hpp"
 #include "material/elastic.hpp"
+#include "material/material_law.hpp"
 
 namespace exdyn::element {
 
 struct ElementEnergies {
-  double strain = 0.0;     // sum of int sigma:eps/2 dV, J
+  double strain = 0.0;     // internal energy: stored elastic energy plus plastic work, J
   double hourglass = 0.0;  // sum of hourglass spring energies (hex8r), J
+  double plastic = 0.0;    // plastic work so far (a part of `strain`), J
+  ElementEnergies& operator+=(const ElementEnergies& other) {
+    strain += other.strain;
+    hourglass += other.hourglass;
+    plastic += other.plastic;
+    return *this;
+  }
+};
+
+// The integration-point states of a block whose law has them (material/j2.hpp), and
+// what its element pass leaves beside the forces. A pass reads the committed states
+// and writes the other array, so that a step's forces can be computed again with the
+// same result; commit_material_state makes the written states the committed ones
+// when the solver moves to the next step.
+struct MaterialState {
+  std::array<std::vector<double>, 2> points;  // per element pack and point, interleaved by lane
+  int committed = 0;                          // index of the committed array
+  int points_per_element = 0;
+  std::vector<double> plastic_strain;  // per element: the last pass's mean equivalent plastic strain
+  double dt = 0.0;                     // the step of the pass's strain increment, s (rate laws)
 };
 
 // Elements per chunk of the parallel element loop (even: an element pair is never split).
@@ -35,6 +56,13 @@ struct ElementBlock {
   const ElementFamily* family = nullptr;  // what the formulation's elements are and do
   int nodes_per_element = 8;              // 8 or 20
   material::ElasticConstants material;
+  // The law beyond small-strain linear elasticity (plasticity, finite strain); the
+  // linear small-strain kernels run where law.linear_small().
+  material::MaterialLaw law;
+  mutable MaterialState material_state;
+  // The family's stable step over the corner-based one, L_e / c1 with L_e from the 8
+  // corners, on the reference mesh (1 for 8-node elements): current_time_step scales by it.
+  double step_scale = 1.0;
   double hourglass_coefficient = 0.0;           // hex8r only
   std::uint32_t first_element = 0;              // global index of the block's first element
   std::uint32_t count = 0;                      // number of elements
@@ -71,7 +99,23 @@ struct ElementBlock {
 ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
                                 double hourglass_coefficient, std::uint32_t first_element,
                                 std::uint32_t count, const std::uint32_t* connectivity,
-                                const NodalVectors& x_ref);
+                                const NodalVectors& x_ref, const material::MaterialLaw& law = {});
+
+// Makes the states the last element pass wrote the committed ones (the solver, once
+// per step before its element pass; nothing for a block without states), and undoes
+// that (going back one step).
+void commit_material_state(const ElementBlock& block);
+// The step over which the next element pass's strain increment happens, s.
+void set_material_time_step(const ElementBlock& block, double dt);
+
+// The stable step of the block's current configuration x_ref + u without the Courant
+// factor, s: min over elements of L_e(x) / c1 (8 corners) times block.step_scale, and
+// the element (global index) that sets it.
+struct CurrentStep {
+  double dt = 0.0;
+  std::uint32_t element = 0;
+};
+CurrentStep current_time_step(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u);
 
 // f_int += internal forces (N) of the block's elements for the displacement u
 // (small strain, reference configuration). Writes each element's volume-averaged

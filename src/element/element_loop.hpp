@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "common/nodal_vectors.hpp"
 #include "common/simd_pack.hpp"
@@ -158,8 +159,8 @@ void scatter_add_lane(const NodeValues<Nodes, Real>& local, int lane, const std:
 
 // The element loop over packs of Lanes consecutive elements: kernel(pack, u, f, stress)
 // on the elements Lanes pack .. Lanes pack + Lanes - 1 at once returns their energies
-// (strain, hourglass); it finds the pack's reference data itself. Lanes outside
-// [begin, end) are computed but neither scattered nor counted; the lanes past the
+// (strain, hourglass, and plastic work for the kernels of a material law); it finds the pack's reference data
+// itself. Lanes outside [begin, end) are computed but neither scattered nor counted; the lanes past the
 // block's last element take its first lane's nodes (hex8 layouts pad their reference
 // data with zeros there). The forces are added lane by lane, in element order (a row
 // pack, 8-node elements only: summed along its row edges first); the same order for
@@ -191,7 +192,7 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
     }
     Vectors f_local{typename Vectors::Uninitialized{}};  // written whole by the kernel
     std::array<Real, 6> element_stress;
-    const std::array<Real, 2> energies = kernel(pack, u_local, f_local, element_stress);
+    const auto energies = kernel(pack, u_local, f_local, element_stress);
     if constexpr (Nodes == 8) {
       if (row) scatter_add_row_pack<Lanes>(f_local, nodes[0], f_int);
     }
@@ -200,6 +201,8 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
       if (!row) scatter_add_lane(f_local, lane, nodes[lane], f_int);
       total.strain += lane_value(energies[0], lane);
       total.hourglass += lane_value(energies[1], lane);
+      if constexpr (std::tuple_size_v < std::decay_t < decltype(energies) >>> 2)
+        total.plastic += lane_value(energies[2], lane);
       if (stress != nullptr) {
         double* out = stress + 6 * (static_cast<std::size_t>(block.first_element) + element[lane]);
         for (int k = 0; k < 6; ++k) out[k] = lane_value(element_stress[std::size_t(k)], lane);

@@ -27,6 +27,7 @@
 #include "element/element_isa.hpp"
 #include "element/element_loop.hpp"
 #include "element/hex20.hpp"
+#include "element/hex20_constitutive.hpp"
 
 namespace exdyn::element {
 namespace {
@@ -78,6 +79,38 @@ ElementEnergies general_loop(const ElementBlock& block, std::uint32_t begin, std
         }
         return std::array<Real, 2>{
             hex20::internal_forces(GaussPoints, table, interleaved, lambda, mu, u_local, f_local, s), Real{}};
+      });
+}
+
+// The loop of a material law (constitutive.hpp): the general layout, the law at every
+// Gauss point, the point states in the block.
+template <class Flow, bool Finite, int GaussPoints, int Lanes>
+ElementEnergies law_loop_20(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
+                            const NodalVectors& u, NodalVectors& f_int, double* stress) {
+  using Real = Pack<Lanes>;
+  constexpr int stride = hex20::reference_size(GaussPoints);
+  const Flow& flow = flow_of<Flow>(block.law);
+  const material::ElasticConstants elastic = block.material;
+  const double dt = block.material_state.dt;
+  const double* table = block.shared.data();
+  const double* data = block.reference.data();
+  const std::uint32_t count = block.count;
+  return element_pack_loop<20, Lanes>(
+      block, begin, end, u, f_int, stress,
+      [&](std::uint32_t pack, const NodeValues<20, Real>& u_local, NodeValues<20, Real>& f_local,
+          std::array<Real, 6>& s) {
+        double interleaved[stride * Lanes];
+        for (int lane = 0; lane < Lanes; ++lane) {
+          const std::uint32_t element = Lanes * pack + std::uint32_t(lane);
+          const double* mine = data + std::size_t(stride) * (element < count ? element : Lanes * pack);
+          for (int k = 0; k < stride; ++k) interleaved[Lanes * k + lane] = mine[k];
+        }
+        const PackStates<Flow, Lanes> states(block, pack, GaussPoints);
+        const ConstitutiveResult<Real> r = hex20::constitutive_forces<Flow, Finite, GaussPoints>(
+            table, interleaved, elastic, flow, u_local, f_local, states.old_state, states.new_state, dt);
+        s = r.mean_stress;
+        store_plastic_strain(block, pack, r.eps_p);
+        return std::array<Real, 3>{r.internal, Real{}, r.plastic};
       });
 }
 
@@ -227,6 +260,18 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
       }
       block.reference_index[e] = static_cast<std::uint32_t>(g);
     }
+  }
+  if (!block.law.linear_small()) {  // the law's loop on the general layout
+    block.constant_jacobian = false;
+    block.reference_index.clear();
+    block.shared = std::move(table);
+    const Isa isa = selected_isa();
+    block.loop = law_loop(block.law, [isa]<class Flow, bool Finite>() {
+      return packed_for_isa<law_loop_20<Flow, Finite, gauss_points, 2>,
+                            law_loop_20<Flow, Finite, gauss_points, 4>,
+                            law_loop_20<Flow, Finite, gauss_points, 8>>(isa);
+    });
+    return;
   }
   block.constant_jacobian = affine;
   if (affine) {

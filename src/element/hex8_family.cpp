@@ -18,6 +18,7 @@
 #include "element/element_isa.hpp"
 #include "element/element_loop.hpp"
 #include "element/hex8.hpp"
+#include "element/hex8_constitutive.hpp"
 #include "element/hex8r.hpp"
 
 namespace exdyn::element {
@@ -85,6 +86,54 @@ ElementEnergies hex8r_loop(const ElementBlock& block, std::uint32_t begin, std::
       });
 }
 
+// The loops of a material law (constitutive.hpp): the general layouts, the law at
+// every point, the point states in the block.
+template <class Flow, bool Finite, int Lanes>
+ElementEnergies hex8_law_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
+                              const NodalVectors& u, NodalVectors& f_int, double* stress) {
+  using Real = Pack<Lanes>;
+  const Flow& flow = flow_of<Flow>(block.law);
+  const material::ElasticConstants elastic = block.material;
+  const bool f_bar = block.law.f_bar;
+  const double dt = block.material_state.dt;
+  const double* data = block.reference.data();
+  return element_pack_loop<8, Lanes>(
+      block, begin, end, u, f_int, stress,
+      [&](std::uint32_t pack, const BasicElementVectors<Real>& u_local, BasicElementVectors<Real>& f_local,
+          std::array<Real, 6>& s) {
+        const PackStates<Flow, Lanes> states(block, pack, 8);
+        const ConstitutiveResult<Real> r = hex8::constitutive_forces<Flow, Finite>(
+            data + std::size_t(Lanes) * hex8::reference_size * pack, elastic, flow, f_bar, u_local, f_local,
+            states.old_state, states.new_state, dt);
+        s = r.mean_stress;
+        store_plastic_strain(block, pack, r.eps_p);
+        return std::array<Real, 3>{r.internal, Real{}, r.plastic};
+      });
+}
+
+template <class Flow, bool Finite, int Lanes>
+ElementEnergies hex8r_law_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
+                               const NodalVectors& u, NodalVectors& f_int, double* stress) {
+  using Real = Pack<Lanes>;
+  const Flow& flow = flow_of<Flow>(block.law);
+  const material::ElasticConstants elastic = block.material;
+  const double dt = block.material_state.dt;
+  const double* data = block.reference.data();
+  return element_pack_loop<8, Lanes>(
+      block, begin, end, u, f_int, stress,
+      [&](std::uint32_t pack, const BasicElementVectors<Real>& u_local, BasicElementVectors<Real>& f_local,
+          std::array<Real, 6>& s) {
+        const PackStates<Flow, Lanes> states(block, pack, 1);
+        Real hourglass{};
+        const ConstitutiveResult<Real> r = hex8r::constitutive_forces<Flow, Finite>(
+            data + std::size_t(Lanes) * hex8r::reference_size * pack, elastic, flow, u_local, f_local,
+            states.old_state, states.new_state, dt, hourglass);
+        s = r.mean_stress;
+        store_plastic_strain(block, pack, r.eps_p);
+        return std::array<Real, 3>{r.internal, hourglass, r.plastic};
+      });
+}
+
 // Precomputes the reference data of every element with make(x, reference) (which
 // returns the smallest det J), stride doubles each, interleaved by packs of `lanes`
 // elements value by value ([.., value k of element Lp, .., of element Lp + L - 1, ..];
@@ -149,6 +198,16 @@ bool all_parallelepipeds(const ElementBlock& block, const NodalVectors& x_ref) {
 // boxes of this program), the general ones otherwise.
 void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
   const Isa isa = selected_isa();
+  if (!block.law.linear_small()) {
+    block.loop = law_loop(block.law, [isa]<class Flow, bool Finite>() {
+      return packed_for_isa<hex8_law_loop<Flow, Finite, 2>, hex8_law_loop<Flow, Finite, 4>,
+                            hex8_law_loop<Flow, Finite, 8>>(isa);
+    });
+    fill_reference(block, x_ref, hex8::reference_size, lanes_for(isa),
+                   [](const ElementVectors& x, double* r) { return hex8::make_reference(x, r); });
+    mark_row_packs(block, lanes_for(isa));
+    return;
+  }
   block.constant_jacobian = all_parallelepipeds(block, x_ref);
   if (block.constant_jacobian) {
     block.axis_aligned = all_axis_aligned(block, x_ref);
@@ -172,6 +231,19 @@ void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
   const Isa isa = selected_isa();
   block.constant_jacobian = all_parallelepipeds(block, x_ref);
   const double mu = block.material.mu, coefficient = block.hourglass_coefficient;
+  if (!block.law.linear_small()) {
+    block.constant_jacobian = false;
+    block.loop = law_loop(block.law, [isa]<class Flow, bool Finite>() {
+      return packed_for_isa<hex8r_law_loop<Flow, Finite, 2>, hex8r_law_loop<Flow, Finite, 4>,
+                            hex8r_law_loop<Flow, Finite, 8>>(isa);
+    });
+    fill_reference(block, x_ref, hex8r::reference_size, lanes_for(isa),
+                   [mu, coefficient](const ElementVectors& x, double* r) {
+                     return hex8r::make_reference(x, mu, coefficient, r);
+                   });
+    mark_row_packs(block, lanes_for(isa));
+    return;
+  }
   if (block.constant_jacobian) {
     block.loop = packed_for_isa<hex8r_loop<true, 2>, hex8r_loop<true, 4>, hex8r_loop<true, 8>>(isa);
     fill_reference(block, x_ref, hex8r::parallelepiped_reference_size, lanes_for(isa),

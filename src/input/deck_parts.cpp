@@ -24,7 +24,18 @@ std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, co
     fail(node, path,
          "expected a map of materials by name, e.g. {steel: {model: linear_elastic, ...}}; got " +
              describe(node));
-  const std::vector<std::string> keys{"model", "density", "youngs_modulus", "poissons_ratio"};
+  const std::vector<std::string> keys{"model",
+                                      "density",
+                                      "youngs_modulus",
+                                      "poissons_ratio",
+                                      "yield_stress",
+                                      "hardening_modulus",
+                                      "hardening",
+                                      "A",
+                                      "B",
+                                      "n",
+                                      "C",
+                                      "reference_strain_rate"};
   std::vector<MaterialOptions> result;
   std::map<std::string, YAML::Node> seen;
   for (auto entry = node.begin(); entry != node.end(); ++entry) {
@@ -51,9 +62,101 @@ std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, co
     material.poissons_ratio = number_where(required(body, material_path, "poissons_ratio"),
                                            child_path(material_path, "poissons_ratio"),
                                            "a number in (-1, 0.5)", poissons_ratio_range);
+    plasticity(body, material_path, material);
     result.push_back(std::move(material));
   }
   return result;
+}
+
+// The keys of the plastic models; each is an error on a model it does not belong to.
+void DeckValidator::plasticity(const YAML::Node& body, const std::string& path,
+                               MaterialOptions& material) const {
+  const std::vector<std::string> elastic_plastic_keys{"yield_stress", "hardening_modulus", "hardening"};
+  const std::vector<std::string> johnson_cook_keys{"A", "B", "n", "C", "reference_strain_rate"};
+  const auto refuse = [&](const std::vector<std::string>& keys, const char* owner) {
+    for (const std::string& key : keys)
+      if (const YAML::Node value = optional(body, key); value.IsDefined())
+        fail(value, child_path(path, key),
+             "'" + key + "' belongs to model " + owner + "; this material is " + name(material.model));
+  };
+  const auto number_at = [&](const std::string& key, const std::string& expected, bool (*accept)(double)) {
+    return number_where(required(body, path, key), child_path(path, key), expected, accept);
+  };
+  switch (material.model) {
+    case MaterialModel::linear_elastic:
+      refuse(elastic_plastic_keys, "elastic_plastic");
+      refuse(johnson_cook_keys, "johnson_cook");
+      return;
+    case MaterialModel::johnson_cook:
+      refuse(elastic_plastic_keys, "elastic_plastic");
+      material.jc_a = number_at("A", "a number > 0 (the initial yield stress)", positive);
+      material.jc_b = number_at("B", "a number >= 0", non_negative);
+      material.jc_n = number_at("n", "a number > 0 (the hardening exponent)", positive);
+      if (const YAML::Node c = optional(body, "C"); c.IsDefined())
+        material.jc_c = number_where(c, child_path(path, "C"), "a number >= 0", non_negative);
+      if (const YAML::Node rate = optional(body, "reference_strain_rate"); rate.IsDefined())
+        material.reference_strain_rate =
+            number_where(rate, child_path(path, "reference_strain_rate"), "a number > 0 (1/s)", positive);
+      return;
+    case MaterialModel::elastic_plastic:
+      break;
+  }
+  refuse(johnson_cook_keys, "johnson_cook");
+  const YAML::Node table = optional(body, "hardening");
+  const YAML::Node yield = optional(body, "yield_stress");
+  const YAML::Node modulus = optional(body, "hardening_modulus");
+  if (!table.IsDefined()) {
+    material.yield_stress = number_at("yield_stress", "a number > 0 (the initial yield stress)", positive);
+    if (modulus.IsDefined())
+      material.hardening_modulus =
+          number_where(modulus, child_path(path, "hardening_modulus"), "a number >= 0", non_negative);
+    return;
+  }
+  const std::string table_path = child_path(path, "hardening");
+  if (modulus.IsDefined())
+    fail(modulus, child_path(path, "hardening_modulus"),
+         "give either hardening_modulus (linear hardening) or a hardening table, not both");
+  const std::string expected =
+      "a list of rows [eps_p, sigma_y] starting at eps_p = 0, eps_p increasing, sigma_y > 0 and "
+      "non-decreasing";
+  check_sequence(table, table_path, expected);
+  if (table.size() == 0) fail(table, table_path, "expected " + expected + ", got an empty list");
+  if (table.size() > 32)
+    fail(table, table_path, "a hardening table has at most 32 rows, got " + std::to_string(table.size()));
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    const std::string row_path = child_path(table_path, i);
+    check_sequence(table[i], row_path, expected);
+    if (table[i].size() != 2)
+      fail(table[i], row_path, "expected " + expected + ", got " + describe(table[i]));
+    const double strain = number(table[i][0], child_path(row_path, 0), "a number (eps_p)");
+    const double stress = number(table[i][1], child_path(row_path, 1), "a number (sigma_y)");
+    if (i == 0 && strain != 0.0)
+      fail(table[i][0], child_path(row_path, 0),
+           "the hardening table starts at eps_p = 0, got " + format_number(strain));
+    if (i > 0 && !(strain > material.hardening.back()[0]))
+      fail(table[i][0], child_path(row_path, 0),
+           "eps_p must increase strictly down the table, got " + format_number(strain) + " after " +
+               format_number(material.hardening.back()[0]));
+    if (!(stress > 0.0))
+      fail(table[i][1], child_path(row_path, 1), "expected a yield stress > 0, got " + format_number(stress));
+    if (i > 0 && stress < material.hardening.back()[1])
+      fail(table[i][1], child_path(row_path, 1),
+           "the hardening table decreases: sigma_y " + format_number(stress) + " after " +
+               format_number(material.hardening.back()[1]) + " (softening is not supported)");
+    material.hardening.push_back({strain, stress});
+  }
+  material.yield_stress = material.hardening.front()[1];
+  if (yield.IsDefined() &&
+      number(yield, child_path(path, "yield_stress"), "a number") != material.yield_stress)
+    fail(yield, child_path(path, "yield_stress"),
+         "yield_stress differs from the hardening table's first sigma_y (" +
+             format_number(material.yield_stress) + "): give one of them");
+}
+
+std::array<Vec3, 2> DeckValidator::angular_velocity(const YAML::Node& node, const std::string& path) const {
+  check_map(node, path, {"axis_point", "omega"});
+  return {vector3(required(node, path, "axis_point"), child_path(path, "axis_point")),
+          vector3(required(node, path, "omega"), child_path(path, "omega"))};
 }
 
 std::array<int, 3> DeckValidator::keep_cuts(const YAML::Node& node, const std::string& path, int axis) const {
@@ -79,9 +182,10 @@ std::array<int, 3> DeckValidator::keep_cuts(const YAML::Node& node, const std::s
 
 PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
                                 const std::vector<MaterialOptions>& materials) const {
-  check_map(node, path,
-            {"name", "box", "cylinder", "sphere", "elements", "grading", "material", "formulation",
-             "hourglass", "initial_velocity", "perturbation"});
+  check_map(
+      node, path,
+      {"name", "box", "cylinder", "sphere", "elements", "grading", "material", "formulation", "hourglass",
+       "initial_velocity", "initial_angular_velocity", "kinematics", "f_bar", "perturbation"});
   PartOptions result;
   result.name = text(required(node, path, "name"), child_path(path, "name"), "a part name");
 
@@ -198,6 +302,18 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
 
   if (const YAML::Node velocity = optional(node, "initial_velocity"); velocity.IsDefined())
     result.initial_velocity = vector3(velocity, child_path(path, "initial_velocity"));
+  if (const YAML::Node spin = optional(node, "initial_angular_velocity"); spin.IsDefined() && !spin.IsNull())
+    result.initial_angular_velocity = angular_velocity(spin, child_path(path, "initial_angular_velocity"));
+  if (const YAML::Node kinematics = optional(node, "kinematics"); kinematics.IsDefined())
+    result.kinematics = all_kinematics[choice(kinematics, child_path(path, "kinematics"), "kinematics",
+                                              names_of(all_kinematics))];
+  if (const YAML::Node f_bar = optional(node, "f_bar"); f_bar.IsDefined()) {
+    if (result.formulation != Formulation::hex8)
+      fail(f_bar, child_path(path, "f_bar"),
+           std::string("f_bar applies to hex8 parts under finite kinematics; this part is ") +
+               name(result.formulation));
+    result.f_bar = boolean(f_bar, child_path(path, "f_bar"));
+  }
 
   if (const YAML::Node perturbation = optional(node, "perturbation");
       perturbation.IsDefined() && !perturbation.IsNull()) {

@@ -9,7 +9,7 @@
 namespace exdyn::input::deck {
 
 TimeOptions DeckValidator::time(const YAML::Node& node, const std::string& path) const {
-  check_map(node, path, {"end_time", "courant", "dt"});
+  check_map(node, path, {"end_time", "courant", "dt", "min_dt_ratio"});
   TimeOptions result;
   result.end_time =
       number_where(required(node, path, "end_time"), child_path(path, "end_time"), "a number > 0", positive);
@@ -26,6 +26,10 @@ TimeOptions DeckValidator::time(const YAML::Node& node, const std::string& path)
            "given " +
                position_text(courant, child_path(path, "courant")));
   }
+  if (const YAML::Node ratio = optional(node, "min_dt_ratio"); ratio.IsDefined())
+    result.min_dt_ratio = number_where(ratio, child_path(path, "min_dt_ratio"),
+                                       "a number in (0, 1) (a fraction of the first step)",
+                                       [](double value) { return value > 0.0 && value < 1.0; });
   return result;
 }
 

@@ -26,7 +26,10 @@ inline constexpr std::string_view command_line_file = "<command line>";
 // ---------------------------------------------------------------------------
 // Names of the choices, in the order docs/input.md lists them.
 
-inline constexpr std::array<MaterialModel, 1> all_material_models{MaterialModel::linear_elastic};
+inline constexpr std::array<MaterialModel, 3> all_material_models{
+    MaterialModel::linear_elastic, MaterialModel::elastic_plastic, MaterialModel::johnson_cook};
+inline constexpr std::array<Kinematics, 3> all_kinematics{Kinematics::automatic, Kinematics::small,
+                                                          Kinematics::finite};
 inline constexpr std::array<Formulation, 4> all_formulations{Formulation::hex8, Formulation::hex8r,
                                                              Formulation::hex20, Formulation::hex20r};
 inline constexpr std::array<SlavePoints, 2> all_slave_points{SlavePoints::nodes, SlavePoints::quadrature};
@@ -130,6 +133,8 @@ class DeckValidator {
   // --- sections
   std::string run_name(const YAML::Node& node, const std::string& path) const;
   std::vector<MaterialOptions> materials(const YAML::Node& node, const std::string& path) const;
+  void plasticity(const YAML::Node& body, const std::string& path, MaterialOptions& material) const;
+  std::array<Vec3, 2> angular_velocity(const YAML::Node& node, const std::string& path) const;
   std::vector<PartOptions> parts(const YAML::Node& node, const std::string& path,
                                  const std::vector<MaterialOptions>& materials) const;
   std::array<int, 3> keep_cuts(const YAML::Node& node, const std::string& path, int axis) const;

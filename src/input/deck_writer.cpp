@@ -71,6 +71,27 @@ std::string yaml_faces(const Deck& deck, const std::vector<FaceRef>& faces) {
   return "[" + join(names, ", ") + "]";
 }
 
+// The plastic model's keys, ", key: value" each.
+std::string plasticity_text(const MaterialOptions& material) {
+  switch (material.model) {
+    case MaterialModel::linear_elastic:
+      return "";
+    case MaterialModel::johnson_cook:
+      return ", A: " + yaml_number(material.jc_a) + ", B: " + yaml_number(material.jc_b) +
+             ", n: " + yaml_number(material.jc_n) + ", C: " + yaml_number(material.jc_c) +
+             ", reference_strain_rate: " + yaml_number(material.reference_strain_rate);
+    case MaterialModel::elastic_plastic:
+      break;
+  }
+  if (material.hardening.empty())
+    return ", yield_stress: " + yaml_number(material.yield_stress) +
+           ", hardening_modulus: " + yaml_number(material.hardening_modulus);
+  std::vector<std::string> rows;
+  for (const auto& row : material.hardening)
+    rows.push_back("[" + yaml_number(row[0]) + ", " + yaml_number(row[1]) + "]");
+  return ", hardening: [" + join(rows, ", ") + "]";
+}
+
 }  // namespace
 
 std::string to_yaml(const Deck& deck) {
@@ -84,7 +105,7 @@ std::string to_yaml(const Deck& deck) {
     out << "  " << yaml_text(material.name) << ": {model: " << name(material.model)
         << ", density: " << yaml_number(material.density)
         << ", youngs_modulus: " << yaml_number(material.youngs_modulus)
-        << ", poissons_ratio: " << yaml_number(material.poissons_ratio) << "}\n";
+        << ", poissons_ratio: " << yaml_number(material.poissons_ratio) << plasticity_text(material) << "}\n";
 
   out << "parts:\n";
   for (const PartOptions& part : deck.parts) {
@@ -115,6 +136,15 @@ std::string to_yaml(const Deck& deck) {
                 ? std::string()
                 : "    hourglass: {coefficient: " + yaml_number(part.hourglass_coefficient) + "}\n")
         << "    initial_velocity: " << yaml_vector(part.initial_velocity) << "\n"
+        << (part.initial_angular_velocity
+                ? "    initial_angular_velocity: {axis_point: " +
+                      yaml_vector((*part.initial_angular_velocity)[0]) +
+                      ", omega: " + yaml_vector((*part.initial_angular_velocity)[1]) + "}\n"
+                : std::string())
+        << "    kinematics: " << name(part.kinematics) << "\n"
+        << (part.formulation == Formulation::hex8
+                ? std::string("    f_bar: ") + (part.f_bar ? "true" : "false") + "\n"
+                : std::string())
         << (part.geometry == Geometry::box
                 ? "    perturbation: {fraction: " + yaml_number(part.perturbation_fraction) +
                       ", seed: " + std::to_string(part.perturbation_seed) + "}\n"
@@ -157,6 +187,7 @@ std::string to_yaml(const Deck& deck) {
     out << "  dt: " << yaml_number(*deck.time.dt) << "\n";
   else
     out << "  courant: " << yaml_number(deck.time.courant) << "\n";
+  out << "  min_dt_ratio: " << yaml_number(deck.time.min_dt_ratio) << "\n";
 
   std::vector<std::string> fields;
   for (const OutputField field : deck.output.fields) fields.emplace_back(name(field));

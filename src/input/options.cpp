@@ -8,8 +8,29 @@ const char* name(MaterialModel model) {
   switch (model) {
     case MaterialModel::linear_elastic:
       return "linear_elastic";
+    case MaterialModel::elastic_plastic:
+      return "elastic_plastic";
+    case MaterialModel::johnson_cook:
+      return "johnson_cook";
   }
   return "?";
+}
+
+const char* name(Kinematics kinematics) {
+  switch (kinematics) {
+    case Kinematics::automatic:
+      return "auto";
+    case Kinematics::small:
+      return "small";
+    case Kinematics::finite:
+      return "finite";
+  }
+  return "?";
+}
+
+Kinematics resolved_kinematics(const PartOptions& part, const MaterialOptions& material) {
+  if (part.kinematics != Kinematics::automatic) return part.kinematics;
+  return material.model == MaterialModel::linear_elastic ? Kinematics::small : Kinematics::finite;
 }
 
 const char* name(Formulation formulation) {
@@ -112,6 +133,8 @@ const char* name(OutputField field) {
       return "contact_force";
     case OutputField::gap:
       return "gap";
+    case OutputField::plastic_strain:
+      return "plastic_strain";
   }
   return "?";
 }

@@ -15,7 +15,10 @@ namespace exdyn::input {
 
 using Vec3 = std::array<double, 3>;
 
-enum class MaterialModel { linear_elastic };
+// linear_elastic: isotropic elasticity; elastic_plastic: von Mises with isotropic
+// hardening, linear or tabulated; johnson_cook: von Mises with the Johnson-Cook flow
+// stress without temperature (docs/theory.md, "Materials").
+enum class MaterialModel { linear_elastic, elastic_plastic, johnson_cook };
 
 struct MaterialOptions {
   std::string name;
@@ -23,6 +26,17 @@ struct MaterialOptions {
   double density = 0.0;         // rho > 0, mass per volume
   double youngs_modulus = 0.0;  // E > 0, force per area
   double poissons_ratio = 0.0;  // nu in (-1, 0.5)
+  // elastic_plastic: sigma_y = yield_stress + hardening_modulus eps_p, or the table
+  // `hardening` (eps_p, sigma_y) rows when given (then yield_stress is its first sigma_y).
+  double yield_stress = 0.0;                     // sigma_y0 > 0, force per area
+  double hardening_modulus = 0.0;                // H >= 0, force per area
+  std::vector<std::array<double, 2>> hardening;  // [[0, sigma_y0], [eps_p, sigma_y], ...]
+  // johnson_cook: sigma_y = (A + B eps_p^n)(1 + C ln(max(eps_dot_p / eps_dot_0, 1))).
+  double jc_a = 0.0;                   // A > 0, force per area
+  double jc_b = 0.0;                   // B >= 0, force per area
+  double jc_n = 1.0;                   // n > 0
+  double jc_c = 0.0;                   // C >= 0
+  double reference_strain_rate = 1.0;  // eps_dot_0 > 0, 1/s
 
   bool operator==(const MaterialOptions&) const = default;
 };
@@ -41,6 +55,11 @@ constexpr bool is_quadratic(Formulation formulation) {
 
 // The shape of a part (docs/input.md): a box, or a mapped cylinder or ball.
 enum class Geometry { box, cylinder, sphere };
+
+// How a part's strains are measured (docs/theory.md, "Finite strain"): small strain on
+// the reference configuration, or large deformation (total Lagrangian, hyperelastic-
+// plastic); automatic: finite for a plastic material, small for linear_elastic.
+enum class Kinematics { automatic, small, finite };
 
 struct PartOptions {
   std::string name;
@@ -66,6 +85,12 @@ struct PartOptions {
   Formulation formulation = Formulation::hex8;
   double hourglass_coefficient = 0.05;  // hex8 and hex8r only (an error on a 20-node part)
   Vec3 initial_velocity{};
+  // initial_angular_velocity: omega x (x - axis_point) is added to each node's velocity.
+  std::optional<std::array<Vec3, 2>> initial_angular_velocity;  // {axis_point (m), omega (rad/s)}
+  Kinematics kinematics = Kinematics::automatic;
+  // hex8 under finite kinematics: F-bar against volumetric locking (false: plain 2x2x2,
+  // which locks in plastic flow; kept to measure it).
+  bool f_bar = true;
   // Random distortion of the structured grid (docs/input.md, mesh/mesh.hpp): interior
   // nodes move by up to fraction x h per component; 0 = the regular grid.
   double perturbation_fraction = 0.0;  // in [0, 0.5)
@@ -146,15 +171,28 @@ struct TimeOptions {
   double end_time = 0.0;
   double courant = 0.9;      // used when dt is not given
   std::optional<double> dt;  // fixed step; exclusive with an explicit courant
+  // With courant and finite-strain parts the step follows the deformed elements; a run
+  // whose step falls below this fraction of its first step stops (exit 1).
+  double min_dt_ratio = 1.0e-3;  // in (0, 1)
 
   bool operator==(const TimeOptions&) const = default;
 };
 
-enum class OutputField { displacement, velocity, acceleration, stress, von_mises, contact_force, gap };
+enum class OutputField {
+  displacement,
+  velocity,
+  acceleration,
+  stress,
+  von_mises,
+  contact_force,
+  gap,
+  plastic_strain
+};
 
-inline constexpr std::array<OutputField, 7> all_output_fields{
-    OutputField::displacement, OutputField::velocity,      OutputField::acceleration, OutputField::stress,
-    OutputField::von_mises,    OutputField::contact_force, OutputField::gap};
+inline constexpr std::array<OutputField, 8> all_output_fields{
+    OutputField::displacement, OutputField::velocity,      OutputField::acceleration,
+    OutputField::stress,       OutputField::von_mises,     OutputField::contact_force,
+    OutputField::gap,          OutputField::plastic_strain};
 
 struct OutputOptions {
   std::string directory = "results";
@@ -199,6 +237,9 @@ struct Deck {
 // Names as they appear in a deck, for messages and the `check` echo.
 const char* name(MaterialModel model);
 const char* name(Formulation formulation);
+const char* name(Kinematics kinematics);
+// A part's kinematics with `automatic` resolved by its material.
+Kinematics resolved_kinematics(const PartOptions& part, const MaterialOptions& material);
 const char* name(SlavePoints points);
 const char* name(PartFace side);
 const char* name(Geometry geometry);

@@ -1,5 +1,7 @@
-// Small-strain isotropic linear elasticity.
-//   sigma = lambda tr(eps) I + 2 mu eps
+// The linear_elastic material: small-strain isotropic linear elasticity,
+//   sigma = lambda tr(eps) I + 2 mu eps,
+// and, under finite kinematics, the hyperelastic model of j2.hpp with no yield
+// (NoYield). The elastic constants are every model's: they give the wave speed.
 // Tensor components in the order xx yy zz xy yz xz (the output order of
 // ../shared/spec/output.md; shear entries are tensor, not engineering, strains).
 #pragma once
@@ -22,6 +24,16 @@ struct ElasticConstants {
   double bulk_modulus() const { return lambda + 2.0 / 3.0 * mu; }
   // c1 = sqrt(M / rho), m/s: the fastest wave, which bounds the stable step.
   double dilatational_wave_speed() const { return std::sqrt(dilatational_modulus() / density); }
+};
+
+// The flow rule of a material that never yields (linear_elastic under finite
+// kinematics: j2.hpp's hyperelastic model without a plastic state).
+struct NoYield {
+  static constexpr bool plastic = false;
+  template <class Real>
+  Real increment(const Real&, const Real&, const Real&, double) const {
+    return Real{};
+  }
 };
 
 // From Young's modulus E, Poisson's ratio nu and density rho:

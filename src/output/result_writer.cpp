@@ -61,7 +61,7 @@ struct FieldLayout {
 // the order of the deck's list, so that files of different runs compare.
 // Stress is "Matrix" E x 6: every ParaView 5.11 XDMF reader keeps 6 components
 // labelled XX YY ZZ XY YZ XZ ("Tensor6" is expanded to 9 by the Xdmf2 reader).
-constexpr std::array<FieldLayout, 7> field_layouts{{
+constexpr std::array<FieldLayout, 8> field_layouts{{
     {input::OutputField::displacement, "displacement", Center::node, 3, "Vector"},
     {input::OutputField::velocity, "velocity", Center::node, 3, "Vector"},
     {input::OutputField::acceleration, "acceleration", Center::node, 3, "Vector"},
@@ -69,10 +69,11 @@ constexpr std::array<FieldLayout, 7> field_layouts{{
     {input::OutputField::von_mises, "von_mises", Center::cell, 1, "Scalar"},
     {input::OutputField::contact_force, "contact_force", Center::node, 3, "Vector"},
     {input::OutputField::gap, "gap", Center::node, 1, "Scalar"},
+    {input::OutputField::plastic_strain, "plastic_strain", Center::cell, 1, "Scalar"},
 }};
 
 using HistoryColumn = std::pair<const char*, double HistoryRow::*>;
-constexpr std::array<HistoryColumn, 7> history_columns{{
+constexpr std::array<HistoryColumn, 8> history_columns{{
     {"time", &HistoryRow::time},
     {"kinetic_energy", &HistoryRow::kinetic_energy},
     {"internal_energy", &HistoryRow::internal_energy},
@@ -80,6 +81,7 @@ constexpr std::array<HistoryColumn, 7> history_columns{{
     {"hourglass_energy", &HistoryRow::hourglass_energy},
     {"external_work", &HistoryRow::external_work},
     {"total_energy", &HistoryRow::total_energy},
+    {"plastic_work", &HistoryRow::plastic_work},
 }};
 
 // ---------------------------------------------------------------------------
@@ -342,6 +344,9 @@ void ResultWriter::Impl::fill_field(std::vector<double>& out, const FieldLayout&
       break;
     case input::OutputField::gap:
       values = data.gap;
+      break;
+    case input::OutputField::plastic_strain:
+      values = data.plastic_strain;
       break;
   }
   out.resize(count);

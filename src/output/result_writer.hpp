@@ -44,9 +44,10 @@ struct StepData {
   const NodalVectors* velocity = nullptr;
   const NodalVectors* acceleration = nullptr;
   const NodalVectors* contact_force = nullptr;
-  const double* stress = nullptr;     // 6 E: xx yy zz xy yz xz per element
-  const double* von_mises = nullptr;  // E
-  const double* gap = nullptr;        // N
+  const double* stress = nullptr;          // 6 E: xx yy zz xy yz xz per element
+  const double* von_mises = nullptr;       // E
+  const double* gap = nullptr;             // N
+  const double* plastic_strain = nullptr;  // E: mean equivalent plastic strain (null: 0, elastic parts)
 };
 
 struct HistoryRow {
@@ -57,6 +58,7 @@ struct HistoryRow {
   double hourglass_energy = 0.0;
   double external_work = 0.0;
   double total_energy = 0.0;
+  double plastic_work = 0.0;  // a part of internal_energy (docs/output.md)
 };
 
 // One history row of one contact pair.

@@ -37,6 +37,9 @@ Json to_json(const RunSummary& s) {
   energy["initial_total"] = number(s.energy.initial_total);
   energy["final_total"] = number(s.energy.final_total);
   energy["max_relative_error"] = number(s.energy.max_relative_error);
+  energy["internal"] = number(s.energy.internal);
+  energy["hourglass"] = number(s.energy.hourglass);
+  energy["plastic_work"] = number(s.energy.plastic_work);
 
   const auto figures = [](const ContactFigures& f) {
     Json json;
@@ -74,6 +77,8 @@ Json to_json(const RunSummary& s) {
   j["mesh"] = std::move(mesh);
   j["steps"] = s.steps;
   j["dt"] = number(s.dt);
+  j["dt_min"] = number(s.dt_min > 0.0 ? s.dt_min : s.dt);
+  j["warnings"] = s.warnings;
   j["end_time"] = number(s.end_time);
   j["wall_seconds"] = number(s.wall_seconds);
   j["element_cycles_per_second"] = number(s.element_cycles_per_second);

@@ -21,6 +21,10 @@ struct EnergySummary {
   double initial_total = 0.0;
   double final_total = 0.0;
   double max_relative_error = 0.0;  // max |E_total(t) - E_total(0)| / max(E seen)
+  // At the last step, J (ours, after the spec's keys):
+  double internal = 0.0;      // stored elastic energy plus plastic work
+  double hourglass = 0.0;     // hourglass spring energy (hex8r)
+  double plastic_work = 0.0;  // a part of internal
 };
 
 struct ContactFigures {
@@ -75,8 +79,10 @@ struct RunSummary {
   long nodes = 0;
   long elements = 0;
   long steps = 0;
-  double dt = 0.0;
+  double dt = 0.0;      // the first step, s
+  double dt_min = 0.0;  // the smallest step (the step follows the deformation: finite strain), s
   double end_time = 0.0;
+  std::vector<std::string> warnings;  // what the run found questionable (also printed)
   double wall_seconds = 0.0;
   double element_cycles_per_second = 0.0;  // elements x steps / wall seconds of the time loop
   PhaseSeconds phase_seconds;

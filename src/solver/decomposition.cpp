@@ -502,8 +502,7 @@ element::ElementEnergies add_forces_across_ranks(const Model& model, Decompositi
                  "MPI_Waitall of the shared forces");
     }
     const element::ElementEnergies e = element::chunk_energy_total(block);
-    total.strain += e.strain;
-    total.hourglass += e.hourglass;
+    total += e;
   }
   return total;
 }

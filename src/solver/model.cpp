@@ -6,6 +6,7 @@
 
 #include "common/errors.hpp"
 #include "material/elastic.hpp"
+#include "material/material_law.hpp"
 #include "solver/memory_estimate.hpp"
 
 namespace exdyn::solver {
@@ -23,7 +24,8 @@ Model build_model(const input::Deck& deck) {
     model.blocks.push_back(element::make_element_block(
         part.formulation, material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density),
         part.hourglass_coefficient, range.first_element, range.element_count,
-        model.mesh.connectivity.data() + range.first_connectivity, model.mesh.x_ref));
+        model.mesh.connectivity.data() + range.first_connectivity, model.mesh.x_ref,
+        material::make_law(m, input::resolved_kinematics(part, m), part.f_bar)));
     element::add_lumped_mass(model.blocks.back(), model.mesh.x_ref, model.mass);
   }
   model.inverse_mass.resize(node_count);
@@ -53,6 +55,18 @@ NodalVectors initial_velocity(const input::Deck& deck, const Model& model) {
       auto& component = v.component(c);
       std::fill(component.begin() + range.first_node, component.begin() + range.first_node + range.node_count,
                 deck.parts[p].initial_velocity[c]);
+    }
+    // omega x (x - axis_point): a rigid rotation about the axis through axis_point.
+    if (const auto& spin = deck.parts[p].initial_angular_velocity) {
+      const input::Vec3& point = (*spin)[0];
+      const input::Vec3& omega = (*spin)[1];
+      for (std::size_t i = range.first_node; i < range.first_node + range.node_count; ++i) {
+        const double r[3] = {model.mesh.x_ref.x[i] - point[0], model.mesh.x_ref.y[i] - point[1],
+                             model.mesh.x_ref.z[i] - point[2]};
+        v.x[i] += omega[1] * r[2] - omega[2] * r[1];
+        v.y[i] += omega[2] * r[0] - omega[0] * r[2];
+        v.z[i] += omega[0] * r[1] - omega[1] * r[0];
+      }
     }
   }
   apply_fixed_components(model, v);

@@ -1,0 +1,162 @@
+// The 8-node kernels under a material law (element/constitutive.hpp): small strain
+// with a plastic material, or finite strain (total Lagrangian). The same reference
+// data as the linear kernels' general layouts (hex8.hpp make_reference, hex8r.hpp
+// make_reference); the law's point states in the block (ElementBlock::material_state).
+#pragma once
+
+#include <array>
+
+#include "element/constitutive.hpp"
+#include "element/hex8.hpp"
+#include "element/hex8r.hpp"
+
+namespace exdyn::element {
+
+namespace hex8 {
+
+// hex8, 2x2x2 Gauss points: H_g = D_g dxi/dX (D from the modes of u, as in
+// internal_forces), the law at the eight points, then f from w_g P_g in mode space.
+template <class Flow, bool Finite, class Real>
+inline ConstitutiveResult<Real> constitutive_forces(const double* reference,
+                                                    const material::ElasticConstants& elastic,
+                                                    const Flow& flow, bool f_bar,
+                                                    const BasicElementVectors<Real>& u,
+                                                    BasicElementVectors<Real>& f, const double* state_old,
+                                                    double* state_new, double dt) {
+  using namespace detail;
+  const BasicElementModes<Real> c = modes_from_nodal(u);
+  constexpr double a = gauss_abscissa, a2 = gauss_abscissa * gauss_abscissa;
+  const std::array<const std::array<Real, 8>*, 3> modes{&c.x, &c.y, &c.z};
+  Real m1[3], m2[3], m3[3], m4[3], m5[3], m6[3], m7[3];
+  for (int i = 0; i < 3; ++i) {
+    const std::array<Real, 8>& m = *modes[i];
+    m1[i] = m[1], m2[i] = m[2], m3[i] = m[3];
+    m4[i] = a * m[4], m5[i] = a * m[5], m6[i] = a * m[6], m7[i] = a2 * m[7];
+  }
+  std::array<std::array<Real, 9>, 8> h;
+  std::array<Real, 8> w;
+#pragma GCC unroll 8
+  for (int g = 0; g < 8; ++g) {
+    const double sx = gauss_sign_xi[g], se = gauss_sign_eta[g], sz = gauss_sign_zeta[g];
+    const double sez = gauss_sign_eta_zeta[g], szx = gauss_sign_zeta_xi[g], sxe = gauss_sign_xi_eta[g];
+    Real d[9];
+    for (int i = 0; i < 3; ++i) {
+      d[3 * i + 0] = m1[i] + sz * m5[i] + se * m6[i] + sez * m7[i];
+      d[3 * i + 1] = m2[i] + sz * m4[i] + sx * m6[i] + szx * m7[i];
+      d[3 * i + 2] = m3[i] + se * m4[i] + sx * m5[i] + sxe * m7[i];
+    }
+    Real r[9];
+    for (int k = 0; k < 9; ++k) r[k] = load<Real>(reference, 10 * g + k);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        h[g][3 * i + j] = d[3 * i] * r[j] + d[3 * i + 1] * r[3 + j] + d[3 * i + 2] * r[6 + j];
+    w[g] = 8.0 * load<Real>(reference, 10 * g + 9);  // w det J (the layout stores it / 8)
+  }
+  const ConstitutiveResult<Real> result =
+      integrate_points<Flow, Finite, 8>(elastic, flow, f_bar, h, w, state_old, state_new, dt);
+  Real force[3][8] = {};
+#pragma GCC unroll 8
+  for (int g = 0; g < 8; ++g) {
+    const double sx = gauss_sign_xi[g], se = gauss_sign_eta[g], sz = gauss_sign_zeta[g];
+    const double sez = gauss_sign_eta_zeta[g], szx = gauss_sign_zeta_xi[g], sxe = gauss_sign_xi_eta[g];
+    Real r[9];
+    for (int k = 0; k < 9; ++k) r[k] = load<Real>(reference, 10 * g + k);
+    const std::array<Real, 9>& p = h[g];  // w_g P_g
+    for (int i = 0; i < 3; ++i) {
+      Real q[3];  // sum_j P_ij dxi_k/dX_j
+      for (int k = 0; k < 3; ++k)
+        q[k] = p[3 * i] * r[3 * k] + p[3 * i + 1] * r[3 * k + 1] + p[3 * i + 2] * r[3 * k + 2];
+      Real* fm = force[i];
+      fm[1] += q[0];
+      fm[2] += q[1];
+      fm[3] += q[2];
+      fm[4] += sz * q[1] + se * q[2];
+      fm[5] += sz * q[0] + sx * q[2];
+      fm[6] += se * q[0] + sx * q[1];
+      fm[7] += sez * q[0] + szx * q[1] + sxe * q[2];
+    }
+  }
+  std::array<Real, 8> fx{}, fy{}, fz{};
+  const std::array<std::array<Real, 8>*, 3> force_modes{&fx, &fy, &fz};
+  for (int i = 0; i < 3; ++i) {
+    const Real* fm = force[i];
+    // f_I = sum_m phi_m(I) F_m / 8, the abscissa scaling of the modes 4..7.
+    *force_modes[i] = {Real{},
+                       0.125 * fm[1],
+                       0.125 * fm[2],
+                       0.125 * fm[3],
+                       (0.125 * a) * fm[4],
+                       (0.125 * a) * fm[5],
+                       (0.125 * a) * fm[6],
+                       (0.125 * a2) * fm[7]};
+  }
+  f.x = nodal_from_modes(fx);
+  f.y = nodal_from_modes(fy);
+  f.z = nodal_from_modes(fz);
+  return result;
+}
+
+}  // namespace hex8
+
+namespace hex8r {
+
+// hex8r: the mean gradient H = sum_m c_m (x) beta_m (the exact reference-volume mean
+// of du/dX), the law at that one point with weight V, f_I = V P b_I / V plus the
+// Flanagan-Belytschko hourglass forces in their total form. The hourglass energy
+// k/2 sum |q|^2 with q = gamma . x_cur does not change under a rigid rotation (gamma
+// annihilates linear fields), so it stays objective under large rotations.
+template <class Flow, bool Finite, class Real>
+inline ConstitutiveResult<Real> constitutive_forces(const double* reference,
+                                                    const material::ElasticConstants& elastic,
+                                                    const Flow& flow, const BasicElementVectors<Real>& u,
+                                                    BasicElementVectors<Real>& f, const double* state_old,
+                                                    double* state_new, double dt, Real& hourglass_energy) {
+  const hex8::BasicElementModes<Real> c = hex8::modes_from_nodal(u);
+  std::array<Real, 21> beta;
+  for (int k = 0; k < 21; ++k) beta[k] = load<Real>(reference, k);
+  std::array<Real, 12> g;
+  for (int k = 0; k < 12; ++k) g[k] = load<Real>(reference, 21 + k);
+  const Real volume = load<Real>(reference, 33), inverse_volume = load<Real>(reference, 34),
+             k = load<Real>(reference, 35);
+  std::array<std::array<Real, 9>, 1> h{};
+  for (int m = 1; m < 8; ++m) {
+    const std::array<Real, 3> cm = c[m];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) h[0][3 * i + j] += cm[i] * beta[3 * (m - 1) + j];
+  }
+  Real q[4][3];
+  Real q_squared{};
+  for (int alpha = 0; alpha < 4; ++alpha) {
+    const std::array<Real, 3> ch = c[4 + alpha];
+    for (int i = 0; i < 3; ++i) {
+      q[alpha][i] = 8.0 * ch[i] - (g[3 * alpha] * h[0][3 * i] + g[3 * alpha + 1] * h[0][3 * i + 1] +
+                                   g[3 * alpha + 2] * h[0][3 * i + 2]);
+      q_squared += q[alpha][i] * q[alpha][i];
+    }
+  }
+  hourglass_energy = 0.5 * k * q_squared;
+  const std::array<Real, 1> w{volume};
+  const ConstitutiveResult<Real> result =
+      integrate_points<Flow, Finite, 1>(elastic, flow, false, h, w, state_old, state_new, dt);
+  const std::array<Real, 9>& p = h[0];  // V P
+  const Real k_over_volume = k * inverse_volume;
+  std::array<Real, 8> fm[3] = {};
+  for (int i = 0; i < 3; ++i) {
+    Real s[3];
+    for (int j = 0; j < 3; ++j)
+      s[j] = 0.125 * p[3 * i + j] -
+             (0.125 * volume) * k_over_volume *
+                 (q[0][i] * g[j] + q[1][i] * g[3 + j] + q[2][i] * g[6 + j] + q[3][i] * g[9 + j]);
+    for (int m = 1; m < 8; ++m)
+      fm[i][m] = s[0] * beta[3 * (m - 1)] + s[1] * beta[3 * (m - 1) + 1] + s[2] * beta[3 * (m - 1) + 2];
+    for (int alpha = 0; alpha < 4; ++alpha) fm[i][4 + alpha] += k * q[alpha][i];
+  }
+  f.x = hex8::nodal_from_modes(fm[0]);
+  f.y = hex8::nodal_from_modes(fm[1]);
+  f.z = hex8::nodal_from_modes(fm[2]);
+  return result;
+}
+
+}  // namespace hex8r
+
+}  // namespace exdyn::element

@@ -1,0 +1,76 @@
+// The time step of the loop (step_clock.hpp).
+#include "solver/step_clock.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "common/mpi.hpp"
+
+namespace exdyn::solver {
+
+StepClock::StepClock(const input::TimeOptions& time, double critical_dt, const Model& model) {
+  const TimeStepping fixed = time_stepping(time, critical_dt);
+  end_time_ = time.end_time;
+  courant_ = time.courant;
+  min_ratio_ = time.min_dt_ratio;
+  follows_ = !time.dt && std::any_of(model.blocks.begin(), model.blocks.end(),
+                                     [](const element::ElementBlock& b) { return b.law.finite; });
+  previous_ = next_ = first_ = smallest_ = fixed.dt;
+  planned_ = fixed.steps;
+  fixed_part_ = std::numeric_limits<double>::infinity();
+  for (const element::ElementBlock& block : model.blocks)
+    if (!block.law.finite)
+      fixed_part_ = std::min(fixed_part_, element::critical_time_step(block, model.mesh.x_ref));
+}
+
+bool StepClock::last(long step) const {
+  if (!follows_) return step == planned_;
+  return time_ >= end_time_ - 1e-9 * first_;
+}
+
+std::string StepClock::plan(long step, const Model& model, const Decomposition& d, const NodalVectors& u) {
+  if (!follows_) return {};
+  double stable = fixed_part_;
+  std::uint32_t element = 0;
+  for (const element::ElementBlock& block : model.blocks) {
+    if (!block.law.finite) continue;
+    const element::CurrentStep current = element::current_time_step(block, model.mesh.x_ref, u);
+    if (current.dt < stable) stable = current.dt, element = global_element_id(d, current.element);
+  }
+  // The smallest over the ranks (ties: the lowest element), the same on every rank.
+  const double mine[2] = {stable, double(element)};
+  const std::vector<double> all = mpi::all_gather(d.comm, mine, 2);
+  stable = all[0], element = std::uint32_t(all[1]);
+  for (std::size_t r = 1; r < all.size() / 2; ++r)
+    if (all[2 * r] < stable || (all[2 * r] == stable && all[2 * r + 1] < element))
+      stable = all[2 * r], element = std::uint32_t(all[2 * r + 1]);
+  next_ = courant_ * stable;
+  if (step == 0) {
+    first_ = previous_ = smallest_ = next_;
+    planned_ = std::max(1L, long(std::ceil(end_time_ / first_ - 1e-9)));
+  }
+  smallest_ = std::min(smallest_, next_);
+  if (next_ < min_ratio_ * first_) {
+    char text[240];
+    std::snprintf(text, sizeof text,
+                  "the time step fell to %.3g s, below time.min_dt_ratio = %.3g of the first step %.3g s: "
+                  "element %u is crushed (its stable step is the smallest)",
+                  next_, min_ratio_, first_, element);
+    return text;
+  }
+  next_ = std::min(next_, std::max(end_time_ - time_, 0.0));  // land on end_time
+  return {};
+}
+
+void StepClock::advance(long step) {
+  if (!follows_) {
+    time_ = double(step + 1) * next_;  // t^n = n dt: the bits of a fixed step
+    return;
+  }
+  time_ += next_;
+  previous_ = next_;
+}
+
+}  // namespace exdyn::solver

@@ -1,0 +1,92 @@
+// The passes of one step of the time loop (solver/simulation.cpp): the state they
+// work on, the internal and contact forces, the accelerations and the nodal update.
+// Each pass runs on the threads in chunks and gives the same bits on any number of
+// them (docs/performance.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "common/nodal_vectors.hpp"
+#include "contact/contact_pass.hpp"
+#include "element/element_block.hpp"
+#include "output/result_writer.hpp"
+#include "solver/contact_setup.hpp"
+#include "solver/decomposition.hpp"
+#include "solver/model.hpp"
+#include "solver/nodal_update.hpp"
+
+namespace exdyn::solver {
+
+struct State {
+  long step = 0;
+  double time = 0.0;
+  NodalVectors displacement;  // u^n, m; u^{n+1} at the step's end (update_positions)
+  NodalVectors velocity;      // v^{n-1/2}, then v^{n+1/2} after update_velocities, m/s
+  std::array<std::vector<std::uint8_t>, 3>
+      flags;  // per component: fixed_flag | contact_flag (nodal_update.hpp)
+  NodalVectors
+      acceleration;  // a^n, m/s^2, computed when needed (output, a non-finite step: compute_accelerations)
+  NodalVectors internal_force;                 // f_int(u^n), N; 0 after update_velocities (see below)
+  NodalVectors contact_force;                  // f_contact(x^n), N
+  NodalVectors previous_contact_force;         // f_contact(x^{n-1}), N (for the contact work)
+  std::vector<double> gap;                     // signed normal gap of each slave node, m (0: no candidate)
+  std::vector<double> previous_gap;            // the gap of step n-1 (to step back after a non-finite step)
+  std::vector<double> stress;                  // 6 per element: xx yy zz xy yz xz, Pa
+  std::vector<double> plastic_strain;          // per element, for the output (gather_plastic_strain)
+  long stress_step = -1;                       // the step whose stresses `stress` holds (see below)
+  long force_step = -1;                        // the step whose f_int `internal_force` holds, -1: none
+  bool internal_force_zero = true;             // internal_force is all 0 (update_velocities zeroed it)
+  double contact_energy = 0.0;                 // work done against the contact forces, J
+  std::array<std::vector<double>, 4> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
+  std::vector<element::ElementEnergies> block_energies;  // per block, scratch of compute_forces_side_by_side
+};
+
+struct Energies {
+  double kinetic = 0.0;
+  double internal = 0.0;
+  double hourglass = 0.0;
+  double contact = 0.0;
+  double external_work = 0.0;
+  double plastic = 0.0;  // plastic work so far, J: a part of `internal`
+  double total() const { return kinetic + internal + hourglass + contact - external_work; }
+};
+
+struct NodalUpdate {
+  bool finite = true;    // every a^n finite (else the components where it is not keep v^{n-1/2})
+  double kinetic = 0.0;  // K^n = 1/2 sum m v^{n-1/2}.v^{n+1/2}, J
+  // 1/8 sum m |a^n|^2, J/s^2: dt^2 times it turns K^n into 1/2 sum m |v^n|^2 with
+  // v^n = (v^{n-1/2} + v^{n+1/2}) / 2, which is never negative (K^n can be: in an
+  // unstable run K^n + U^n stays constant while both grow without bound).
+  double mass_acceleration_squared = 0.0;
+  double largest_component = 0;  // max |v^{n+1/2}| over nodes and components, m/s
+};
+
+// f_int(u^n) of every block (on many ranks with the running sums of the shared
+// nodes), with_stress the element stresses too; returns the blocks' energies.
+element::ElementEnergies compute_internal_forces(const Model& model, Decomposition& d, State& state,
+                                                 bool with_stress);
+// state.stress and state.internal_force at u^n (computed again unless this step's are there).
+void forces_of_this_step(const Model& model, Decomposition& d, State& state);
+// The contact forces of every pair at x^n with v^{n-1/2}, and the contact work over
+// the last step dt = t^n - t^{n-1}.
+void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt);
+// The two above side by side as OpenMP tasks (the same bits).
+element::ElementEnergies compute_forces_side_by_side(const Model& model, ContactModel& contact, State& state,
+                                                     double dt, bool with_stress, double& element_seconds);
+contact::ContactStatistics total_statistics(const ContactModel& contact);
+std::vector<output::ContactHistoryRow> contact_history(const ContactModel& contact);
+// a^n = (f_contact - f_int) / m (0 on fixed components); false where some a is not finite.
+bool compute_accelerations(const Model& model, State& state);
+// v^{n+1/2} = v^{n-1/2} + dt a^n in place, with the energy sums.
+NodalUpdate update_velocities(const Model& model, State& state, double dt, bool first_step,
+                              bool keep_internal_force, const NodalUpdateFns& passes);
+// u^{n+1} = u^n + dt v^{n+1/2}.
+void update_positions(State& state, double dt, const NodalUpdateFns& passes);
+// y += scale x.
+void add_scaled(NodalVectors& y, double scale, const NodalVectors& x);
+// The blocks' per-element equivalent plastic strains into state.plastic_strain.
+void gather_plastic_strain(const Model& model, State& state);
+
+}  // namespace exdyn::solver

@@ -1,0 +1,231 @@
+// What the time loop reports (step_report.hpp).
+#include "solver/step_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "common/parallel.hpp"
+
+namespace exdyn::solver {
+
+// The node with the largest |v|_1 (m/s): where an instability grows fastest. On
+// many ranks the fastest of every rank's owned nodes (ties: the lowest node).
+std::string describe_fastest_node(const Decomposition& d, const NodalVectors& velocity) {
+  std::size_t fastest = 0;
+  double largest = -1.0;
+  for (std::size_t i = 0; i < velocity.size(); ++i) {
+    if (!d.owned.empty() && d.owned[i] == 0) continue;
+    const double speed = std::abs(velocity.x[i]) + std::abs(velocity.y[i]) + std::abs(velocity.z[i]);
+    if (speed > largest) largest = speed, fastest = i;
+  }
+  const double mine[2] = {largest, double(global_node_id(d, static_cast<std::uint32_t>(fastest)))};
+  const std::vector<double> all = mpi::all_gather(d.comm, mine, 2);
+  double node = all[1];
+  largest = all[0];
+  for (std::size_t r = 1; r < all.size() / 2; ++r)
+    if (all[2 * r] > largest || (all[2 * r] == largest && all[2 * r + 1] < node))
+      largest = all[2 * r], node = all[2 * r + 1];
+  char text[96];
+  std::snprintf(text, sizeof text, "the fastest node is %.0f, |v|_1 = %.3g m/s", node, largest);
+  return text;
+}
+
+// Names the first node with a non-finite acceleration, velocity or displacement,
+// else the first element with a non-finite stress, else the fastest node. Every
+// rank calls it; the message is that of the lowest rank that found one.
+std::string describe_non_finite(const Model& model, Decomposition& d, State& state) {
+  forces_of_this_step(model, d, state);
+  compute_accelerations(model, state);
+  const std::pair<const char*, const NodalVectors*> fields[] = {{"acceleration", &state.acceleration},
+                                                                {"velocity", &state.velocity},
+                                                                {"displacement", &state.displacement}};
+  std::string found;
+  for (const auto& [label, field] : fields) {
+    for (int c = 0; c < 3 && found.empty(); ++c) {
+      const auto& values = field->component(c);
+      for (std::size_t i = 0; i < values.size(); ++i)
+        if (!std::isfinite(values[i])) {
+          found = std::string("non-finite ") + label + " at node " +
+                  std::to_string(global_node_id(d, static_cast<std::uint32_t>(i))) + " (component " +
+                  "xyz"[c] + ")";
+          break;
+        }
+    }
+    if (!found.empty()) break;
+  }
+  for (std::size_t k = 0; k < state.stress.size() && found.empty(); ++k)
+    if (!std::isfinite(state.stress[k]))
+      found = "non-finite stress in element " +
+              std::to_string(global_element_id(d, static_cast<std::uint32_t>(k / 6))) + " (component " +
+              std::to_string(k % 6) + " of xx yy zz xy yz xz)";
+  found = mpi::first_message(d.comm, found);
+  if (!found.empty()) return found;
+  return "non-finite energy (" + describe_fastest_node(d, state.velocity) + ")";
+}
+
+std::string format_time(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g s", seconds);
+  return text;
+}
+
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+void StepWriter::write(State& state, double dt) {
+  forces_of_this_step(model_, d_, state);  // f_int and sigma at u^n
+  compute_accelerations(model_, state);    // a^n: the nodal update does not store it
+  for_each_chunk(velocity_.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (int c = 0; c < 3; ++c) {
+      const double* v = state.velocity.component(c).data();
+      const double* a = state.acceleration.component(c).data();
+      double* out = velocity_.component(c).data();
+      for (std::size_t i = begin; i < end; ++i) out[i] = v[i] - 0.5 * dt * a[i];
+    }
+  });
+  for_each_chunk(von_mises_.size(), [&](std::size_t begin, std::size_t end, std::size_t) {
+    for (std::size_t e = begin; e < end; ++e) {
+      material::SymTensor s;
+      std::copy_n(state.stress.data() + 6 * e, 6, s.begin());
+      von_mises_[e] = material::von_mises(s);
+    }
+  });
+  gather_plastic_strain(model_, state);
+  output::StepData data;
+  data.step = state.step;
+  data.time = state.time;
+  if (!d_.comm.distributed()) {
+    data.displacement = &state.displacement;
+    data.velocity = &velocity_;
+    data.acceleration = &state.acceleration;
+    data.contact_force = &state.contact_force;
+    data.gap = state.gap.data();
+    data.stress = state.stress.data();
+    data.von_mises = von_mises_.data();
+    data.plastic_strain = state.plastic_strain.data();
+  } else {
+    const std::pair<const NodalVectors*, NodalVectors*> vectors[] = {{&state.displacement, &rows_[0]},
+                                                                     {&velocity_, &rows_[1]},
+                                                                     {&state.acceleration, &rows_[2]},
+                                                                     {&state.contact_force, &rows_[3]}};
+    for (const auto& [local, rows] : vectors) rows_of(d_, *local, *rows);
+    rows_of(d_, state.gap.data(), 1, true, gap_rows_);
+    rows_of(d_, state.stress.data(), 6, false, stress_rows_);
+    rows_of(d_, von_mises_.data(), 1, false, von_mises_rows_);
+    rows_of(d_, state.plastic_strain.data(), 1, false, plastic_strain_rows_);
+    data.displacement = &rows_[0];
+    data.velocity = &rows_[1];
+    data.acceleration = &rows_[2];
+    data.contact_force = &rows_[3];
+    data.gap = gap_rows_.data();
+    data.stress = stress_rows_.data();
+    data.von_mises = von_mises_rows_.data();
+    data.plastic_strain = plastic_strain_rows_.data();
+  }
+  writer_.write_step(data);
+}
+namespace {
+
+output::ContactFigures contact_figures(const contact::ContactStatistics& statistics) {
+  output::ContactFigures c;
+  c.projections = statistics.projections;
+  c.mean_iterations = statistics.projections > 0 ? static_cast<double>(statistics.iterations) /
+                                                       static_cast<double>(statistics.projections)
+                                                 : 0.0;
+  c.max_iterations = statistics.max_iterations;
+  c.not_converged = statistics.not_converged;
+  c.saddle_points = statistics.saddle_points;
+  c.max_penetration_over_h = statistics.max_penetration_over_h;
+  c.penalty_stiffness = statistics.max_pair_stiffness;
+  return c;
+}
+
+}  // namespace
+
+void summarise_contact(const ContactModel& contact, const contact::ContactStatistics& statistics,
+                       output::RunSummary& summary) {
+  static_cast<output::ContactFigures&>(summary.contact) = contact_figures(statistics);
+  summary.contact.pairs.resize(contact.pairs.size());
+  double global_search = 0.0, local_search = 0.0, forces = 0.0;
+  for (std::size_t k = 0; k < contact.pairs.size(); ++k) {
+    const ContactPair& pair = contact.pairs[k];
+    output::ContactPairSummary& out = summary.contact.pairs[k];
+    out.name = pair.name;
+    out.slave_points = input::name(pair.slave_points);
+    out.method = std::string(contact::name(pair.settings.projection.method));
+    out.figures = contact_figures(pair.statistics);
+    out.local_search_seconds = pair.seconds.local_search;
+    out.max_force = pair.max_force;
+    global_search += pair.seconds.global_search;
+    local_search += pair.seconds.local_search;
+    forces += pair.seconds.forces;
+  }
+  summary.phase_seconds.contact_global_search = global_search;
+  summary.phase_seconds.contact_local_search = local_search;
+  summary.phase_seconds.contact_forces = forces;
+}
+
+// The figures of a step summed over the ranks, in rank order (the same bits on every
+// rank, so all take the same decisions): the nodal update's sums, the element
+// energies (in `energy`) and the stop signal any rank has seen. Identity on one rank.
+NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update, Energies& energy,
+                              const volatile std::sig_atomic_t* stop_signal, int& stop_requested) {
+  const int signal = stop_signal != nullptr ? int(*stop_signal) : 0;
+  if (!comm.distributed()) {
+    stop_requested = signal;
+    return update;
+  }
+  constexpr std::size_t n = 8;
+  const double mine[n] = {update.finite ? 0.0 : 1.0,
+                          update.kinetic,
+                          update.mass_acceleration_squared,
+                          update.largest_component,
+                          energy.internal,
+                          energy.hourglass,
+                          double(signal),
+                          energy.plastic};
+  const std::vector<double> all = mpi::all_gather(comm, mine, int(n));
+  NodalUpdate total;
+  total.finite = all[0] == 0.0;
+  total.kinetic = all[1];
+  total.mass_acceleration_squared = all[2];
+  total.largest_component = all[3];
+  energy.internal = all[4];
+  energy.hourglass = all[5];
+  stop_requested = int(all[6]);
+  energy.plastic = all[7];
+  for (std::size_t r = 1; r < std::size_t(comm.size); ++r) {
+    const double* f = all.data() + n * r;
+    total.finite = total.finite && f[0] == 0.0;
+    total.kinetic += f[1];
+    total.mass_acceleration_squared += f[2];
+    total.largest_component = std::max(total.largest_component, f[3]);
+    energy.internal += f[4];
+    energy.hourglass += f[5];
+    stop_requested = std::max(stop_requested, int(f[6]));
+    energy.plastic += f[7];
+  }
+  return total;
+}
+
+// The exchanges' figures of all ranks (summary mpi: sums, and the longest wait).
+void summarise_ranks(const Decomposition& d, output::MpiSummary& out) {
+  if (!d.comm.distributed()) return;
+  const HaloFigures h = halo_figures(d);
+  const double mine[4] = {double(h.shared_nodes), double(h.messages_sent), double(h.bytes_sent),
+                          d.exchange_seconds};
+  const std::vector<double> all = mpi::all_gather(d.comm, mine, 4);
+  for (std::size_t r = 0; r < all.size() / 4; ++r) {
+    out.shared_nodes += long(all[4 * r]);
+    out.messages_per_step += long(all[4 * r + 1]);
+    out.bytes_per_step += all[4 * r + 2];
+    out.exchange_seconds = std::max(out.exchange_seconds, all[4 * r + 3]);
+  }
+  out.contact_nodes = long(d.contact_received.size());
+}
+
+}  // namespace exdyn::solver
