@@ -29,6 +29,8 @@ check plate_impact 40804 20000 8 \
 check plate_impact_hex20 36006 5000 8 \
   displacement:point:3,velocity:point:3,stress:cell:6,von_mises:cell:1,contact_force:point:3,gap:point:1 \
   quadratichexahedron
+check plastic_wave 1604 400 3 \
+  displacement:point:3,velocity:point:3,stress:cell:6,von_mises:cell:1,plastic_strain:cell:1
 
 # A deck that mixes 8- and 20-node parts: plate A as 100 x 2 x 100 hex8, plate B
 # hex20. Its .xmf uses XDMF's "Mixed" topology (/mesh/mixed_topology,

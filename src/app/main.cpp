@@ -113,6 +113,8 @@ int run_command(const RunArguments& arguments, const exdyn::mpi::Communicator& c
     const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
     // A failed local search gives no contact force (docs/stability.md): say so, even with --quiet.
     if (!comm.root()) return exit_success;
+    for (const std::string& warning : summary.warnings)
+      std::fprintf(stderr, "exdyn: warning: %s\n", warning.c_str());
     if (const long failed = summary.contact.not_converged + summary.contact.saddle_points; failed > 0)
       std::fprintf(
           stderr,

@@ -77,8 +77,6 @@ Json to_json(const RunSummary& s) {
   j["mesh"] = std::move(mesh);
   j["steps"] = s.steps;
   j["dt"] = number(s.dt);
-  j["dt_min"] = number(s.dt_min > 0.0 ? s.dt_min : s.dt);
-  j["warnings"] = s.warnings;
   j["end_time"] = number(s.end_time);
   j["wall_seconds"] = number(s.wall_seconds);
   j["element_cycles_per_second"] = number(s.element_cycles_per_second);
@@ -98,6 +96,8 @@ Json to_json(const RunSummary& s) {
   guards["largest_energy_growth"] = number(s.guard_checks.largest_energy_growth);
   j["guards"] = std::move(guards);
   j["isa"] = s.isa;  // after the spec's keys, as every addition
+  j["dt_min"] = number(s.dt_min > 0.0 ? s.dt_min : s.dt);
+  j["warnings"] = s.warnings;
   return j;
 }
 

@@ -346,28 +346,33 @@ void TimeLoop::check_inversion() {
 
 // Small strain reads a rotation as a strain (docs/theory.md, "Finite strain"): once a
 // small-strain part's stress reaches 10 % strain (|sigma| / E at a written step), say so.
+// Every rank calls it (one gather: the largest ratio and its part over the ranks).
 void TimeLoop::warn_small_strain() {
   if (small_strain_warned_) return;
-  for (std::size_t p = 0; p < model_.blocks.size(); ++p) {
-    const element::ElementBlock& block = model_.blocks[p];
-    if (block.law.finite) continue;
+  double ratio = 0.0, part = 0.0;
+  for (const element::ElementBlock& block : model_.blocks) {
+    if (block.law.finite || block.count == 0) continue;
     const double youngs = block.material.mu * (3.0 * block.material.lambda + 2.0 * block.material.mu) /
                           (block.material.lambda + block.material.mu);
-    double largest = 0.0;
     for (std::uint32_t e = 0; e < block.count; ++e)
-      for (int k = 0; k < 6; ++k)
-        largest = std::max(largest, std::abs(state_.stress[6 * (std::size_t(block.first_element) + e) + k]));
-    largest = mpi::max(controls_.comm, largest);
-    if (largest / youngs <= 0.1) continue;
-    char text[300];
-    std::snprintf(text, sizeof text,
-                  "part %s: stress of %.3g E%s under small-strain kinematics, a strain past 10 %%: "
-                  "small strain reads rotations as strain; set kinematics: finite",
-                  deck_.parts[p].name.c_str(), largest / youngs, when().c_str());
-    summary_.warnings.push_back(text);
-    small_strain_warned_ = true;
-    return;
+      for (int k = 0; k < 6; ++k) {
+        const double r = std::abs(state_.stress[6 * (std::size_t(block.first_element) + e) + k]) / youngs;
+        if (r > ratio) ratio = r, part = double(model_.mesh.element_part[block.first_element]);
+      }
   }
+  const double mine[2] = {ratio, part};
+  const std::vector<double> all = mpi::all_gather(controls_.comm, mine, 2);
+  ratio = all[0], part = all[1];
+  for (std::size_t r = 1; r < all.size() / 2; ++r)
+    if (all[2 * r] > ratio) ratio = all[2 * r], part = all[2 * r + 1];
+  if (ratio <= 0.1) return;
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "part %s: stress of %.3g E%s under small-strain kinematics, a strain past 10 %%: "
+                "small strain reads rotations as strain; set kinematics: finite",
+                deck_.parts[std::size_t(part)].name.c_str(), ratio, when().c_str());
+  summary_.warnings.push_back(text);
+  small_strain_warned_ = true;
 }
 
 void TimeLoop::write_output() {

@@ -29,7 +29,8 @@ TEST(ToYaml, MinimalDeckRoundTripsWithEveryDefaultWritten) {
        {"formulation: hex8\n", "hourglass: {coefficient: 0.05}\n", "initial_velocity: [0, 0, 0]\n",
         "perturbation: {fraction: 0, seed: 1}\n", "boundary_conditions: []\n", "contact: []\n",
         "courant: 0.9\n", "directory: results\n", "every: 100\n",
-        "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap]\n",
+        "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap, plastic_strain]\n",
+        "kinematics: auto\n", "f_bar: true\n", "min_dt_ratio: 0.001\n",
         "history_every: 1\n", "background: true\n"})
     EXPECT_TRUE(contains(text, line)) << line << " missing from\n" << text;
 }

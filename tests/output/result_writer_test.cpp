@@ -266,7 +266,7 @@ TEST_F(ResultWriterTest, MeshIsWrittenOnceWithContractShapesAndTypes) {
 
   EXPECT_EQ(file.info("/time").shape, (std::vector<hsize_t>{0}));
   EXPECT_TRUE(file.members("/steps").empty());
-  EXPECT_EQ(file.members("/history").size(), 7u);
+  EXPECT_EQ(file.members("/history").size(), 8u);  // the seven energies and plastic_work
 }
 
 TEST_F(ResultWriterTest, NoXdmfBeforeTheFirstStepAndAStaleOneIsRemoved) {
@@ -307,7 +307,7 @@ TEST_F(ResultWriterTest, StepsHoldEveryRequestedFieldInContractLayout) {
     EXPECT_EQ(file.attribute<std::int64_t>(group, "step", H5T_NATIVE_INT64, &type_class, &type_size), step);
     EXPECT_EQ(type_class, H5T_INTEGER);
     EXPECT_EQ(type_size, 8u);
-    EXPECT_EQ(file.members(group).size(), 7u);
+    EXPECT_EQ(file.members(group).size(), 8u);  // plastic_strain (zeros: not given) among them
 
     // Node vectors: SoA in memory, interleaved (N, 3) on disk.
     const std::map<std::string, double> vectors{
@@ -559,7 +559,7 @@ TEST_F(ResultWriterTest, XdmfDescribesEveryStepWithTheDatasetsShapesAndTypes) {
     EXPECT_EQ(m[2].str(), info.type_class == H5T_FLOAT ? "Float" : "Int") << m[5].str();
     EXPECT_EQ(m[3].str(), std::to_string(info.type_size)) << m[5].str();
   }
-  EXPECT_EQ(items, 3 * (2 + 7));
+  EXPECT_EQ(items, 3 * (2 + 8));  // mesh, then the eight fields
   EXPECT_EQ(count(xml, "<DataItem "), items) << "a DataItem the scan above did not recognise";
   EXPECT_EQ(count(xml, "Dimensions=\"2 6\""), 3);
   EXPECT_EQ(count(xml, "run.h5:/mesh/coordinates"), 3);
@@ -649,7 +649,7 @@ TEST_F(ResultWriterTest, InTheBackgroundTheFilesAreTheSame) {
       datasets.push_back("/steps/" + step + "/" + field);
   }
   EXPECT_EQ(a.members("/steps").size(), 12u);
-  EXPECT_EQ(datasets.size(), 5u + 12u * 7u);
+  EXPECT_EQ(datasets.size(), 5u + 12u * 8u);
   for (const std::string& path : datasets) EXPECT_EQ(a.doubles(path), b.doubles(path)) << path;
   EXPECT_EQ(a.doubles("/history/time").size(), 37u);
   EXPECT_EQ(read_text(directory_ / "caller" / "run.xmf"), read_text(directory_ / "background" / "run.xmf"));

@@ -122,6 +122,17 @@ TEST(SpinningBlock, SmallStrainReadsTheRotationAsAStrainOfOrderOne) {
   EXPECT_NEAR(radius / corner, std::sqrt(1.0 + std::numbers::pi * std::numbers::pi / 4.0), 1e-3);
 }
 
+// A small-strain part strained past 10 % gets one warning naming it: the wave bar at
+// 700 m/s (eps = v / c1 = 0.116, sigma = 0.16 E); at the deck's 10 m/s none.
+TEST(SmallStrain, PartStrainedPastTenPercentIsWarnedOnce) {
+  const DeckRun fast("wave_bar.yaml", {{"parts[0].initial_velocity", "[700, 0, 0]"}, {"output.every", "10"}});
+  ASSERT_EQ(fast.summary.warnings.size(), 1u);
+  EXPECT_NE(fast.summary.warnings[0].find("part bar"), std::string::npos) << fast.summary.warnings[0];
+  EXPECT_NE(fast.summary.warnings[0].find("kinematics: finite"), std::string::npos);
+  const DeckRun slow("wave_bar.yaml");
+  EXPECT_TRUE(slow.summary.warnings.empty());
+}
+
 // --- the plane elastic-plastic wave (section 1)
 
 struct WaveMeasures {
