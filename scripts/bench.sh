@@ -63,6 +63,23 @@ for form in hex8 hex8r; do
   fi
 done
 
+# Large deformation (docs/performance.md, "Finite strain and plasticity"): the Taylor
+# rod of 2,592 bricks to 80 us on one thread, hex8r (hourglass 0.01) and hex8 with F-bar;
+# the rate is elements x steps over the time loop's seconds, the step following the
+# crushing elements (so the steps differ by formulation).
+echo; echo "== finite strain, plasticity: the Taylor rod (1 thread, 2,592 bricks; best of 3)"
+for form in hex8r hex8; do
+  best=0
+  for run in 1 2 3; do
+    "$exdyn" run input/taylor_bar.yaml --quiet --threads 1 --output "$out" --set name=taylor_$form \
+      --set "parts[0].formulation=$form" --set "parts[0].hourglass.coefficient=0.01" --set output.every=1000000
+    rate=$(/usr/bin/python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['element_cycles_per_second'])" \
+      "$out/taylor_$form.json")
+    best=$(/usr/bin/python3 -c "print(max($best, $rate))")
+  done
+  printf '%-10s %-32s %12.3e element-cycles/s\n' $form "taylor_bar, finite, plastic" $best
+done
+
 # The instruction sets (docs/performance.md, "Vector kernels"): the element loops and
 # two whole runs on every ISA this CPU runs, one thread, the best of 3 runs each.
 echo; echo "== instruction sets (1 thread; whole runs: best of 3, element-cycles/s of the time loop)"

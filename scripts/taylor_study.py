@@ -93,6 +93,14 @@ def measure(directory):
     }
 
 
+def write_between_markers(path, name, text):
+    """Replaces what stands between `<!-- NAME -->` and `<!-- /NAME -->` in the file."""
+    document = open(path).read()
+    begin, end = "<!-- %s -->" % name, "<!-- /%s -->" % name
+    i, j = document.index(begin) + len(begin), document.index(end)
+    open(path, "w").write(document[:i] + "\n" + text + "\n" + document[j:])
+
+
 def in_range(row):
     return all(RANGE[k][0] <= row[k] <= RANGE[k][1] for k in RANGE)
 
@@ -133,11 +141,7 @@ def main(argv):
     table = "\n".join(lines)
     print(table)
     if args.docs:
-        path = os.path.join(args.docs, "verification.md")
-        text = open(path).read()
-        begin, end = "<!-- taylor_table -->", "<!-- /taylor_table -->"
-        i, j = text.index(begin) + len(begin), text.index(end)
-        open(path, "w").write(text[:i] + "\n" + table + "\n" + text[j:])
+        write_between_markers(os.path.join(args.docs, "verification.md"), "taylor_table", table)
     if args.check:
         bad = [r["case"] for r in rows if r["kind"] in ("hex8", "hex8r", "hex20r") and not in_range(r)
                and not (r["kind"] == "hex8r" and r["elements"] < 500)]

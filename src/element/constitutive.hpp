@@ -36,8 +36,7 @@ const Flow& flow_of(const material::MaterialLaw& law) {
   } else if constexpr (std::is_same_v<Flow, material::JohnsonCook>) {
     return law.johnson_cook;
   } else {
-    static const material::NoYield none{};
-    return none;
+    return law.no_yield;
   }
 }
 

@@ -10,10 +10,12 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/simd_pack.hpp"
 #include "element/element_family.hpp"
 #include "element/element_isa.hpp"
 #include "element/element_loop.hpp"
 #include "element/hex8.hpp"
+#include "element/hex8_constitutive.hpp"
 
 namespace exdyn::element {
 
@@ -106,20 +108,68 @@ void commit_material_state(const ElementBlock& block) {
 
 void set_material_time_step(const ElementBlock& block, double dt) { block.material_state.dt = dt; }
 
-CurrentStep current_time_step(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
+namespace {
+
+using StepFn = CurrentStep (*)(const ElementBlock&, const NodalVectors&, const NodalVectors&);
+
+// Packs of Lanes elements (the ISA's vector width); lanes past the block's end repeat
+// its last element.
+template <int Lanes>
+CurrentStep current_step_packs(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
+  using Real = Pack<Lanes>;
   CurrentStep result{std::numeric_limits<double>::infinity(), block.first_element};
-  const double wave_speed = block.material.dilatational_wave_speed();
-  for (std::uint32_t e = 0; e < block.count; ++e) {
-    const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
-    ElementVectors x{ElementVectors::Uninitialized{}};
-    for (int k = 0; k < 8; ++k) {
-      const std::uint32_t n = nodes[k];
-      x.x[k] = x_ref.x[n] + u.x[n], x.y[k] = x_ref.y[n] + u.y[n], x.z[k] = x_ref.z[n] + u.z[n];
+  const double scale = block.step_scale / block.material.dilatational_wave_speed();
+  for (std::uint32_t first = 0; first < block.count; first += Lanes) {
+    BasicElementVectors<Real> x{typename BasicElementVectors<Real>::Uninitialized{}};
+    for (int lane = 0; lane < Lanes; ++lane) {
+      const std::uint32_t e = std::min(first + std::uint32_t(lane), block.count - 1);
+      const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
+      for (int k = 0; k < 8; ++k) {
+        const std::uint32_t n = nodes[k];
+        x.x[k][lane] = x_ref.x[n] + u.x[n], x.y[k][lane] = x_ref.y[n] + u.y[n],
+        x.z[k][lane] = x_ref.z[n] + u.z[n];
+      }
     }
-    const double dt = block.step_scale * hex8::characteristic_length(x) / wave_speed;
-    if (dt < result.dt) result = {dt, block.first_element + e};
+    const Real length = hex8::current_characteristic_length(x);
+    for (int lane = 0; lane < Lanes && first + std::uint32_t(lane) < block.count; ++lane) {
+      const double dt = scale * length[lane];
+      if (dt < result.dt) result = {dt, block.first_element + first + std::uint32_t(lane)};
+    }
   }
   return result;
+}
+
+template <StepFn F>
+[[gnu::flatten]] CurrentStep step_x86_64_v2(const ElementBlock& b, const NodalVectors& x,
+                                            const NodalVectors& u) {
+  return F(b, x, u);
+}
+template <StepFn F>
+[[gnu::target("arch=x86-64-v3"), gnu::flatten]] CurrentStep step_x86_64_v3(const ElementBlock& b,
+                                                                           const NodalVectors& x,
+                                                                           const NodalVectors& u) {
+  return F(b, x, u);
+}
+template <StepFn F>
+[[gnu::target("arch=x86-64-v4"), gnu::flatten]] CurrentStep step_x86_64_v4(const ElementBlock& b,
+                                                                           const NodalVectors& x,
+                                                                           const NodalVectors& u) {
+  return F(b, x, u);
+}
+
+}  // namespace
+
+CurrentStep current_time_step(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
+  if (block.count == 0) return {std::numeric_limits<double>::infinity(), block.first_element};
+  switch (selected_isa()) {  // the element loops' ISA and pack width (element_isa.hpp)
+    case Isa::x86_64_v4:
+      return step_x86_64_v4<current_step_packs<8>>(block, x_ref, u);
+    case Isa::x86_64_v3:
+      return step_x86_64_v3<current_step_packs<4>>(block, x_ref, u);
+    case Isa::x86_64_v2:
+      break;
+  }
+  return step_x86_64_v2<current_step_packs<2>>(block, x_ref, u);
 }
 
 ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t element_begin,

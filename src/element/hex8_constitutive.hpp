@@ -1,7 +1,9 @@
 // The 8-node kernels under a material law (element/constitutive.hpp): small strain
 // with a plastic material, or finite strain (total Lagrangian). The same reference
 // data as the linear kernels' general layouts (hex8.hpp make_reference, hex8r.hpp
-// make_reference); the law's point states in the block (ElementBlock::material_state).
+// make_reference); the law's point states in the block (ElementBlock::material_state);
+// and the characteristic length of the current configuration, for the step that
+// follows the deformation.
 #pragma once
 
 #include <array>
@@ -94,6 +96,43 @@ inline ConstitutiveResult<Real> constitutive_forces(const double* reference,
   f.y = nodal_from_modes(fy);
   f.z = nodal_from_modes(fz);
   return result;
+}
+
+// The characteristic length of the current configuration, V / (largest face area),
+// for one element (Real = double) or a pack of elements (Real = Pack<L>): V by the
+// 2 x 2 x 2 sum of det J (exact for the trilinear brick), each face's area by its
+// diagonals as in face_area; the same value as characteristic_length to round-off,
+// without inverses, for the step that follows the deformation every step.
+template <class Real>
+inline Real current_characteristic_length(const BasicElementVectors<Real>& x) {
+  const BasicElementModes<Real> c = modes_from_nodal(x);
+  constexpr double a = gauss_abscissa;
+  Real volume{};
+  for (int g = 0; g < 8; ++g) {
+    const double sx = a * node_natural_coordinates[g][0], se = a * node_natural_coordinates[g][1],
+                 sz = a * node_natural_coordinates[g][2];
+    Real d[3][3];
+    const std::array<const std::array<Real, 8>*, 3> m{&c.x, &c.y, &c.z};
+    for (int i = 0; i < 3; ++i) {
+      const std::array<Real, 8>& k = *m[i];
+      d[i][0] = k[1] + k[5] * sz + k[6] * se + k[7] * (se * sz);
+      d[i][1] = k[2] + k[4] * sz + k[6] * sx + k[7] * (sx * sz);
+      d[i][2] = k[3] + k[4] * se + k[5] * sx + k[7] * (sx * se);
+    }
+    volume += d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) -
+              d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0]) +
+              d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
+  }
+  Real largest{};  // |d1 x d2|^2 = (2 A)^2
+  for (const auto& face : faces) {
+    const Real d1x = x.x[face[2]] - x.x[face[0]], d1y = x.y[face[2]] - x.y[face[0]],
+               d1z = x.z[face[2]] - x.z[face[0]];
+    const Real d2x = x.x[face[3]] - x.x[face[1]], d2y = x.y[face[3]] - x.y[face[1]],
+               d2z = x.z[face[3]] - x.z[face[1]];
+    const Real nx = d1y * d2z - d1z * d2y, ny = d1z * d2x - d1x * d2z, nz = d1x * d2y - d1y * d2x;
+    largest = lane_max(largest, nx * nx + ny * ny + nz * nz);
+  }
+  return 2.0 * volume / lane_sqrt(largest);  // V / (|n| / 2)
 }
 
 }  // namespace hex8

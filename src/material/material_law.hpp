@@ -19,6 +19,7 @@ struct MaterialLaw {
   FlowRule flow = FlowRule::none;
   Hardening hardening;       // flow == hardening
   JohnsonCook johnson_cook;  // flow == johnson_cook
+  NoYield no_yield;          // flow == none
   bool finite = false;       // large deformation (j2.hpp, update_finite)
   // hex8 under finite kinematics: F-bar (the element's mean volume ratio in the
   // volumetric response), against the volumetric locking of plastic flow.

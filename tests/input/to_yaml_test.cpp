@@ -29,9 +29,10 @@ TEST(ToYaml, MinimalDeckRoundTripsWithEveryDefaultWritten) {
        {"formulation: hex8\n", "hourglass: {coefficient: 0.05}\n", "initial_velocity: [0, 0, 0]\n",
         "perturbation: {fraction: 0, seed: 1}\n", "boundary_conditions: []\n", "contact: []\n",
         "courant: 0.9\n", "directory: results\n", "every: 100\n",
-        "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap, plastic_strain]\n",
-        "kinematics: auto\n", "f_bar: true\n", "min_dt_ratio: 0.001\n",
-        "history_every: 1\n", "background: true\n"})
+        "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap, "
+        "plastic_strain]\n",
+        "kinematics: auto\n", "f_bar: true\n", "min_dt_ratio: 0.001\n", "history_every: 1\n",
+        "background: true\n"})
     EXPECT_TRUE(contains(text, line)) << line << " missing from\n" << text;
 }
 
@@ -84,6 +85,33 @@ TEST(ToYaml, DeckWithEveryOptionChangedRoundTrips) {
   EXPECT_TRUE(contains(text, "penalty: {stiffness: 3e+12, damping: 0}\n")) << text;
   EXPECT_TRUE(contains(text, "perturbation: {fraction: 0.3, seed: 12345}\n")) << text;
   EXPECT_TRUE(contains(text, "perturbation: {fraction: 0.499, seed: 1}\n")) << text;
+}
+
+// The plastic models, the kinematics, the spin and min_dt_ratio round-trip.
+TEST(ToYaml, MaterialLawsKinematicsAndSpinRoundTrip) {
+  Deck deck = read_deck(test_deck_path("decks/plate_impact.yaml"));
+  MaterialOptions table = deck.materials[0], johnson_cook = deck.materials[0], linear = deck.materials[0];
+  table.name = "table";
+  table.model = MaterialModel::elastic_plastic;
+  table.hardening = {{0.0, 4e8}, {0.1, 4.5e8}, {1.0 / 3.0, 5e8}};
+  table.yield_stress = 4e8;
+  linear.name = "linear";
+  linear.model = MaterialModel::elastic_plastic;
+  linear.yield_stress = 3.5e8;
+  linear.hardening_modulus = 1.25e9;
+  johnson_cook.name = "jc";
+  johnson_cook.model = MaterialModel::johnson_cook;
+  johnson_cook.jc_a = 9e7, johnson_cook.jc_b = 2.92e8, johnson_cook.jc_n = 0.31, johnson_cook.jc_c = 0.025;
+  johnson_cook.reference_strain_rate = 1e-3;
+  deck.materials = {table, linear, johnson_cook};
+  deck.parts[0].material = "table", deck.parts[0].material_index = 0;
+  deck.parts[1].material = "jc", deck.parts[1].material_index = 2;
+  deck.parts[0].kinematics = Kinematics::finite;
+  deck.parts[0].f_bar = false;
+  deck.parts[1].kinematics = Kinematics::small;
+  deck.parts[1].initial_angular_velocity = std::array<Vec3, 2>{Vec3{0.1, 0.2, 0.3}, Vec3{0, 0, 2000}};
+  deck.time.min_dt_ratio = 0.05;
+  EXPECT_EQ(round_trip(deck), deck) << to_yaml(deck);
 }
 
 TEST(ToYaml, PerturbationIsReadAndRoundTrips) {
