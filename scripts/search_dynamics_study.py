@@ -8,14 +8,16 @@ accuracy against cost over methods, meshes, formulations and slave points.
 
 One command does it all:
 1. methods: input/hertz_ball.yaml on its coarse mesh (ball [8, 2], block [6, 6, 5],
-   hex20, slave quadrature points) and input/cylinders.yaml on its coarse mesh
-   (n_around 32), each with every method (newton, lsp, steepest_descent, broyden,
+   hex20, slave quadrature points), input/cylinders.yaml on its coarse mesh
+   (n_around 32) and input/taylor_rods.yaml (large deformation: the rods' feet
+   mushroom, slave nodes slide outward over distorting segments), each with every method (newton, lsp, steepest_descent, broyden,
    bfgs, dfp, simplex, hybrid, robust) and initial guess (lsp, center, previous):
-   54 runs. From each run's summary (contact.pairs.NAME): projections, mean and largest
+   81 runs. From each run's summary (contact.pairs.NAME): projections, mean and largest
    iterations, not converged, saddles, the local search's wall time; from its result:
    F_max and the contact time, and how far they and the stress field (largest
    difference over the written steps, relative to the largest stress) move from the
-   robust method's run with the same guess;
+   robust method's run with the same guess (the Taylor rods: also the final shape, relative
+   to the model's size, and the plastic strain);
 2. failures: the same methods and guesses where the projection is hard: the cylinders
    at n_around 4 (a quarter circle in four 8-node segments, 22.5 degrees each) meeting
    at +-100 m/s with a soft penalty (scale 0.05), so slave points sink two thirds of an
@@ -58,6 +60,11 @@ SCENES = {
                         "parts[0].initial_velocity=[0, 0, -100]", "parts[1].initial_velocity=[0, 0, 100]",
                         "contact[0].penalty={scale: 0.05}", "time.end_time=1.5e-5",
                         "guards.max_penetration=10.0"]),
+    # Large deformation: the two Taylor rods through contact, their slave nodes sliding
+    # outward over expanding, distorting master segments (the last step's shape and
+    # plastic strain are compared with the robust run's too).
+    "taylor_rods": ("taylor_rods.yaml", "impact", 4.0,
+                    ["output.fields=[stress, displacement, plastic_strain]", "output.every=100000"]),
 }
 
 
@@ -90,6 +97,15 @@ def history(case):
     return peak, t[on[-1]] - t[on[0]], stress
 
 
+def last_shape(case):
+    """The last step's displacement and plastic strain, or None where not written."""
+    with h5py.File(os.path.join(case.dir, case.stem + ".h5"), "r") as f:
+        last = f["steps"][sorted(f["steps"].keys())[-1]]
+        if "displacement" not in last:
+            return None
+        return last["displacement"][...], last["plastic_strain"][...], f["mesh/coordinates"][...]
+
+
 def row(case, reference):
     s = case.summary() or {}
     pair = (s.get("contact") or {}).get("pairs", {}).get(case.pair, {})
@@ -101,7 +117,8 @@ def row(case, reference):
          "saddle_points": pair.get("saddle_points", 0),
          "local_search_seconds": pair.get("local_search_seconds", float("nan")),
          "f_max": float("nan"), "contact_time": float("nan"), "f_max_vs_robust": float("nan"),
-         "time_vs_robust": float("nan"), "stress_vs_robust": float("nan")}
+         "time_vs_robust": float("nan"), "stress_vs_robust": float("nan"), "shape_vs_robust": float("nan"),
+         "plastic_strain_vs_robust": float("nan")}
     if not s or not os.path.exists(os.path.join(case.dir, case.stem + ".h5")):
         return r
     r["f_max"], r["contact_time"], stress = history(case)
@@ -112,6 +129,11 @@ def row(case, reference):
         common = [k for k in stress if k in s0]
         scale = max(np.abs(s0[k]).max() for k in common)
         r["stress_vs_robust"] = max(np.abs(stress[k] - s0[k]).max() for k in common) / scale
+        mine, theirs = last_shape(case), last_shape(reference)
+        if mine is not None and theirs is not None and r["steps"] == reference.summary().get("steps"):
+            size = np.ptp(theirs[2], axis=0).max()  # the model's largest extent
+            r["shape_vs_robust"] = np.abs(mine[0] - theirs[0]).max() / size
+            r["plastic_strain_vs_robust"] = np.abs(mine[1] - theirs[1]).max() / max(np.abs(theirs[1]).max(), 1e-300)
     return r
 
 
@@ -129,10 +151,13 @@ def methods_table(rows, scene):
                      r["not_converged"], r["saddle_points"], f"{r['local_search_seconds']:.2f}",
                      f"{r['wall_seconds']:.1f}", f"{r['f_max'] / 1e3:.3f}", rel(r["f_max_vs_robust"]),
                      f"{r['contact_time'] * 1e6:.2f}", rel(r["time_vs_robust"]),
-                     "" if not np.isfinite(r["stress_vs_robust"]) else f"{r['stress_vs_robust']:.1e}", state])
+                     "" if not np.isfinite(r["stress_vs_robust"]) else f"{r['stress_vs_robust']:.1e}"]
+                    + ([rel(r["shape_vs_robust"]), rel(r["plastic_strain_vs_robust"])] if scene == "taylor_rods" else [])
+                    + [state])
+    shape = ["final shape vs robust", "eps_p vs robust"] if scene == "taylor_rods" else []
     return batch.table(["method", "guess", "projections", "mean it.", "max it.", "not conv.", "saddles",
                         "local search (s)", "wall (s)", "F_max (kN)", "vs robust", "contact (us)", "vs robust",
-                        "stress vs robust", "run"], body)
+                        "stress vs robust"] + shape + ["run"], body)
 
 
 def pareto_chart(method_rows, hertz_rows, docs):
@@ -184,6 +209,7 @@ def main(argv):
     p.add_argument("--hertz-out", default=os.path.join(REPO, "results", "hertz"))
     p.add_argument("--hertz-levels", default="coarse,medium,fine")
     p.add_argument("--scenes", default=",".join(SCENES))
+    p.add_argument("--no-hertz", action="store_true", help="only the method tables (no Hertz grid, no chart)")
     args = p.parse_args(argv)
     scenes = args.scenes.split(",")
     cases = [Case(s, m, g, args.out) for s in scenes for g in GUESSES for m in METHODS]
@@ -199,6 +225,8 @@ def main(argv):
         w.writerows(rows)
     sections = {f"dyn_{s}": methods_table(rows, s) for s in scenes}
     batch.write_doc(os.path.join(args.docs, "local-search.md"), sections)
+    if args.no_hertz:
+        return 0
 
     if hertz_study.main(["--levels", args.hertz_levels, "--jobs", str(args.jobs), "--exdyn", args.exdyn,
                          "--out", args.hertz_out, "--docs", args.docs]) != 0:
