@@ -9,7 +9,7 @@ accuracy against cost over methods, meshes, formulations and slave points.
 One command does it all:
 1. methods: input/hertz_ball.yaml on its coarse mesh (ball [8, 2], block [6, 6, 5],
    hex20, slave quadrature points), input/cylinders.yaml on its coarse mesh
-   (n_around 32) and input/taylor_rods.yaml (large deformation: the rods' feet
+   (n_around 32) and scripts/decks/taylor_rods.yaml (large deformation: the rods' feet
    mushroom, slave nodes slide outward over distorting segments), each with every method (newton, lsp, steepest_descent, broyden,
    bfgs, dfp, simplex, hybrid, robust) and initial guess (lsp, center, previous):
    81 runs. From each run's summary (contact.pairs.NAME): projections, mean and largest
@@ -63,7 +63,7 @@ SCENES = {
     # Large deformation: the two Taylor rods through contact, their slave nodes sliding
     # outward over expanding, distorting master segments (the last step's shape and
     # plastic strain are compared with the robust run's too).
-    "taylor_rods": ("taylor_rods.yaml", "impact", 4.0,
+    "taylor_rods": ("scripts/decks/taylor_rods.yaml", "impact", 4.0,
                     ["output.fields=[stress, displacement, plastic_strain]", "output.every=100000"]),
 }
 
@@ -74,7 +74,7 @@ class Case:
         self.deck, self.pair, self.factor, self.sets = SCENES[scene]
         self.name = f"{scene}_{method}_{guess}"
         self.dir = os.path.join(out, "cases", self.name)
-        self.stem = os.path.splitext(self.deck)[0]
+        self.stem = os.path.splitext(os.path.basename(self.deck))[0]
 
     def summary(self):
         return hertz_study.read_summary(os.path.join(self.dir, self.stem + ".json"))
@@ -83,7 +83,8 @@ class Case:
 def run(case, exdyn):
     sets = [f"contact[0].local_search.method={case.method}", f"contact[0].local_search.initial_guess={case.guess}",
             "output.every=200", "output.fields=[stress]"] + case.sets
-    return hertz_study.run_deck(exdyn, os.path.join(REPO, "input", case.deck), case.dir, sets,
+    deck = os.path.join(REPO, case.deck) if "/" in case.deck else os.path.join(REPO, "input", case.deck)
+    return hertz_study.run_deck(exdyn, deck, case.dir, sets,
                                 os.path.join(case.dir, case.stem + ".json"))
 
 

@@ -46,7 +46,7 @@ struct DeckRun {
 // plate_impact_reference.yaml: test_plate_reference.cpp; the contact decks: test_contact.cpp;
 // plate_impact_hex20.yaml, contact_patch_hex20.yaml: test_quadratic_contact.cpp; hertz_ball.yaml:
 // test_hertz.cpp; cylinders.yaml: scripts/cylinders_study.py --check (ctest cylinders_hertz_line);
-// spinning_block.yaml, plastic_wave.yaml, taylor_bar.yaml, taylor_rods.yaml: test_large_deformation.cpp (the
+// spinning_block.yaml, plastic_wave.yaml, taylor_bar.yaml: test_large_deformation.cpp (the
 // full Taylor meshes: scripts/taylor_study.py).
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "wave_bar.yaml",
@@ -64,8 +64,7 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "cylinders.yaml",
                                           "spinning_block.yaml",
                                           "plastic_wave.yaml",
-                                          "taylor_bar.yaml",
-                                          "taylor_rods.yaml"};
+                                          "taylor_bar.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;
