@@ -62,11 +62,10 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
 
   std::vector<std::string> keys;
   for (const auto& item : j.items()) keys.push_back(item.key());
-  EXPECT_EQ(keys,
-            (std::vector<std::string>{"name", "status", "message", "exdyn_version", "threads", "mesh",
-                                      "steps", "dt", "end_time", "wall_seconds", "element_cycles_per_second",
-                                      "phase_seconds", "energy", "contact", "mpi", "guards", "isa", "dt_min",
-                                      "warnings"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"name", "status", "message", "exdyn_version", "threads", "mesh",
+                                            "steps", "dt", "end_time", "wall_seconds",
+                                            "element_cycles_per_second", "phase_seconds", "energy", "contact",
+                                            "mpi", "guards", "isa", "dt_min", "warnings"}));
   EXPECT_EQ(j["name"], "plate_impact");
   EXPECT_EQ(j["status"], "completed");
   EXPECT_EQ(j["message"], "");
@@ -87,11 +86,11 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                                       {"output", 6.0},
                                       {"guards", 7.0}}));  // the spec's six, then ours
   EXPECT_EQ(j["energy"], (Json{{"initial_total", 10.0},
-                                {"final_total", 9.5},
-                                {"max_relative_error", 0.05},
-                                {"internal", 0.0},
-                                {"hourglass", 0.0},
-                                {"plastic_work", 0.0}}));  // the spec's three, then ours
+                               {"final_total", 9.5},
+                               {"max_relative_error", 0.05},
+                               {"internal", 0.0},
+                               {"hourglass", 0.0},
+                               {"plastic_work", 0.0}}));  // the spec's three, then ours
   EXPECT_EQ(j["contact"], (Json{{"projections", 1000},
                                 {"mean_iterations", 3.5},
                                 {"max_iterations", 12},
