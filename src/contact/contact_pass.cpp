@@ -158,6 +158,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     // process holds the other core (measured: 5 ms a step on 54 candidates).
     const auto candidates = static_cast<std::ptrdiff_t>(state.candidates.size());
     state.results.resize(state.candidates.size());
+    state.edge_contacts.resize(state.candidates.size());
     std::pair<std::size_t, std::size_t> mine{0, state.candidates.size()};  // many processes: a share
     if (settings.share) mine = settings.share.range(state.candidates.size());
     const auto first = static_cast<std::ptrdiff_t>(mine.first),
@@ -206,9 +207,40 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         if (r.stationary != StationaryKind::minimum || !r.inside) continue;
         if (r.distance < best_distance) best_distance = r.distance, best = c;
       }
-      if (best == state.candidates.size()) continue;
-      const std::uint32_t segment = state.candidates[best].segment;
       auto& contact = state.contacts[p];
+      if (best == state.candidates.size()) {
+        // No projection inside a segment: the point may lie behind a fold of the
+        // surface (edge_contact.hpp). The closest boundary point of the candidates (ties
+        // to the first), if the surface goes on past it and the point lies behind it,
+        // along the mean normal of the segments that meet there.
+        if (surfaces.edges.empty()) continue;
+        const Vec3 point{state.slave_points.x[p], state.slave_points.y[p], state.slave_points.z[p]};
+        EdgeContact closest;
+        std::size_t closest_candidate = 0;
+        for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
+          const std::uint32_t segment = state.candidates[c].segment;
+          const EdgeContact edge = edge_contact(current_segment(surfaces.segments[segment], x_ref, u), point,
+                                                state.results[c], surfaces.edges[segment]);
+          state.edge_contacts[c] = edge;
+          if (edge.found && (!closest.found || edge.distance < closest.distance))
+            closest = edge, closest_candidate = c;
+        }
+        if (!closest.found || !closest.continued) continue;
+        const double same_point = 1.0e-9 * surfaces.normal_length[p];
+        Vec3 normal{};
+        for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c)
+          if (state.edge_contacts[c].found && norm(state.edge_contacts[c].y - closest.y) <= same_point)
+            normal = normal + state.edge_contacts[c].normal;
+        normal = (1.0 / norm(normal)) * normal;
+        const double depth = dot(point - closest.y, normal);  // the gap, m
+        if (!(depth < 0.0)) continue;
+        contact.segment = state.candidates[closest_candidate].segment;
+        contact.xi = closest.xi;
+        contact.gap = depth;
+        contact.normal = normal;
+        continue;
+      }
+      const std::uint32_t segment = state.candidates[best].segment;
       contact.segment = segment;
       contact.xi = state.results[best].xi;
       contact.gap = state.results[best].gap;
@@ -258,6 +290,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       const Vec3 n = contact.normal;
       const double normal_velocity = dot(slave_velocity - master_velocity, n);
       double k = surfaces.stiffness[p];  // the point pair's stiffness
+      if (settings.automatic_stiffness) k *= settings.stiffness_growth;
       if (settings.automatic_stiffness && !surfaces.quadrature) {
         const double inverse_mass = slave_inverse_mass + master_inverse_mass;
         k = std::min(

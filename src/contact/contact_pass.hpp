@@ -4,7 +4,8 @@
 // Gabriel, Plesek and Ulbin 2004). A pass runs the contact pipeline of one step:
 //   global search (bucket grid, only when nodes have moved enough)
 //   -> local search (the deck's method) for every candidate pair
-//   -> the closest inside projection of each slave point (the point's one contact)
+//   -> the closest inside projection of each slave point (the point's one contact);
+//      with none, the closest point of a fold's edge the point lies behind (edge_contact.hpp)
 //   -> penalty forces on the slave point's nodes and the segment's nodes.
 // A pair with `two_pass: true` runs two passes, the second with the roles swapped.
 // Segments have 4 or 8 nodes (contact::SegmentNodes), and one pass may mix them.
@@ -18,6 +19,7 @@
 
 #include "common/nodal_vectors.hpp"
 #include "contact/bucket_search.hpp"
+#include "contact/edge_contact.hpp"
 #include "contact/local_search.hpp"
 
 namespace exdyn::contact {
@@ -39,8 +41,12 @@ struct ContactSurfaces {
   // frequency caps (automatic rule) or the deck's fixed stiffness; quadrature points,
   // the pressure per length kappa (capped, docs/contact.md) times the point's weight.
   std::vector<double> stiffness;
-  std::vector<double> normal_length;        // element length normal to the slave face at each point, m
-  std::vector<SegmentNodes> segments;       // master segments, outward oriented
+  std::vector<double> normal_length;   // element length normal to the slave face at each point, m
+  std::vector<SegmentNodes> segments;  // master segments, outward oriented
+  // Per master segment, what the surface does past its edges (edge_contact.hpp): goes
+  // on (shared with another master segment, or on a symmetry plane); empty: nothing
+  // past any edge (no contact at folds).
+  std::vector<SegmentEdges> edges;
   std::vector<std::uint32_t> moving_nodes;  // slave and master nodes (for the rebuild test), unique
 
   std::size_t point_count() const { return quadrature ? quadrature_points.size() : slave_nodes.size(); }
@@ -67,7 +73,15 @@ struct ContactPassSettings {
   // (Quadrature points carry their capped stiffness in ContactSurfaces::stiffness.)
   bool automatic_stiffness = true;
   double stiffness_scale = 1.0;
-  double dt = 0.0;               // the step in force, s
+  double dt = 0.0;  // the step the caps are taken at, s
+  // When the step follows the deformation, the automatic stiffness follows the step:
+  // dt = dt_0 r and stiffness_growth = 1 / r^2 with r = dt^{n-1/2} / dt^{1/2} the step's
+  // fall since the first and dt_0 the step the stiffness was set for; else dt = dt_0 and
+  // exactly 1. The caps scale so by themselves (m / dt^2); the element term
+  // kappa M A / L = 2 kappa m c^2 / L^2 of a node of mass m = rho A L / 2 grows as 1 / L^2,
+  // and a crushed mesh's step falls with its L.
+  double stiffness_growth = 1.0;
+  double set_for_dt = 0.0;       // dt_0, s
   double courant = 0.0;          // dt / the mesh's critical step
   int pass_count = 1;            // two passes put two springs on a node pair: each carries 1 / pass_count
   double search_distance = 0.0;  // largest gap that is searched for, m
@@ -90,9 +104,10 @@ struct ContactPassState {
   BucketWorkspace workspace;
   std::vector<CandidatePair> new_candidates;
   std::vector<Xi> new_previous_xi;
-  std::vector<ProjectionResult> results;  // the projection of each candidate pair, this step
-  std::vector<double> force_magnitude;    // F of each slave point's contact, N (0: none)
-  std::vector<double> pair_stiffness;     // k of each slave point's pair before the pass split, N/m
+  std::vector<ProjectionResult> results;   // the projection of each candidate pair, this step
+  std::vector<EdgeContact> edge_contacts;  // scratch: a fold's edge point of each candidate pair
+  std::vector<double> force_magnitude;     // F of each slave point's contact, N (0: none)
+  std::vector<double> pair_stiffness;      // k of each slave point's pair before the pass split, N/m
   // This step: the total contact force on the pass's slave side (N) and its deepest
   // penetration (m, >= 0): the pair's histories.
   Vec3 slave_force{};

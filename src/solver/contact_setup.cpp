@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 
 #include "common/errors.hpp"
+#include "contact/edge_contact.hpp"
 #include "contact/penalty.hpp"
 #include "contact/quadrature.hpp"
 #include "material/elastic.hpp"
@@ -71,6 +73,44 @@ std::array<double, 8> nodal_areas(const NodalVectors& x, const contact::SegmentN
   for (double d : diagonal) sum += d;
   for (int k = 0; k < 8; ++k) areas[std::size_t(k)] = area * diagonal[std::size_t(k)] / sum;
   return areas;
+}
+
+// What the surface does past each edge of each master segment (edge_contact.hpp): it
+// goes on where the edge's two corner nodes bound another master segment too, or lie
+// on a symmetry plane: both held in the same component a and at the same reference
+// coordinate x_a (the cut faces of a half or quarter model), the mirror axis a.
+std::vector<contact::SegmentEdges> segment_edges(const Model& model,
+                                                 const std::vector<contact::SegmentNodes>& segments) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edge_count;
+  auto edge_key = [](const contact::SegmentNodes& ids, int e) {
+    const std::uint32_t a = ids.nodes[contact::edge_corners[e][0]],
+                        b = ids.nodes[contact::edge_corners[e][1]];
+    return std::make_pair(std::min(a, b), std::max(a, b));
+  };
+  for (const auto& ids : segments)
+    for (int e = 0; e < 4; ++e) ++edge_count[edge_key(ids, e)];
+  const NodalVectors& x = model.mesh.x_ref;
+  auto mirror_axis = [&](std::uint32_t a, std::uint32_t b) {
+    const std::array<const std::vector<double>*, 3> coordinate{&x.x, &x.y, &x.z};
+    for (int c = 0; c < 3; ++c) {
+      const auto& fixed = model.fixed_nodes[std::size_t(c)];
+      const double xa = (*coordinate[std::size_t(c)])[a], xb = (*coordinate[std::size_t(c)])[b];
+      if (std::binary_search(fixed.begin(), fixed.end(), a) &&
+          std::binary_search(fixed.begin(), fixed.end(), b) &&
+          std::abs(xa - xb) <= 1.0e-12 * std::max({std::abs(xa), std::abs(xb), 1.0e-3}))
+        return c;
+    }
+    return -1;
+  };
+  std::vector<contact::SegmentEdges> edges(segments.size());
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    for (int e = 0; e < 4; ++e) {
+      const auto key = edge_key(segments[i], e);
+      const int axis = mirror_axis(key.first, key.second);
+      edges[i].mirror_axis[std::size_t(e)] = static_cast<std::int8_t>(axis);
+      if (edge_count[key] > 1 || axis >= 0) edges[i].continued |= static_cast<std::uint8_t>(1u << e);
+    }
+  return edges;
 }
 
 struct PassGeometry {
@@ -153,6 +193,7 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
     g.smallest_length = std::min(g.smallest_length, face.normal_length);
   }
+  s.edges = segment_edges(model, s.segments);
   s.moving_nodes = s.slave_nodes;
   for (const auto& segment : s.segments)
     s.moving_nodes.insert(s.moving_nodes.end(), segment.nodes.begin(),
@@ -284,7 +325,7 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
     settings.damping_ratio = options.penalty.damping;
     settings.automatic_stiffness = !options.penalty.stiffness.has_value();
     settings.stiffness_scale = options.penalty.scale;
-    settings.dt = dt;
+    settings.dt = settings.set_for_dt = dt;
     settings.courant = dt / critical_dt;
     settings.pass_count = pass_count;
     // Penetrations deeper than half an element are not searched for; a node that
@@ -300,6 +341,13 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
   std::sort(contact.nodes.begin(), contact.nodes.end());
   contact.nodes.erase(std::unique(contact.nodes.begin(), contact.nodes.end()), contact.nodes.end());
   return contact;
+}
+
+void follow_time_step(ContactModel& contact, double fall) {
+  for (ContactPair& pair : contact.pairs) {
+    pair.settings.dt = pair.settings.set_for_dt * fall;
+    pair.settings.stiffness_growth = 1.0 / (fall * fall);
+  }
 }
 
 contact::Vec3 ContactPair::slave_force() const {

@@ -42,4 +42,8 @@ struct ContactModel {
 // Courant factor (s), whose ratio is the Courant number the stiffness bound needs.
 ContactModel build_contact(const input::Deck& deck, const Model& model, double dt, double critical_dt);
 
+// The step in force follows the deformation: the automatic stiffness of every pair
+// follows it (ContactPassSettings::stiffness_growth). fall: dt^{n-1/2} / dt^{1/2}.
+void follow_time_step(ContactModel& contact, double fall);
+
 }  // namespace exdyn::solver

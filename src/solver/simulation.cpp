@@ -226,6 +226,11 @@ void TimeLoop::begin_step() {
     if (state_.step > 0) element::commit_material_state(block);
     element::set_material_time_step(block, clock_->previous());
   }
+  // The penalty of this step's contact pass follows the last step the mesh asked for
+  // (the next one is planned after the forces; the caps' margin covers its change of a
+  // fraction; a step cut short to land on end_time is not the mesh's).
+  if (clock_->follows_deformation() && state_.step > 0)
+    follow_time_step(contact_, clock_->uncut() / clock_->first());
 }
 
 void TimeLoop::compute_forces() {

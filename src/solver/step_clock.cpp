@@ -17,7 +17,7 @@ StepClock::StepClock(const input::TimeOptions& time, double critical_dt, const M
   min_ratio_ = time.min_dt_ratio;
   follows_ = !time.dt && std::any_of(model.blocks.begin(), model.blocks.end(),
                                      [](const element::ElementBlock& b) { return b.law.finite; });
-  previous_ = next_ = first_ = smallest_ = fixed.dt;
+  previous_ = next_ = first_ = smallest_ = uncut_ = fixed.dt;
   planned_ = fixed.steps;
   fixed_part_ = std::numeric_limits<double>::infinity();
   for (const element::ElementBlock& block : model.blocks)
@@ -60,6 +60,7 @@ std::string StepClock::plan(long step, const Model& model, const Decomposition& 
                   next_, min_ratio_, first_, element);
     return text;
   }
+  uncut_ = next_;
   next_ = std::min(next_, std::max(end_time_ - time_, 0.0));  // land on end_time
   return {};
 }

@@ -27,6 +27,8 @@ class StepClock {
   double next() const { return next_; }          // dt^{n+1/2}, s
   double first() const { return first_; }        // dt^{1/2}, s
   double smallest() const { return smallest_; }  // the smallest step so far, s
+  // The last planned step before the cut that lands on end_time: the mesh's, s.
+  double uncut() const { return uncut_; }
   // The step of the velocity update at step n: dt^{1/2} at step 0 (from v^0), else the
   // mean of the two half steps (dt itself with a fixed step: the same bits).
   double velocity_step(long step) const { return step == 0 ? next_ : 0.5 * (previous_ + next_); }
@@ -44,7 +46,7 @@ class StepClock {
   double end_time_ = 0.0, courant_ = 0.0, min_ratio_ = 0.0;
   double fixed_part_ = 0.0;  // the stable step of the small-strain blocks, s (no Courant)
   bool follows_ = false;
-  double time_ = 0.0, previous_ = 0.0, next_ = 0.0, first_ = 0.0, smallest_ = 0.0;
+  double time_ = 0.0, previous_ = 0.0, next_ = 0.0, first_ = 0.0, smallest_ = 0.0, uncut_ = 0.0;
   long planned_ = 0;
 };
 
