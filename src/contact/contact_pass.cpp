@@ -231,6 +231,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c)
           if (state.edge_contacts[c].found && norm(state.edge_contacts[c].y - closest.y) <= same_point)
             normal = normal + state.edge_contacts[c].normal;
+        if (!(norm(normal) > 0.0)) continue;  // a sheet folded flat on itself: no side is behind
         normal = (1.0 / norm(normal)) * normal;
         const double depth = dot(point - closest.y, normal);  // the gap, m
         if (!(depth < 0.0)) continue;

@@ -132,14 +132,39 @@ TEST_F(PlateImpactHex20, EnergyIsKeptAndTheSearchIsTrivialOnFlatFaces) {
   EXPECT_LT(c.max_penetration_over_h, 0.01);
 }
 
-// Slave nodes on 8-node faces: the element at the contact face is far from the
-// reference (the corner nodes would need pulling, the contact only pushes), and
-// quadrature points fix it (the test above: within 0.5 %).
+// Slave nodes on 8-node faces: the element at the contact face is off the reference
+// (a uniform pressure needs the corner nodes pulled, -pA/12 each, and the contact only
+// pushes), and quadrature points fix it (the test above: within 0.5 %). Measured: 2.2 %
+// in both plates. (Without the contact at folds it was 80 %: as the face turns wavy,
+// nodes on the segments' edges fall behind the folds, outside every segment.)
 TEST_F(PlateImpactHex20, SlaveNodesOnQuad8FacesCannotCarryTheUniformPressure) {
   const auto s = nodes_->stress(), r = reference_->stress();
-  const double face = std::abs(row(s, 0, 0) - row(r, 0, 0)) / plateau;
-  std::printf("slave nodes: face element %.1f %% of the plateau from the reference\n", 100 * face);
-  EXPECT_GT(face, 0.05);
+  for (int plate = 0; plate < 2; ++plate) {
+    const double face = std::abs(row(s, plate, 0) - row(r, 0, 0)) / plateau;
+    double mean = 0.0, mean_reference = 0.0;
+    int count = 0;
+    for (int i = 0; (i + 0.5) / n < 0.45; ++i, ++count)
+      mean += row(s, plate, i), mean_reference += row(r, 0, i);
+    std::printf(
+        "slave nodes, plate %c: row mean x/d < 0.45 %.3f %% apart; face element %.2f %% of the plateau "
+        "from the reference\n",
+        "AB"[plate], 100 * std::abs(mean - mean_reference) / count / plateau, 100 * face);
+    EXPECT_GT(face, 0.01);
+  }
+  double worst = 0.0;  // the two plates' mirror difference, as for quadrature points
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < n; ++i)
+      for (int c : {0, 1, 2, 5}) {
+        const double sign = c == 5 ? -1.0 : 1.0;
+        const std::size_t a = 6 * std::size_t(i + n * k) + std::size_t(c);
+        const std::size_t b = 6 * std::size_t(n * n + (n - 1 - i) + n * k) + std::size_t(c);
+        worst = std::max(worst, std::abs(s[a] - sign * s[b]));
+      }
+  std::printf("slave nodes: largest mirror difference of the two plates: %.3e of the plateau\n",
+              worst / plateau);
+  const auto& c = nodes_->summary.contact;
+  std::printf("slave nodes: projections %ld, mean iterations %.3f, largest %ld\n", c.projections,
+              c.mean_iterations, c.max_iterations);
 }
 
 // quadratic-and-hertz.md: a uniform pressure p on a flat 8-node face of area A has
