@@ -16,6 +16,7 @@
 #include "element/element_loop.hpp"
 #include "element/hex8.hpp"
 #include "element/hex8_constitutive.hpp"
+#include "element/hex8_parallelepiped.hpp"
 
 namespace exdyn::element {
 

@@ -19,6 +19,7 @@
 #include "element/element_loop.hpp"
 #include "element/hex8.hpp"
 #include "element/hex8_constitutive.hpp"
+#include "element/hex8_parallelepiped.hpp"
 #include "element/hex8r.hpp"
 
 namespace exdyn::element {

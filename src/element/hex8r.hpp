@@ -18,6 +18,7 @@
 #include <array>
 
 #include "element/hex8.hpp"
+#include "element/hex8_parallelepiped.hpp"
 
 namespace exdyn::element::hex8r {
 

@@ -19,7 +19,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -36,6 +35,7 @@
 
 #include "output/atomic_file.hpp"
 #include "output/hdf5_support.hpp"
+#include "output/xdmf_text.hpp"
 
 namespace exdyn::output {
 namespace {
@@ -84,60 +84,11 @@ constexpr std::array<HistoryColumn, 8> history_columns{{
     {"plastic_work", &HistoryRow::plastic_work},
 }};
 
-// ---------------------------------------------------------------------------
-// XDMF text
-
-// %.17g: the shortest form that round-trips every double, so distinct times
-// stay distinct (ParaView merges equal times and shows an empty mesh).
-std::string format_time(double time) {
-  std::array<char, 32> text{};
-  const auto result =
-      std::to_chars(text.data(), text.data() + text.size(), time, std::chars_format::general, 17);
-  return std::string(text.data(), result.ptr);
-}
-
-std::string xml_escape(std::string_view text) {
-  std::string escaped;
-  escaped.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        escaped += "&amp;";
-        break;
-      case '<':
-        escaped += "&lt;";
-        break;
-      case '>':
-        escaped += "&gt;";
-        break;
-      case '"':
-        escaped += "&quot;";
-        break;
-      case '\'':
-        escaped += "&apos;";
-        break;
-      default:
-        escaped += c;
-    }
-  }
-  return escaped;
-}
-
 std::string step_group_name(long step) {
   std::array<char, 32> text{};
   std::snprintf(text.data(), text.size(), "%06ld", step);
   return text.data();
 }
-
-constexpr std::string_view xdmf_head =
-    "<?xml version=\"1.0\" encoding=\"utf-8\"?>\n"
-    "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n"
-    "  <Domain>\n"
-    "    <Grid Name=\"TimeSeries\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-constexpr std::string_view xdmf_tail =
-    "    </Grid>\n"
-    "  </Domain>\n"
-    "</Xdmf>\n";
 
 }  // namespace
 
@@ -192,7 +143,7 @@ struct ResultWriter::Impl {
   Impl(const fs::path& directory, const std::string& name, const Distribution& d)
       : h5_file(directory / (name + ".h5")),
         xmf_file(directory / (name + ".xmf")),
-        h5_reference(xml_escape(name + ".h5")),
+        h5_reference(xdmf::escape(name + ".h5")),
         errors(h5_file.string(), d.comm.distributed() ? d.comm.comm : MPI_COMM_NULL, d.comm.root()),
         distribution(d) {}
 
@@ -442,50 +393,20 @@ void ResultWriter::Impl::writer_loop() {
 }
 
 std::string ResultWriter::Impl::grid_xml(double time, const std::string& group) const {
-  const std::string nodes = std::to_string(node_count);
-  const std::string elements = std::to_string(element_count);
-  auto data_item = [&](const std::string& dims, const char* number_type, const std::string& path) {
-    return "<DataItem Dimensions=\"" + dims + "\" NumberType=\"" + number_type +
-           "\" Precision=\"8\" Format=\"HDF\">" + h5_reference + ":" + path + "</DataItem>\n";
-  };
-  std::string xml;
-  xml.reserve(1600);
-  xml += "      <Grid Name=\"step_" + group + "\" GridType=\"Uniform\">\n";
-  xml += "        <Time Value=\"" + format_time(time) + "\"/>\n";
-  if (mixed) {
-    xml += "        <Topology TopologyType=\"Mixed\" NumberOfElements=\"" + elements + "\">\n";
-    xml += "          " + data_item(std::to_string(mixed_topology_size), "Int", "/mesh/mixed_topology");
-  } else {
-    const std::string nodes_per = std::to_string(nodes_per_element);
-    xml += std::string("        <Topology TopologyType=\"") +
-           (nodes_per_element == 20 ? "Hexahedron_20" : "Hexahedron") + "\" NumberOfElements=\"" + elements +
-           "\" NodesPerElement=\"" + nodes_per + "\">\n";
-    xml += "          " + data_item(elements + " " + nodes_per, "Int", "/mesh/connectivity");
-  }
-  xml += "        </Topology>\n";
-  xml += "        <Geometry GeometryType=\"XYZ\">\n";
-  xml += "          " + data_item(nodes + " 3", "Float", "/mesh/coordinates");
-  xml += "        </Geometry>\n";
-  for (const FieldLayout* layout : fields) {
-    std::string dims = layout->center == Center::node ? nodes : elements;
-    if (layout->components > 1) dims += " " + std::to_string(layout->components);
-    xml += "        <Attribute Name=\"" + std::string(layout->dataset) + "\" AttributeType=\"" +
-           layout->attribute_type + "\" Center=\"" + (layout->center == Center::node ? "Node" : "Cell") +
-           "\">\n";
-    xml += "          " + data_item(dims, "Float", "/steps/" + group + "/" + layout->dataset);
-    xml += "        </Attribute>\n";
-  }
-  xml += "      </Grid>\n";
-  return xml;
+  xdmf::Grid grid{h5_reference, node_count, element_count, mixed, mixed_topology_size, nodes_per_element, {}};
+  for (const FieldLayout* layout : fields)
+    grid.attributes.push_back(
+        {layout->dataset, layout->center == Center::node, layout->components, layout->attribute_type});
+  return xdmf::grid(grid, time, group);
 }
 
 void ResultWriter::Impl::write_xdmf() const {
   if (!errors.root()) return;  // on many ranks the root writes the .xmf
   std::vector<std::string_view> parts;
   parts.reserve(step_xml.size() + 2);
-  parts.push_back(xdmf_head);
+  parts.push_back(xdmf::head);
   for (const std::string& grid : step_xml) parts.push_back(grid);
-  parts.push_back(xdmf_tail);
+  parts.push_back(xdmf::tail);
   write_file_atomically(xmf_file, parts);
 }
 
@@ -626,8 +547,8 @@ void ResultWriter::write_step(const StepData& data) {
   }
   if (w.last_time && !(data.time > *w.last_time)) {
     throw std::logic_error("ResultWriter: step " + std::to_string(data.step) + " at time " +
-                           format_time(data.time) + " does not come after the last written time " +
-                           format_time(*w.last_time));
+                           xdmf::format_time(data.time) + " does not come after the last written time " +
+                           xdmf::format_time(*w.last_time));
   }
   if (data.step < 0 || data.step <= w.last_step) {
     throw std::logic_error("ResultWriter: step number " + std::to_string(data.step) +

@@ -13,6 +13,7 @@
 #include "common/nodal_vectors.hpp"
 #include "element/hex20.hpp"
 #include "element/hex8.hpp"
+#include "element/hex8_parallelepiped.hpp"
 #include "element/hex8r.hpp"
 
 namespace exdyn::solver {

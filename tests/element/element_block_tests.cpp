@@ -12,6 +12,7 @@
 #include "common/errors.hpp"
 #include "element/element_block.hpp"
 #include "element/hex8.hpp"
+#include "element/hex8_parallelepiped.hpp"
 #include "reference_elements.hpp"
 
 namespace exdyn::element {

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "element/hex8.hpp"
+#include "element/hex8_parallelepiped.hpp"
 #include "material/elastic.hpp"
 #include "reference_elements.hpp"
 

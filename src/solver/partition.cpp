@@ -1,0 +1,116 @@
+// The partition of the chunks over the ranks: recursive coordinate bisection of the
+// chunk centroids (decomposition.hpp, docs/parallel.md).
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <string>
+
+#include "common/errors.hpp"
+#include "solver/decomposition.hpp"
+
+namespace exdyn::solver {
+
+std::vector<int> partition_chunks(const Model& model, int ranks) {
+  // The chunks, block after block: centroid (mean of their elements' corner nodes, m)
+  // and weight (elements).
+  std::vector<std::array<double, 3>> centroid;
+  std::vector<double> weight;
+  std::vector<std::uint32_t> block_of;
+  const mesh::Mesh& mesh = model.mesh;
+  for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+    const element::ElementBlock& block = model.blocks[b];
+    for (std::size_t c = 0; c + 1 < block.chunk_begin.size(); ++c) {
+      std::array<double, 3> sum{};
+      for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e) {
+        const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
+        for (int k = 0; k < 8; ++k)
+          for (int x = 0; x < 3; ++x) sum[std::size_t(x)] += mesh.x_ref.component(x)[nodes[k]];
+      }
+      const double elements = double(block.chunk_begin[c + 1] - block.chunk_begin[c]);
+      for (double& v : sum) v /= 8.0 * elements;
+      centroid.push_back(sum);
+      weight.push_back(elements);
+      block_of.push_back(std::uint32_t(b));
+    }
+  }
+  const std::size_t chunks = centroid.size();
+  if (ranks < 1 || static_cast<std::size_t>(ranks) > chunks)
+    throw InputError(std::to_string(ranks) + " MPI ranks for a mesh of " +
+                     std::to_string(mesh.element_count()) + " elements in " + std::to_string(chunks) +
+                     " chunks of at most " + std::to_string(element::element_chunk) +
+                     ": every rank needs a chunk (docs/parallel.md); run on at most " +
+                     std::to_string(chunks) + " ranks");
+  std::vector<std::uint32_t> order(chunks);
+  std::iota(order.begin(), order.end(), 0u);
+  std::vector<int> rank_of(chunks, 0);
+  // Chunks order[begin, end) go to ranks [first, first + count).
+  auto bisect = [&](auto&& self, std::size_t begin, std::size_t end, int first, int count) -> void {
+    if (count == 1) {
+      for (std::size_t k = begin; k < end; ++k) rank_of[order[k]] = first;
+      return;
+    }
+    std::array<double, 3> low, high;
+    low.fill(std::numeric_limits<double>::infinity());
+    high.fill(-std::numeric_limits<double>::infinity());
+    double total = 0.0;
+    for (std::size_t k = begin; k < end; ++k) {
+      total += weight[order[k]];
+      for (std::size_t c = 0; c < 3; ++c) {
+        low[c] = std::min(low[c], centroid[order[k]][c]);
+        high[c] = std::max(high[c], centroid[order[k]][c]);
+      }
+    }
+    std::size_t axis = 0;
+    for (std::size_t c = 1; c < 3; ++c)
+      if (high[c] - low[c] > high[axis] - low[axis]) axis = c;
+    // The chunks of a block are strips of consecutive elements (a part's x-rows), whose
+    // centroids barely differ across the strips: sorted by coordinate alone, two blocks
+    // side by side along the axis would have their chunks interleaved by that noise. So
+    // the blocks are ordered by their mean along the axis, and each block's chunks along
+    // the block's own longest spread (for one block: plain bisection).
+    std::map<std::uint32_t, std::array<double, 3>> block_low, block_high;
+    std::map<std::uint32_t, std::pair<double, double>> block_sum;  // weighted coordinate, weight
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t u = order[k], b = block_of[u];
+      auto [lo, new_lo] = block_low.try_emplace(b, centroid[u]);
+      auto [hi, new_hi] = block_high.try_emplace(b, centroid[u]);
+      for (std::size_t c = 0; c < 3; ++c) {
+        lo->second[c] = std::min(lo->second[c], centroid[u][c]);
+        hi->second[c] = std::max(hi->second[c], centroid[u][c]);
+      }
+      block_sum[b].first += weight[u] * centroid[u][axis];
+      block_sum[b].second += weight[u];
+    }
+    std::map<std::uint32_t, std::size_t> block_axis;
+    std::map<std::uint32_t, double> block_mean;
+    for (const auto& [b, lo] : block_low) {
+      const auto& hi = block_high[b];
+      std::size_t a = 0;
+      for (std::size_t c = 1; c < 3; ++c)
+        if (hi[c] - lo[c] > hi[a] - lo[a]) a = c;
+      block_axis[b] = a;
+      block_mean[b] = block_sum[b].first / block_sum[b].second;
+    }
+    auto key = [&](std::uint32_t u) {
+      const std::uint32_t b = block_of[u];
+      return std::tuple(block_mean[b], b, centroid[u][block_axis[b]], u);
+    };
+    std::sort(order.begin() + std::ptrdiff_t(begin), order.begin() + std::ptrdiff_t(end),
+              [&](std::uint32_t a, std::uint32_t b) { return key(a) < key(b); });
+    const int left = count / 2;
+    // The first chunks whose weight reaches the left ranks' share; each side keeps a chunk per rank.
+    const double share = total * double(left) / double(count);
+    std::size_t split = begin;
+    for (double sum = 0.0; split < end && sum + 0.5 * weight[order[split]] < share; ++split)
+      sum += weight[order[split]];
+    split = std::clamp(split, begin + std::size_t(left), end - std::size_t(count - left));
+    self(self, begin, split, first, left);
+    self(self, split, end, first + left, count - left);
+  };
+  bisect(bisect, 0, chunks, 0, ranks);
+  return rank_of;
+}
+
+}  // namespace exdyn::solver
