@@ -336,3 +336,29 @@ TEST(TaylorImpact, OnAOneSidedAnvilTheRimLiftsOffAndTheFootSpreadsWider) {
   EXPECT_GT(radius, 1.02 * reference.radius);  // measured 7.290 against 7.084 mm
   EXPECT_LT(radius, 1.04 * reference.radius);
 }
+
+// The second plastic scene of the local search study (scripts/decks/ball_dent.yaml): a
+// steel ball dents a copper plate and rebounds; the kinetic energy goes into plastic
+// work (measured 91 %), the balance holds (0.22 %), the crater's largest plastic strain
+// is 1.0.
+TEST(BallDent, TheCraterTakesTheEnergyAndTheBallRebounds) {
+  exdyn::testing::TempDir directory{"exdyn_dent"};
+  const exdyn::input::Deck deck =
+      exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/scripts/decks/ball_dent.yaml");
+  exdyn::solver::RunControls controls;
+  controls.output_directory = directory.path().string();
+  const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
+  ASSERT_EQ(summary.status, "completed");
+  const std::string h5 = directory.file("ball_dent.h5");
+  const std::vector<double> kinetic = read_dataset(h5, "/history/kinetic_energy").values;
+  const std::vector<double> total = read_dataset(h5, "/history/total_energy").values;
+  const std::vector<double> plastic = read_dataset(h5, "/history/plastic_work").values;
+  EXPECT_GT(plastic.back(), 0.85 * kinetic.front());
+  EXPECT_LT(plastic.back(), 0.95 * kinetic.front());
+  EXPECT_NEAR(total.back(), total.front(), 0.01 * kinetic.front());
+  const std::vector<double> force = read_dataset(h5, "/history/contact/dent/force").values;
+  EXPECT_EQ(force[force.size() - 1], 0.0);  // the ball has left the crater
+  const double eps = largest(read_dataset(h5, step_path(summary.steps, "plastic_strain")).values);
+  EXPECT_GT(eps, 0.7);
+  EXPECT_LT(eps, 1.3);
+}
