@@ -9,7 +9,7 @@ accuracy against cost over methods, meshes, formulations and slave points.
 One command does it all:
 1. methods: input/hertz_ball.yaml on its coarse mesh (ball [8, 2], block [6, 6, 5],
    hex20, slave quadrature points), input/cylinders.yaml on its coarse mesh
-   (n_around 32), and two plastic scenes of large deformation: scripts/decks/taylor_rods.yaml
+   (n_around 32), and two plastic scenes of large deformation: input/taylor_rods.yaml
    (the rods' feet mushroom, slave nodes slide outward over distorting segments) and
    scripts/decks/ball_dent.yaml (a steel ball's nodes slide over the crater it presses
    into a copper plate); each with every method (newton, lsp, steepest_descent, broyden,
@@ -68,7 +68,7 @@ SCENES = {
     # Large deformation: the two Taylor rods through contact, their slave nodes sliding
     # outward over expanding, distorting master segments (the last step's shape and
     # plastic strain are compared with the robust run's too).
-    "taylor_rods": ("scripts/decks/taylor_rods.yaml", "impact", 4.0,
+    "taylor_rods": ("taylor_rods.yaml", "impact", 4.0,
                     ["output.fields=[stress, displacement, plastic_strain]", "output.every=100000"]),
     # A steel ball denting a copper plate: the ball's nodes slide over the crater's
     # stretching, tilting segments.

@@ -64,7 +64,8 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "cylinders.yaml",
                                           "spinning_block.yaml",
                                           "plastic_wave.yaml",
-                                          "taylor_bar.yaml"};
+                                          "taylor_bar.yaml",
+                                          "taylor_rods.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;
