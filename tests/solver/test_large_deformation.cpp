@@ -305,9 +305,10 @@ TEST_P(TaylorRods, EveryMethodCompletesAndGivesTheOneRodLength) {
   EXPECT_NEAR(-bottom, length, 0.005 * length);
   if (std::string(GetParam()) != "robust") return;
   // The two passes are the same geometry under the half turn about the line x = y,
-  // z = 0, and with robust the rods stay images under it to the last bits (measured
-  // 8e-17 m; bfgs 8e-8 m). rod_a's nodes come first, rod_b's node (y, x, -z) matches
-  // rod_a's (x, y, z), and u_b = (u_y, u_x, -u_z) of it.
+  // z = 0, and with robust the rods stay images under it to within 1e-9 of the length
+  // (measured 8e-17 m in the Release build, 1.9e-12 m in the sanitizer build, whose
+  // arithmetic differs; bfgs 8e-8 m). rod_a's nodes come first, rod_b's node (y, x, -z)
+  // matches rod_a's (x, y, z), and u_b = (u_y, u_x, -u_z) of it.
   const std::size_t half = model.mesh.node_count() / 2;
   std::map<std::array<long long, 3>, std::size_t> rod_b;
   auto key = [&](std::size_t i, bool turned) {
@@ -325,7 +326,7 @@ TEST_P(TaylorRods, EveryMethodCompletesAndGivesTheOneRodLength) {
     worst = std::max({worst, std::abs(u[3 * i] - u[3 * j + 1]), std::abs(u[3 * i + 1] - u[3 * j]),
                       std::abs(u[3 * i + 2] + u[3 * j + 2])});
   }
-  EXPECT_LE(worst, 1e-12 * length);
+  EXPECT_LE(worst, 1e-9 * length);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, TaylorRods, ::testing::Values("robust", "bfgs"));
