@@ -172,6 +172,30 @@ def methods_table(rows, scene):
                         "stress vs robust"] + shape + ["run"], body)
 
 
+def pareto_front(points):
+    """The non-dominated (wall, error, ...) points, cheapest first; equal errors (the same
+    answer to round-off) are one point."""
+    front, best = [], float("inf")
+    for p in sorted(points):
+        if p[1] < best * (1.0 - 1e-6):
+            front.append(p)
+            best = p[1]
+    return front
+
+
+def save_chart(fig, ax, ylabel, title, path):
+    """Log-log axes against the wall time, the labels, the legend, and the file."""
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time of the run, one thread (s)")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
 def pareto_chart(method_rows, hertz_rows, docs):
     import matplotlib
     matplotlib.use("Agg")
@@ -187,27 +211,16 @@ def pareto_chart(method_rows, hertz_rows, docs):
         err = max(abs(float(r["f_max_error"])), abs(float(r["contact_time_error"])))
         points.append((float(r["wall_seconds"]), err, f"{r['level']} {r['formulation']} {r['slave_points']}, bfgs",
                        f"{r['formulation']}, slave {r['slave_points']}"))
-    front, best = [], float("inf")
-    for p in sorted(points):
-        if p[1] < best * (1.0 - 1e-6):   # equal errors (the same answer to round-off) are one point
-            front.append(p)
-            best = p[1]
+    front = pareto_front(points)
     fig, ax = plt.subplots(figsize=(8, 5))
     groups = sorted({p[3] for p in points})
     for k, g in enumerate(groups):
         sel = [p for p in points if p[3] == g]
         ax.scatter([p[0] for p in sel], [100 * p[1] for p in sel], s=22, color=f"C{k}", label=g, alpha=0.8)
     ax.plot([p[0] for p in front], [100 * p[1] for p in front], "k-", lw=1, alpha=0.6, label="Pareto front")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("wall time of the run, one thread (s)")
-    ax.set_ylabel("error against Hertz: max(|F_max err.|, |contact time err.|) (%)")
-    ax.set_title("Hertz impact: accuracy against cost over methods, meshes, formulations, slave points",
-                 fontsize=9)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(docs, "figures", "results_hertz_pareto.png"), dpi=100)
+    save_chart(fig, ax, "error against Hertz: max(|F_max err.|, |contact time err.|) (%)",
+               "Hertz impact: accuracy against cost over methods, meshes, formulations, slave points",
+               os.path.join(docs, "figures", "results_hertz_pareto.png"))
     return batch.table(["case", "wall (s)", "error against Hertz"],
                        [[p[2], f"{p[0]:.1f}", f"{100 * p[1]:.2f} %"] for p in front])
 
@@ -226,23 +239,12 @@ def plastic_chart(rows, docs):
                         for r in rows if r["scene"] == scene and r["status"] == "completed"
                         and np.isfinite(r["shape_vs_robust"]))
         ax.scatter([p[0] for p in points], [p[1] for p in points], s=22, color=f"C{k}", label=scene, alpha=0.8)
-        front, best = [], float("inf")
-        for p in points:
-            if p[1] < best:
-                front.append(p)
-                best = p[1]
+        front = pareto_front(points)
         ax.plot([p[0] for p in front], [p[1] for p in front], "-", color=f"C{k}", lw=1, alpha=0.6)
         fronts += [[scene, p[2], f"{p[0]:.2f}", "0" if p[1] <= floor else f"{p[1]:.1e}"] for p in front]
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("wall time of the run, one thread (s)")
-    ax.set_ylabel("final shape's largest distance from robust's / model extent")
-    ax.set_title("Plastic scenes: cost against the departure from the proven closest point (lines: fronts)",
-                 fontsize=9)
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(docs, "figures", "results_plastic_pareto.png"), dpi=100)
+    save_chart(fig, ax, "final shape's largest distance from robust's / model extent",
+               "Plastic scenes: cost against the departure from the proven closest point (lines: fronts)",
+               os.path.join(docs, "figures", "results_plastic_pareto.png"))
     return batch.table(["scene", "method / guess", "wall (s)", "final shape vs robust"], fronts)
 
 

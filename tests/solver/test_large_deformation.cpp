@@ -32,8 +32,10 @@ struct DeckRun {
   exdyn::input::Deck deck;
   exdyn::output::RunSummary summary;
 
+  // file: a deck of input/, or a path from the source directory (scripts/decks/...).
   explicit DeckRun(const std::string& file, const std::vector<Override>& overrides = {}) {
-    deck = exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/" + file, overrides);
+    const std::string path = file.find('/') == std::string::npos ? "/input/" + file : "/" + file;
+    deck = exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + path, overrides);
     exdyn::solver::RunControls controls;
     controls.output_directory = directory.path().string();
     summary = exdyn::solver::run_simulation(deck, controls);
@@ -281,17 +283,10 @@ TEST(TaylorImpact, CollapsingStepStopsTheRunNamingTheElement) {
 class TaylorRods : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(TaylorRods, EveryMethodCompletesAndGivesTheOneRodLength) {
-  exdyn::testing::TempDir directory{"exdyn_rods"};
-  const exdyn::input::Deck deck =
-      exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/taylor_rods.yaml",
-                              {{"contact[0].local_search.method", GetParam()}});
-  exdyn::solver::RunControls controls;
-  controls.output_directory = directory.path().string();
-  const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
-  ASSERT_EQ(summary.status, "completed");
-  const exdyn::solver::Model model = exdyn::solver::build_model(deck);
-  const std::vector<double> u =
-      read_dataset(directory.file("taylor_rods.h5"), step_path(summary.steps, "displacement")).values;
+  const DeckRun run("taylor_rods.yaml", {{"contact[0].local_search.method", GetParam()}});
+  ASSERT_EQ(run.summary.status, "completed");
+  const exdyn::solver::Model model = exdyn::solver::build_model(run.deck);
+  const std::vector<double> u = run.final("displacement");
   double top = 0.0, bottom = 0.0;  // rod_b's far end, rod_a's far end, m
   for (std::size_t i = 0; i < model.mesh.node_count(); ++i) {
     top = std::max(top, model.mesh.x_ref.z[i] + u[3 * i + 2]);
@@ -335,16 +330,10 @@ INSTANTIATE_TEST_SUITE_P(Methods, TaylorRods, ::testing::Values("robust", "bfgs"
 // unlike the face held in z (taylor_bar.yaml), the rim lifts off, as it does between
 // the two rods, and the foot spreads 2-3 % wider (docs/verification.md).
 TEST(TaylorImpact, OnAOneSidedAnvilTheRimLiftsOffAndTheFootSpreadsWider) {
-  exdyn::testing::TempDir directory{"exdyn_anvil"};
-  const exdyn::input::Deck deck =
-      exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/scripts/decks/taylor_anvil.yaml");
-  exdyn::solver::RunControls controls;
-  controls.output_directory = directory.path().string();
-  const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
-  ASSERT_EQ(summary.status, "completed");
-  const exdyn::solver::Model model = exdyn::solver::build_model(deck);
-  const std::vector<double> u =
-      read_dataset(directory.file("taylor_anvil.h5"), step_path(summary.steps, "displacement")).values;
+  const DeckRun run("scripts/decks/taylor_anvil.yaml");
+  ASSERT_EQ(run.summary.status, "completed");
+  const exdyn::solver::Model model = exdyn::solver::build_model(run.deck);
+  const std::vector<double> u = run.final("displacement");
   double radius = 0.0, lift = 0.0;  // the rod's impact face, m
   for (std::size_t e = 0; e < model.mesh.element_count(); ++e) {
     if (model.mesh.element_part[e] != 0) continue;  // the rod
@@ -369,23 +358,17 @@ TEST(TaylorImpact, OnAOneSidedAnvilTheRimLiftsOffAndTheFootSpreadsWider) {
 // work (measured 91 %), the balance holds (0.22 %), the crater's largest plastic strain
 // is 1.0.
 TEST(BallDent, TheCraterTakesTheEnergyAndTheBallRebounds) {
-  exdyn::testing::TempDir directory{"exdyn_dent"};
-  const exdyn::input::Deck deck =
-      exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/scripts/decks/ball_dent.yaml");
-  exdyn::solver::RunControls controls;
-  controls.output_directory = directory.path().string();
-  const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
-  ASSERT_EQ(summary.status, "completed");
-  const std::string h5 = directory.file("ball_dent.h5");
-  const std::vector<double> kinetic = read_dataset(h5, "/history/kinetic_energy").values;
-  const std::vector<double> total = read_dataset(h5, "/history/total_energy").values;
-  const std::vector<double> plastic = read_dataset(h5, "/history/plastic_work").values;
+  const DeckRun run("scripts/decks/ball_dent.yaml");
+  ASSERT_EQ(run.summary.status, "completed");
+  const std::vector<double> kinetic = run.history("kinetic_energy");
+  const std::vector<double> total = run.history("total_energy");
+  const std::vector<double> plastic = run.history("plastic_work");
   EXPECT_GT(plastic.back(), 0.85 * kinetic.front());
   EXPECT_LT(plastic.back(), 0.95 * kinetic.front());
   EXPECT_NEAR(total.back(), total.front(), 0.01 * kinetic.front());
-  const std::vector<double> force = read_dataset(h5, "/history/contact/dent/force").values;
+  const std::vector<double> force = run.history("contact/dent/force");
   EXPECT_EQ(force[force.size() - 1], 0.0);  // the ball has left the crater
-  const double eps = largest(read_dataset(h5, step_path(summary.steps, "plastic_strain")).values);
+  const double eps = largest(run.final("plastic_strain"));
   EXPECT_GT(eps, 0.7);
   EXPECT_LT(eps, 1.3);
 }
