@@ -202,6 +202,8 @@ int main(int argc, char** argv) {
     if (*check) {
       const exdyn::input::Deck deck = exdyn::input::read_deck(check_deck, parse_overrides(check_sets));
       std::cout << exdyn::input::to_yaml(deck);
+      for (const std::string& warning : exdyn::input::deck_warnings(deck))
+        std::fprintf(stderr, "exdyn: warning: %s\n", warning.c_str());
       // The mesh, as YAML comments: a user sees a bad mapped mesh before running it.
       const exdyn::mesh::Mesh mesh = exdyn::mesh::build_mesh(deck);
       const auto quality = exdyn::solver::mesh_quality(mesh);

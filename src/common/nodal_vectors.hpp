@@ -17,6 +17,7 @@ struct NodalVectors {
   explicit NodalVectors(std::size_t n) : x(n, 0.0), y(n, 0.0), z(n, 0.0) {}
 
   std::size_t size() const { return x.size(); }
+  bool empty() const { return x.empty(); }
   void resize(std::size_t n) {
     x.assign(n, 0.0);
     y.assign(n, 0.0);

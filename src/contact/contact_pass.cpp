@@ -6,14 +6,11 @@
 
 #include "common/timer.hpp"
 #include "contact/penalty.hpp"
+#include "contact/slave_points.hpp"
 
 namespace exdyn::contact {
 
 namespace {
-
-Vec3 current_position(const NodalVectors& x_ref, const NodalVectors& u, std::uint32_t node) {
-  return {x_ref.x[node] + u.x[node], x_ref.y[node] + u.y[node], x_ref.z[node] + u.z[node]};
-}
 
 Segment current_segment(const SegmentNodes& ids, const NodalVectors& x_ref, const NodalVectors& u) {
   Segment segment;
@@ -21,31 +18,6 @@ Segment current_segment(const SegmentNodes& ids, const NodalVectors& x_ref, cons
   for (int i = 0; i < node_count(ids.type); ++i)
     segment.nodes[std::size_t(i)] = current_position(x_ref, u, ids.nodes[std::size_t(i)]);
   return segment;
-}
-
-// The current position of every slave point: a slave node's, or a Gauss point's
-// y(xi) = sum N_I(xi) y_I on its slave segment.
-void update_slave_points(const ContactSurfaces& surfaces, ContactPassState& state, const NodalVectors& x_ref,
-                         const NodalVectors& u) {
-  const std::size_t n_points = surfaces.point_count();
-  state.slave_points.x.resize(n_points);
-  state.slave_points.y.resize(n_points);
-  state.slave_points.z.resize(n_points);
-  for (std::size_t p = 0; p < n_points; ++p) {
-    Vec3 x{};
-    if (!surfaces.quadrature) {
-      x = current_position(x_ref, u, surfaces.slave_nodes[p]);
-    } else {
-      const QuadraturePoint& q = surfaces.quadrature_points[p];
-      const SegmentNodes& ids = surfaces.slave_segments[q.segment];
-      const std::array<double, 8> N = shape_functions(ids.type, q.xi);
-      for (int i = 0; i < node_count(ids.type); ++i)
-        x = x + N[std::size_t(i)] * current_position(x_ref, u, ids.nodes[std::size_t(i)]);
-    }
-    state.slave_points.x[p] = x.x;
-    state.slave_points.y[p] = x.y;
-    state.slave_points.z[p] = x.z;
-  }
 }
 
 // The largest distance (m) any node of the pass has moved since the last build.
@@ -108,27 +80,70 @@ void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettin
   ++state.rebuilds;
 }
 
-// The nodes a slave point's force goes to and their weights: the slave node with
-// weight 1, or a Gauss point's segment nodes with N_I(xi).
-struct SlaveSide {
-  int count = 1;
-  std::array<std::uint32_t, 8> nodes{};
-  std::array<double, 8> weights{};
-};
-
-SlaveSide slave_side(const ContactSurfaces& surfaces, std::size_t p) {
-  SlaveSide side;
-  if (!surfaces.quadrature) {
-    side.nodes[0] = surfaces.slave_nodes[p];
-    side.weights[0] = 1.0;
-    return side;
+// The stick anchor of a slipping point goes to y, the point it slid to (a point of the
+// master surface's tangent plane at the old anchor, m): to the closest inside projection
+// of y, first on the anchor's segment and, if y left it, on the slave point's other
+// candidates, so that the anchor crosses onto the next segment and is not reset. With
+// no inside projection (y slid off the edge of the master surface) it stays on its
+// segment at the closest xi of [-1,1]^2.
+Anchor relocate_anchor(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                       const ContactPassState& state, std::size_t p, Vec3 y, Anchor anchor,
+                       const NodalVectors& x_ref, const NodalVectors& u) {
+  // From the least-squares guess, as the contact's own projection: exact at once on a
+  // flat segment, so that mirror images stay mirror images.
+  auto project_onto = [&](std::int64_t segment) {
+    const Segment current = current_segment(surfaces.segments[static_cast<std::size_t>(segment)], x_ref, u);
+    return settings.project(current, y, initial_guess_lsp(current, y), settings.projection);
+  };
+  auto is_minimum_inside = [](const ProjectionResult& r) {
+    return r.converged && r.inside && r.stationary == StationaryKind::minimum;
+  };
+  const ProjectionResult own = project_onto(anchor.segment);
+  if (is_minimum_inside(own)) return Anchor{anchor.segment, own.xi};
+  double best_distance = std::numeric_limits<double>::infinity();
+  Anchor best{anchor.segment,
+              {std::clamp(std::isfinite(own.xi[0]) ? own.xi[0] : 0.0, -1.0, 1.0),
+               std::clamp(std::isfinite(own.xi[1]) ? own.xi[1] : 0.0, -1.0, 1.0)}};
+  for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
+    const std::int64_t segment = state.candidates[c].segment;
+    if (segment == anchor.segment) continue;
+    const ProjectionResult r = project_onto(segment);
+    if (is_minimum_inside(r) && r.distance < best_distance)
+      best_distance = r.distance, best = {segment, r.xi};
   }
-  const QuadraturePoint& q = surfaces.quadrature_points[p];
-  const SegmentNodes& ids = surfaces.slave_segments[q.segment];
-  side.count = node_count(ids.type);
-  side.nodes = ids.nodes;
-  side.weights = shape_functions(ids.type, q.xi);
-  return side;
+  return best;
+}
+
+// Coulomb friction of slave point p at `point` (m) in contact with normal force F_n (N)
+// and normal stiffness k (N/m, the tangential one too), slipping at slip_velocity
+// (m/s, tangential): its tangential force, its dissipation and its anchor
+// (friction.hpp). A point new to contact is taken to have touched at the start of
+// the step, where it was a step's slip dt v_slip ago: its anchor is the contact point
+// less that slip, so a point that arrives sliding slips from its first step.
+void add_friction(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                  ContactPassState& state, std::size_t p, Vec3 point, double k, double normal_force,
+                  Vec3 slip_velocity, const NodalVectors& x_ref, const NodalVectors& u) {
+  const auto& contact = state.contacts[p];
+  Anchor& anchor = state.anchors[p];
+  const bool new_contact = anchor.segment < 0;
+  if (new_contact) anchor = Anchor{contact.segment, contact.xi};
+  const Vec3 y_anchor =
+      evaluate(current_segment(surfaces.segments[static_cast<std::size_t>(anchor.segment)], x_ref, u),
+               anchor.xi)
+          .y;
+  const Vec3 tangent_gap =
+      new_contact ? settings.dt * slip_velocity : tangential_part(point - y_anchor, contact.normal);
+  const TangentialForce t =
+      coulomb_force(tangent_gap, k, normal_force, settings.friction.coefficient(norm(slip_velocity)));
+  state.tangential_force[p] = t.force;
+  state.dissipation[p] = t.dissipation;
+  // Where the anchor goes: the contact point less the slip the spring keeps (a new
+  // contact), or the old anchor moved by the slip (a slipping one).
+  if (new_contact && norm(tangent_gap) > 0.0)
+    anchor = relocate_anchor(surfaces, settings, state, p, y_anchor - tangent_gap + t.anchor_shift, anchor,
+                             x_ref, u);
+  else if (t.slip)
+    anchor = relocate_anchor(surfaces, settings, state, p, y_anchor + t.anchor_shift, anchor, x_ref, u);
 }
 
 }  // namespace
@@ -140,7 +155,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
   const std::size_t n_points = surfaces.point_count();
   {
     ScopedTimer timer(seconds.global_search);
-    update_slave_points(surfaces, state, x_ref, u);
+    update_slave_points(surfaces, x_ref, u, state.slave_points);
     // A pair within search_distance now was within search_distance + margin at the
     // build as long as no node has moved more than margin / 2 since.
     if (!state.built || largest_motion_since_build(surfaces, state, x_ref, u) > 0.5 * settings.margin)
@@ -264,12 +279,21 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     ScopedTimer timer(seconds.forces);
     state.force_magnitude.assign(n_points, 0.0);
     state.pair_stiffness.assign(n_points, 0.0);
+    const bool friction = settings.friction.enabled;
+    if (friction) {
+      state.tangential_force.assign(n_points, Vec3{});
+      state.dissipation.assign(n_points, 0.0);
+      state.anchors.resize(n_points);
+    }
     const auto points = static_cast<std::ptrdiff_t>(n_points);
 #pragma omp parallel for schedule(static) if (points >= 4096)
     for (std::ptrdiff_t q = 0; q < points; ++q) {
       const auto p = static_cast<std::size_t>(q);
       const auto& contact = state.contacts[p];
-      if (contact.segment < 0 || contact.gap >= 0.0) continue;
+      if (contact.segment < 0 || contact.gap >= 0.0) {
+        if (friction) state.anchors[p] = Anchor{};  // out of contact: no stick to keep
+        continue;
+      }
       const SegmentNodes& master = surfaces.segments[static_cast<std::size_t>(contact.segment)];
       const std::array<double, 8> N = shape_functions(master.type, contact.xi);
       Vec3 master_velocity{};
@@ -280,14 +304,9 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         master_inverse_mass += N[std::size_t(i)] * N[std::size_t(i)] / mass[node];
       }
       const SlaveSide slave = slave_side(surfaces, p);
-      Vec3 slave_velocity{};
-      double slave_inverse_mass = 0.0;  // the slave point's 1 / mass, likewise
-      for (int i = 0; i < slave.count; ++i) {
-        const std::uint32_t node = slave.nodes[std::size_t(i)];
-        const double w = slave.weights[std::size_t(i)];
-        slave_velocity = slave_velocity + w * Vec3{v.x[node], v.y[node], v.z[node]};
-        slave_inverse_mass += w * w / mass[node];
-      }
+      const SlaveMotion motion = slave_motion(slave, v, mass);  // the slave point's velocity and 1 / mass
+      const Vec3 slave_velocity = motion.velocity;
+      const double slave_inverse_mass = motion.inverse_mass;
       const Vec3 n = contact.normal;
       const double normal_velocity = dot(slave_velocity - master_velocity, n);
       double k = surfaces.stiffness[p];  // the point pair's stiffness
@@ -304,9 +323,17 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       const double slave_mass = surfaces.quadrature ? 1.0 / slave_inverse_mass : mass[slave.nodes[0]];
       const double c = damping_coefficient(settings.damping_ratio, k, slave_mass, 1.0 / master_inverse_mass);
       state.force_magnitude[p] = normal_force(k, c, contact.gap, normal_velocity);
+      if (friction && !(state.force_magnitude[p] > 0.0)) state.anchors[p] = Anchor{};
+      if (friction && state.force_magnitude[p] > 0.0) {
+        const Vec3 point{state.slave_points.x[p], state.slave_points.y[p], state.slave_points.z[p]};
+        const Vec3 slip_velocity = tangential_part(slave_velocity - master_velocity, n);
+        add_friction(surfaces, settings, state, p, point, k, state.force_magnitude[p], slip_velocity, x_ref,
+                     u);
+      }
     }
-    state.slave_force = Vec3{};
+    state.slave_force = state.slave_normal_force = state.slave_tangential_force = Vec3{};
     state.max_penetration = 0.0;
+    state.slipping = state.sticking = 0;
     for (std::size_t p = 0; p < n_points; ++p) {
       const auto& contact = state.contacts[p];
       if (contact.segment < 0) continue;
@@ -318,15 +345,17 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       if (contact.gap >= 0.0) continue;
       const SegmentNodes& master = surfaces.segments[static_cast<std::size_t>(contact.segment)];
       const std::array<double, 8> N = shape_functions(master.type, contact.xi);
-      const Vec3 F = state.force_magnitude[p] * contact.normal;
-      statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
-      for (int i = 0; i < slave.count; ++i) {
-        const std::uint32_t node = slave.nodes[std::size_t(i)];
-        const double w = slave.weights[std::size_t(i)];
-        force.x[node] += w * F.x;
-        force.y[node] += w * F.y;
-        force.z[node] += w * F.z;
+      const Vec3 F_n = state.force_magnitude[p] * contact.normal;
+      Vec3 F = F_n;
+      if (friction && state.force_magnitude[p] > 0.0) {
+        F = F + state.tangential_force[p];
+        state.slave_tangential_force = state.slave_tangential_force + state.tangential_force[p];
+        state.friction_work += state.dissipation[p];
+        ++(state.dissipation[p] > 0.0 ? state.slipping : state.sticking);
       }
+      state.slave_normal_force = state.slave_normal_force + F_n;
+      statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
+      add_to_slave(slave, F, force);
       for (int i = 0; i < node_count(master.type); ++i) {
         const std::uint32_t node = master.nodes[std::size_t(i)];
         force.x[node] -= N[std::size_t(i)] * F.x;

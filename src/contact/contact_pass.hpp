@@ -6,7 +6,8 @@
 //   -> local search (the deck's method) for every candidate pair
 //   -> the closest inside projection of each slave point (the point's one contact);
 //      with none, the closest point of a fold's edge the point lies behind (edge_contact.hpp)
-//   -> penalty forces on the slave point's nodes and the segment's nodes.
+//   -> penalty forces on the slave point's nodes and the segment's nodes, with Coulomb
+//      friction from a stick anchor on the master surface (friction.hpp).
 // A pair with `two_pass: true` runs two passes, the second with the roles swapped.
 // Segments have 4 or 8 nodes (contact::SegmentNodes), and one pass may mix them.
 #pragma once
@@ -20,6 +21,7 @@
 #include "common/nodal_vectors.hpp"
 #include "contact/bucket_search.hpp"
 #include "contact/edge_contact.hpp"
+#include "contact/friction.hpp"
 #include "contact/local_search.hpp"
 
 namespace exdyn::contact {
@@ -87,6 +89,7 @@ struct ContactPassSettings {
   double search_distance = 0.0;  // largest gap that is searched for, m
   double margin = 0.0;           // extra capture: rebuild once a node has moved margin / 2, m
   double cell_size = 0.0;        // bucket cell edge, m (<= 0: automatic)
+  FrictionLaw friction;          // not enabled: frictionless
   ProjectionShare share;         // many processes: the candidates this one projects
 };
 
@@ -108,10 +111,18 @@ struct ContactPassState {
   std::vector<EdgeContact> edge_contacts;  // scratch: a fold's edge point of each candidate pair
   std::vector<double> force_magnitude;     // F of each slave point's contact, N (0: none)
   std::vector<double> pair_stiffness;      // k of each slave point's pair before the pass split, N/m
-  // This step: the total contact force on the pass's slave side (N) and its deepest
-  // penetration (m, >= 0): the pair's histories.
+  std::vector<Vec3> tangential_force;      // F_t of each slave point, N (friction)
+  std::vector<double> dissipation;         // the friction work of each slave point this step, J
+  std::vector<Anchor> anchors;  // friction: each slave point's stick anchor, kept from step to step
+  // This step: the total contact force on the pass's slave side (N), its normal and
+  // tangential parts, and its deepest penetration (m, >= 0): the pair's histories.
   Vec3 slave_force{};
+  Vec3 slave_normal_force{};
+  Vec3 slave_tangential_force{};
   double max_penetration = 0.0;
+  long slipping = 0;            // slave points in contact that slip this step
+  long sticking = 0;            // and those that stick
+  double friction_work = 0.0;   // dissipated by friction since the start, J
   struct Contact {              // the chosen projection of each slave point
     std::int64_t segment = -1;  // -1: none
     Xi xi{};

@@ -1,4 +1,5 @@
-// The deck's contact pairs: penalty, global and local search settings.
+// The deck's contact pairs (penalty, global and local search settings, friction), its
+// rigid walls and its loads.
 #include <map>
 #include <string>
 #include <vector>
@@ -29,6 +30,110 @@ PenaltyOptions DeckValidator::penalty(const YAML::Node& node, const std::string&
   }
   if (const YAML::Node damping = optional(node, "damping"); damping.IsDefined())
     result.damping = number_where(damping, child_path(path, "damping"), "a number >= 0", non_negative);
+  return result;
+}
+
+SlavePoints DeckValidator::slave_points(const YAML::Node& node, const std::string& path) const {
+  return all_slave_points[choice(node, path, "slave points", names_of(all_slave_points))];
+}
+
+// {coefficient: mu} or {static: mu_s, dynamic: mu_d, decay: d}.
+FrictionOptions DeckValidator::friction(const YAML::Node& node, const std::string& path) const {
+  check_map(node, path, {"coefficient", "static", "dynamic", "decay"});
+  FrictionOptions result;
+  const YAML::Node coefficient = optional(node, "coefficient");
+  const YAML::Node static_node = optional(node, "static");
+  const YAML::Node dynamic_node = optional(node, "dynamic");
+  if (coefficient.IsDefined()) {
+    if (static_node.IsDefined() || dynamic_node.IsDefined())
+      fail(coefficient, child_path(path, "coefficient"),
+           "give either coefficient (mu_s = mu_d) or static and dynamic, not both");
+    result.static_coefficient = result.dynamic_coefficient =
+        number_where(coefficient, child_path(path, "coefficient"), "a number >= 0", non_negative);
+  } else {
+    if (!static_node.IsDefined() && !dynamic_node.IsDefined())
+      fail(node, path, "expected {coefficient: mu} or {static: mu_s, dynamic: mu_d, decay: d}");
+    const std::string static_path = child_path(path, "static"), dynamic_path = child_path(path, "dynamic");
+    result.static_coefficient =
+        number_where(required(node, path, "static"), static_path, "a number >= 0", non_negative);
+    result.dynamic_coefficient =
+        number_where(required(node, path, "dynamic"), dynamic_path, "a number >= 0", non_negative);
+    if (result.dynamic_coefficient > result.static_coefficient)
+      fail(dynamic_node, dynamic_path,
+           "expected mu_d <= mu_s (the static coefficient, " + format_number(result.static_coefficient) +
+               "), got " + describe(dynamic_node));
+  }
+  if (const YAML::Node decay = optional(node, "decay"); decay.IsDefined())
+    result.decay = number_where(decay, child_path(path, "decay"), "a number >= 0 (s/m)", non_negative);
+  return result;
+}
+
+std::vector<RigidWallOptions> DeckValidator::rigid_walls(const YAML::Node& node, const std::string& path,
+                                                         const std::vector<PartOptions>& parts) const {
+  std::vector<RigidWallOptions> result;
+  if (node.IsNull()) return result;
+  check_sequence(node, path, "a list of rigid walls");
+  std::map<std::string, std::size_t> index_by_name;
+  for (std::size_t w = 0; w < node.size(); ++w) {
+    const std::string wall_path = child_path(path, w);
+    const YAML::Node entry = node[w];
+    check_map(entry, wall_path, {"name", "point", "normal", "slave", "slave_points", "friction", "velocity"});
+    RigidWallOptions wall;
+    const std::string name_path = child_path(wall_path, "name");
+    const YAML::Node name_node = required(entry, wall_path, "name");
+    wall.name = text(name_node, name_path, "a rigid wall name");
+    // The name is an HDF5 group, /history/wall/NAME (docs/output.md).
+    if (wall.name.find('/') != std::string::npos || wall.name == "." || wall.name == "..")
+      fail(name_node, name_path,
+           "expected a rigid wall name without '/' (it names the group /history/wall/NAME of the results), "
+           "got '" +
+               wall.name + "'");
+    const auto [first, inserted] = index_by_name.emplace(wall.name, w);
+    if (!inserted)
+      fail(name_node, name_path,
+           "rigid wall name '" + wall.name + "' is used twice (first by " + child_path(path, first->second) +
+               ")");
+    wall.point = vector3(required(entry, wall_path, "point"), child_path(wall_path, "point"));
+    const YAML::Node normal = required(entry, wall_path, "normal");
+    wall.normal = vector3(normal, child_path(wall_path, "normal"));
+    if (!(wall.normal[0] * wall.normal[0] + wall.normal[1] * wall.normal[1] +
+              wall.normal[2] * wall.normal[2] >
+          0.0))
+      fail(normal, child_path(wall_path, "normal"), "expected a non-zero normal, got " + describe(normal));
+    wall.slave = face_list(required(entry, wall_path, "slave"), child_path(wall_path, "slave"), parts);
+    if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined())
+      wall.slave_points = slave_points(points, child_path(wall_path, "slave_points"));
+    if (const YAML::Node friction_node = optional(entry, "friction"); friction_node.IsDefined())
+      wall.friction = friction(friction_node, child_path(wall_path, "friction"));
+    if (const YAML::Node velocity = optional(entry, "velocity"); velocity.IsDefined())
+      wall.velocity = vector3(velocity, child_path(wall_path, "velocity"));
+    result.push_back(std::move(wall));
+  }
+  return result;
+}
+
+std::vector<LoadOptions> DeckValidator::loads(const YAML::Node& node, const std::string& path,
+                                              const std::vector<PartOptions>& parts) const {
+  std::vector<LoadOptions> result;
+  if (node.IsNull()) return result;
+  check_sequence(node, path, "a list of loads like [{gravity: [0, 0, -9.81]}]");
+  std::vector<std::string> part_names;
+  for (const PartOptions& part : parts) part_names.push_back(part.name);
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string load_path = child_path(path, i);
+    const YAML::Node entry = node[i];
+    check_map(entry, load_path, {"gravity", "parts"});
+    LoadOptions load;
+    load.gravity = vector3(required(entry, load_path, "gravity"), child_path(load_path, "gravity"));
+    if (const YAML::Node list = optional(entry, "parts"); list.IsDefined()) {
+      const std::string parts_path = child_path(load_path, "parts");
+      check_sequence(list, parts_path, "a list of part names");
+      for (std::size_t k = 0; k < list.size(); ++k)
+        load.parts.push_back(
+            static_cast<int>(choice(list[k], child_path(parts_path, k), "part", part_names)));
+    }
+    result.push_back(std::move(load));
+  }
   return result;
 }
 
@@ -77,7 +182,7 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
     const YAML::Node entry = node[c];
     check_map(entry, pair_path,
               {"name", "slave", "master", "two_pass", "slave_points", "quadrature", "penalty", "search",
-               "local_search"});
+               "local_search", "friction"});
     ContactOptions pair;
     const std::string name_path = child_path(pair_path, "name");
     const YAML::Node name_node = required(entry, pair_path, "name");
@@ -98,8 +203,7 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
     if (const YAML::Node two_pass = optional(entry, "two_pass"); two_pass.IsDefined())
       pair.two_pass = boolean(two_pass, child_path(pair_path, "two_pass"));
     if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined())
-      pair.slave_points = all_slave_points[choice(points, child_path(pair_path, "slave_points"),
-                                                  "slave points", names_of(all_slave_points))];
+      pair.slave_points = slave_points(points, child_path(pair_path, "slave_points"));
     // Accepted with slave_points: nodes too (unused there), so that batch runs can
     // switch the slave points with --set alone.
     if (const YAML::Node quadrature = optional(entry, "quadrature"); quadrature.IsDefined()) {
@@ -116,6 +220,8 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
       pair.search = global_search(search, child_path(pair_path, "search"));
     if (const YAML::Node local = optional(entry, "local_search"); local.IsDefined())
       pair.local_search = local_search(local, child_path(pair_path, "local_search"));
+    if (const YAML::Node friction_node = optional(entry, "friction"); friction_node.IsDefined())
+      pair.friction = friction(friction_node, child_path(pair_path, "friction"));
     result.push_back(std::move(pair));
   }
   return result;

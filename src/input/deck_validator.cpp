@@ -18,7 +18,8 @@
 namespace exdyn::input::deck {
 
 std::vector<std::string> top_level_keys() {
-  return {"name", "materials", "parts", "boundary_conditions", "contact", "time", "output", "guards"};
+  return {"name", "materials", "parts", "boundary_conditions", "contact", "rigid_walls", "loads",
+          "time", "output",    "guards"};
 }
 
 // ---------------------------------------------------------------------------
@@ -306,6 +307,10 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
     result.boundary_conditions = boundary_conditions(node, "boundary_conditions", result.parts);
   if (const YAML::Node node = optional(root, "contact"); node.IsDefined())
     result.contact = contact_pairs(node, "contact", result.parts);
+  if (const YAML::Node node = optional(root, "rigid_walls"); node.IsDefined())
+    result.rigid_walls = rigid_walls(node, "rigid_walls", result.parts);
+  if (const YAML::Node node = optional(root, "loads"); node.IsDefined())
+    result.loads = loads(node, "loads", result.parts);
   result.time = time(required(root, "", "time"), "time");
   if (const YAML::Node node = optional(root, "output"); node.IsDefined())
     result.output = output(node, "output");

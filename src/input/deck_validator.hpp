@@ -32,7 +32,8 @@ inline constexpr std::array<Kinematics, 3> all_kinematics{Kinematics::automatic,
                                                           Kinematics::finite};
 inline constexpr std::array<Formulation, 4> all_formulations{Formulation::hex8, Formulation::hex8r,
                                                              Formulation::hex20, Formulation::hex20r};
-inline constexpr std::array<SlavePoints, 2> all_slave_points{SlavePoints::nodes, SlavePoints::quadrature};
+inline constexpr std::array<SlavePoints, 3> all_slave_points{SlavePoints::automatic, SlavePoints::nodes,
+                                                             SlavePoints::quadrature};
 inline constexpr std::array<PartFace, 6> box_faces{PartFace::xmin, PartFace::xmax, PartFace::ymin,
                                                    PartFace::ymax, PartFace::zmin, PartFace::zmax};
 inline constexpr std::array<Geometry, 3> all_geometries{Geometry::box, Geometry::cylinder, Geometry::sphere};
@@ -148,6 +149,12 @@ class DeckValidator {
   std::vector<ContactOptions> contact_pairs(const YAML::Node& node, const std::string& path,
                                             const std::vector<PartOptions>& parts) const;
   PenaltyOptions penalty(const YAML::Node& node, const std::string& path) const;
+  FrictionOptions friction(const YAML::Node& node, const std::string& path) const;
+  SlavePoints slave_points(const YAML::Node& node, const std::string& path) const;
+  std::vector<RigidWallOptions> rigid_walls(const YAML::Node& node, const std::string& path,
+                                            const std::vector<PartOptions>& parts) const;
+  std::vector<LoadOptions> loads(const YAML::Node& node, const std::string& path,
+                                 const std::vector<PartOptions>& parts) const;
   GlobalSearchOptions global_search(const YAML::Node& node, const std::string& path) const;
   LocalSearchOptions local_search(const YAML::Node& node, const std::string& path) const;
   TimeOptions time(const YAML::Node& node, const std::string& path) const;

@@ -1,6 +1,7 @@
 // to_yaml: the resolved deck as YAML, every default filled in (`exdyn check`).
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -69,6 +70,14 @@ std::string yaml_faces(const Deck& deck, const std::vector<FaceRef>& faces) {
   std::vector<std::string> names;
   for (const FaceRef& reference : faces) names.push_back(yaml_text(face_name(deck, reference)));
   return "[" + join(names, ", ") + "]";
+}
+
+// "friction: {...}" on a line of its own at `indent`, or nothing when frictionless.
+std::string yaml_friction(const std::optional<FrictionOptions>& friction, const std::string& indent) {
+  if (!friction) return "";
+  return indent + "friction: {static: " + yaml_number(friction->static_coefficient) +
+         ", dynamic: " + yaml_number(friction->dynamic_coefficient) +
+         ", decay: " + yaml_number(friction->decay) + "}\n";
 }
 
 // The plastic model's keys, ", key: value" each.
@@ -178,7 +187,26 @@ std::string to_yaml(const Deck& deck) {
         << (pair.search.cell_size ? yaml_number(*pair.search.cell_size) : "auto") << "}\n"
         << "    local_search: {method: " << contact::name(local.method)
         << ", tolerance: " << yaml_number(local.tolerance) << ", max_iterations: " << local.max_iterations
-        << ", initial_guess: " << contact::name(local.initial_guess) << "}\n";
+        << ", initial_guess: " << contact::name(local.initial_guess) << "}\n"
+        << yaml_friction(pair.friction, "    ");
+  }
+
+  out << "rigid_walls:" << (deck.rigid_walls.empty() ? " []" : "") << "\n";
+  for (const RigidWallOptions& wall : deck.rigid_walls)
+    out << "  - name: " << yaml_text(wall.name) << "\n"
+        << "    point: " << yaml_vector(wall.point) << "\n"
+        << "    normal: " << yaml_vector(wall.normal) << "\n"
+        << "    slave: " << yaml_faces(deck, wall.slave) << "\n"
+        << "    slave_points: " << name(wall.slave_points) << "\n"
+        << "    velocity: " << yaml_vector(wall.velocity) << "\n"
+        << yaml_friction(wall.friction, "    ");
+
+  out << "loads:" << (deck.loads.empty() ? " []" : "") << "\n";
+  for (const LoadOptions& load : deck.loads) {
+    std::vector<std::string> names;
+    for (const int part : load.parts) names.push_back(yaml_text(deck.parts[std::size_t(part)].name));
+    out << "  - {gravity: " << yaml_vector(load.gravity)
+        << (names.empty() ? std::string() : ", parts: [" + join(names, ", ") + "]") << "}\n";
   }
 
   out << "time:\n"

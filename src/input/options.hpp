@@ -147,8 +147,18 @@ inline constexpr int max_quadrature = 6;
 
 // What of the slave side is projected onto the master segments.
 enum class SlavePoints {
+  automatic,   // `auto`: quadrature on 8-node slave segments, nodes on 4-node ones
   nodes,       // each slave node
   quadrature,  // each Gauss point of each slave segment (pre-discretization penalty)
+};
+
+// Coulomb friction (docs/contact.md, "Friction"): mu = mu_d + (mu_s - mu_d) exp(-d |v_slip|).
+struct FrictionOptions {
+  double static_coefficient = 0.0;   // mu_s >= mu_d
+  double dynamic_coefficient = 0.0;  // mu_d >= 0
+  double decay = 0.0;                // d >= 0, s/m
+
+  bool operator==(const FrictionOptions&) const = default;
 };
 
 struct ContactOptions {
@@ -156,15 +166,38 @@ struct ContactOptions {
   std::vector<FaceRef> slave;
   std::vector<FaceRef> master;
   bool two_pass = true;
-  SlavePoints slave_points = SlavePoints::nodes;
+  SlavePoints slave_points = SlavePoints::automatic;
   // Gauss points per direction on each slave segment (slave_points: quadrature),
   // 1 to max_quadrature; unset: 2 on 4-node and 3 on 8-node segments.
   std::optional<int> quadrature;
   PenaltyOptions penalty;
   GlobalSearchOptions search;
   LocalSearchOptions local_search;
+  std::optional<FrictionOptions> friction;  // unset: frictionless
 
   bool operator==(const ContactOptions&) const = default;
+};
+
+// A flat rigid wall (docs/contact.md, "Rigid walls"): the slave points of the listed
+// faces stay on the side the normal points to.
+struct RigidWallOptions {
+  std::string name;
+  Vec3 point{};   // a point of the plane at t = 0, m
+  Vec3 normal{};  // towards the bodies' side, any length > 0
+  std::vector<FaceRef> slave;
+  SlavePoints slave_points = SlavePoints::automatic;
+  std::optional<FrictionOptions> friction;
+  Vec3 velocity{};  // the wall's constant velocity, m/s
+
+  bool operator==(const RigidWallOptions&) const = default;
+};
+
+// A body force rho g per unit volume on the listed parts (empty: every part).
+struct LoadOptions {
+  Vec3 gravity{};          // m/s^2
+  std::vector<int> parts;  // indices into Deck::parts
+
+  bool operator==(const LoadOptions&) const = default;
 };
 
 struct TimeOptions {
@@ -227,6 +260,8 @@ struct Deck {
   std::vector<PartOptions> parts;
   std::vector<BoundaryConditionOptions> boundary_conditions;
   std::vector<ContactOptions> contact;
+  std::vector<RigidWallOptions> rigid_walls;
+  std::vector<LoadOptions> loads;
   TimeOptions time;
   OutputOptions output;
   GuardOptions guards;
@@ -241,6 +276,8 @@ const char* name(Kinematics kinematics);
 // A part's kinematics with `automatic` resolved by its material.
 Kinematics resolved_kinematics(const PartOptions& part, const MaterialOptions& material);
 const char* name(SlavePoints points);
+// `auto` resolved by the slave segments: quadrature if any has 8 nodes.
+SlavePoints resolved_slave_points(SlavePoints points, bool eight_node_segments);
 const char* name(PartFace side);
 const char* name(Geometry geometry);
 // The face names a part has: a box's six sides; cylinder: surface, start, end; sphere:
@@ -249,5 +286,8 @@ std::vector<PartFace> faces_of(const PartOptions& part);
 const char* name(OutputField field);
 // "<part>.<side>"
 std::string face_name(const Deck& deck, const FaceRef& face);
+// What a valid deck asks for that gives a poor answer (printed by `exdyn check` and
+// `exdyn run`): slave_points: nodes on the 8-node segments of 20-node parts.
+std::vector<std::string> deck_warnings(const Deck& deck);
 
 }  // namespace exdyn::input

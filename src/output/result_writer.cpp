@@ -73,7 +73,7 @@ constexpr std::array<FieldLayout, 8> field_layouts{{
 }};
 
 using HistoryColumn = std::pair<const char*, double HistoryRow::*>;
-constexpr std::array<HistoryColumn, 8> history_columns{{
+constexpr std::array<HistoryColumn, 9> history_columns{{
     {"time", &HistoryRow::time},
     {"kinetic_energy", &HistoryRow::kinetic_energy},
     {"internal_energy", &HistoryRow::internal_energy},
@@ -82,6 +82,7 @@ constexpr std::array<HistoryColumn, 8> history_columns{{
     {"external_work", &HistoryRow::external_work},
     {"total_energy", &HistoryRow::total_energy},
     {"plastic_work", &HistoryRow::plastic_work},
+    {"friction_work", &HistoryRow::friction_work},
 }};
 
 std::string step_group_name(long step) {
@@ -102,6 +103,7 @@ struct Frame {
   std::vector<std::vector<double>> values;  // per requested field (Impl::fields), reused
   std::vector<HistoryRow> history;
   std::vector<ContactHistoryRow> contact;  // contact_pairs.size() per history row
+  std::vector<WallHistoryRow> walls;       // walls.size() per history row
 };
 
 struct ResultWriter::Impl {
@@ -118,6 +120,8 @@ struct ResultWriter::Impl {
   std::vector<HistoryRow> pending_history;
   std::vector<std::string> contact_pairs;          // names, for /history/contact/NAME
   std::vector<ContactHistoryRow> pending_contact;  // contact_pairs.size() per pending history row
+  std::vector<std::string> walls;                  // names, for /history/wall/NAME
+  std::vector<WallHistoryRow> pending_walls;       // walls.size() per pending history row
   hsize_t history_rows_on_disk = 0;
   // Elements of 8 and 20 nodes mixed: the .xmf names /mesh/mixed_topology (XDMF "Mixed").
   bool mixed = false;
@@ -149,7 +153,8 @@ struct ResultWriter::Impl {
 
   void write_mesh(const MeshView& mesh);
   void write_history(hid_t file, const std::vector<HistoryRow>& rows,
-                     const std::vector<ContactHistoryRow>& contact_rows);
+                     const std::vector<ContactHistoryRow>& contact_rows,
+                     const std::vector<WallHistoryRow>& wall_rows);
   void fill_frame(const StepData& data);
   void fill_field(std::vector<double>& out, const FieldLayout& layout, const StepData& data);
   void write_frame();
@@ -239,13 +244,23 @@ void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
       create_group(errors, file.get(), "/history/contact/" + pair);
       create_series(errors, file.get(), "/history/contact/" + pair + "/force", 3);
       create_series(errors, file.get(), "/history/contact/" + pair + "/max_penetration");
+      create_series(errors, file.get(), "/history/contact/" + pair + "/normal_force");
+      create_series(errors, file.get(), "/history/contact/" + pair + "/tangential_force");
+    }
+  }
+  if (!walls.empty()) {
+    create_group(errors, file.get(), "/history/wall");
+    for (const std::string& wall : walls) {
+      create_group(errors, file.get(), "/history/wall/" + wall);
+      create_series(errors, file.get(), "/history/wall/" + wall + "/force", 3);
     }
   }
   file.close();
 }
 
 void ResultWriter::Impl::write_history(hid_t file, const std::vector<HistoryRow>& rows,
-                                       const std::vector<ContactHistoryRow>& contact_rows) {
+                                       const std::vector<ContactHistoryRow>& contact_rows,
+                                       const std::vector<WallHistoryRow>& wall_rows) {
   if (rows.empty()) return;
   std::vector<double> column_values(rows.size());
   for (const auto& [column, member] : history_columns) {
@@ -255,14 +270,25 @@ void ResultWriter::Impl::write_history(hid_t file, const std::vector<HistoryRow>
   const std::size_t pairs = contact_pairs.size();
   std::vector<double> force(3 * rows.size());
   for (std::size_t k = 0; k < pairs; ++k) {
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      const ContactHistoryRow& row = contact_rows[pairs * i + k];
-      for (int c = 0; c < 3; ++c) force[3 * i + std::size_t(c)] = row.force[std::size_t(c)];
-      column_values[i] = row.max_penetration;
-    }
     const std::string group = "/history/contact/" + contact_pairs[k];
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        force[3 * i + std::size_t(c)] = contact_rows[pairs * i + k].force[std::size_t(c)];
     append_series(errors, file, group + "/force", history_rows_on_disk, force, 3);
-    append_series(errors, file, group + "/max_penetration", history_rows_on_disk, column_values);
+    for (const auto& [column, member] :
+         {std::pair{"/max_penetration", &ContactHistoryRow::max_penetration},
+          std::pair{"/normal_force", &ContactHistoryRow::normal_force},
+          std::pair{"/tangential_force", &ContactHistoryRow::tangential_force}}) {
+      for (std::size_t i = 0; i < rows.size(); ++i) column_values[i] = contact_rows[pairs * i + k].*member;
+      append_series(errors, file, group + column, history_rows_on_disk, column_values);
+    }
+  }
+  const std::size_t wall_count = walls.size();
+  for (std::size_t k = 0; k < wall_count; ++k) {
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        force[3 * i + std::size_t(c)] = wall_rows[wall_count * i + k].force[std::size_t(c)];
+    append_series(errors, file, "/history/wall/" + walls[k] + "/force", history_rows_on_disk, force, 3);
   }
 }
 
@@ -328,8 +354,10 @@ void ResultWriter::Impl::fill_frame(const StepData& data) {
   for (std::size_t k = 0; k < fields.size(); ++k) fill_field(frame.values[k], *fields[k], data);
   frame.history.swap(pending_history);
   frame.contact.swap(pending_contact);
+  frame.walls.swap(pending_walls);
   pending_history.clear();
   pending_contact.clear();
+  pending_walls.clear();
 }
 
 // Writes `frame` to NAME.h5, closes it, then names the step in the .xmf.
@@ -355,7 +383,7 @@ void ResultWriter::Impl::write_frame() {
                     std::pair<hsize_t, hsize_t>{first_row(layout.center), held_rows(layout.center)});
     }
     append_series(errors, file.get(), "/time", steps_on_disk, {frame.time});
-    write_history(file.get(), frame.history, frame.contact);
+    write_history(file.get(), frame.history, frame.contact, frame.walls);
     file.close();
   }
   // Only now is the step on disk: record it, then let readers see it.
@@ -423,9 +451,8 @@ void ResultWriter::Impl::remove_stale_xdmf() const {
 // ---------------------------------------------------------------------------
 
 ResultWriter::ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
-                           const std::vector<input::OutputField>& fields,
-                           const std::vector<std::string>& contact_pairs, std::size_t expected_steps,
-                           const Distribution& distribution) {
+                           const std::vector<input::OutputField>& fields, const HistoryGroups& groups,
+                           std::size_t expected_steps, const Distribution& distribution) {
   // Names end up in "NAME.h5:/path" inside the .xmf, which the XDMF readers
   // split at the colon; a slash would put the files somewhere else.
   if (name.empty() || name.find_first_of(":/\\") != std::string::npos) {
@@ -473,9 +500,13 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
                                   std::to_string(node_count));
     }
   }
-  for (const std::string& pair : contact_pairs)
-    if (pair.empty() || pair.find('/') != std::string::npos || pair == "." || pair == "..")
-      throw std::invalid_argument("ResultWriter: contact pair name '" + pair + "' cannot name an HDF5 group");
+  for (const auto* names : {&groups.contact_pairs, &groups.walls})
+    for (const std::string& name_of_group : *names)
+      if (name_of_group.empty() || name_of_group.find('/') != std::string::npos || name_of_group == "." ||
+          name_of_group == "..")
+        throw std::invalid_argument(std::string("ResultWriter: ") +
+                                    (names == &groups.walls ? "rigid wall" : "contact pair") + " name '" +
+                                    name_of_group + "' cannot name an HDF5 group");
 
   fs::create_directories(directory);
   impl_ = std::make_unique<Impl>(fs::path(directory), name, distribution);
@@ -484,7 +515,8 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   impl_->expected_steps = static_cast<unsigned>(std::min<std::size_t>(expected_steps, 65535));
   impl_->mixed = has_8 && has_20;
   impl_->nodes_per_element = has_20 ? 20 : 8;
-  impl_->contact_pairs = contact_pairs;
+  impl_->contact_pairs = groups.contact_pairs;
+  impl_->walls = groups.walls;
   for (const FieldLayout& layout : field_layouts) {
     if (std::find(fields.begin(), fields.end(), layout.field) != fields.end())
       impl_->fields.push_back(&layout);
@@ -532,10 +564,15 @@ void ResultWriter::write_in_background(bool background) {
   w.background = background && !w.distribution.comm.distributed();
 }
 
-void ResultWriter::add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact) {
+void ResultWriter::add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact,
+                               const std::vector<WallHistoryRow>& walls) {
   if (contact.size() != impl_->contact_pairs.size())
     throw std::logic_error("ResultWriter::add_history: " + std::to_string(contact.size()) +
                            " contact rows for " + std::to_string(impl_->contact_pairs.size()) + " pairs");
+  if (walls.size() != impl_->walls.size())
+    throw std::logic_error("ResultWriter::add_history: " + std::to_string(walls.size()) + " wall rows for " +
+                           std::to_string(impl_->walls.size()) + " walls");
+  impl_->pending_walls.insert(impl_->pending_walls.end(), walls.begin(), walls.end());
   impl_->pending_history.push_back(row);
   impl_->pending_contact.insert(impl_->pending_contact.end(), contact.begin(), contact.end());
 }
@@ -595,11 +632,12 @@ void ResultWriter::flush() {
   if (w.pending_history.empty()) return;
   const Hdf5ErrorPrintingOff quiet;
   Hdf5File file(w.errors, Hdf5File::Mode::append);
-  w.write_history(file.get(), w.pending_history, w.pending_contact);
+  w.write_history(file.get(), w.pending_history, w.pending_contact, w.pending_walls);
   file.close();
   w.history_rows_on_disk += w.pending_history.size();
   w.pending_history.clear();
   w.pending_contact.clear();
+  w.pending_walls.clear();
 }
 
 std::string ResultWriter::h5_path() const { return impl_->h5_file.string(); }

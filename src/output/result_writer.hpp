@@ -58,13 +58,31 @@ struct HistoryRow {
   double hourglass_energy = 0.0;
   double external_work = 0.0;
   double total_energy = 0.0;
-  double plastic_work = 0.0;  // a part of internal_energy (docs/output.md)
+  double plastic_work = 0.0;   // a part of internal_energy (docs/output.md)
+  double friction_work = 0.0;  // a part of contact_energy (docs/output.md)
 };
 
 // One history row of one contact pair.
 struct ContactHistoryRow {
   std::array<double, 3> force{};  // total contact force on the pair's slave side, N
   double max_penetration = 0.0;   // the pair's deepest penetration at that step, m (>= 0)
+  double normal_force = 0.0;      // |the normal part of force|, N
+  double tangential_force = 0.0;  // |its tangential (friction) part|, N
+};
+
+// One history row of one rigid wall.
+struct WallHistoryRow {
+  std::array<double, 3> force{};  // total force of the wall on the bodies, N
+};
+
+// The names of the groups under /history: contact pairs (/history/contact/NAME) and
+// rigid walls (/history/wall/NAME).
+struct HistoryGroups {
+  std::vector<std::string> contact_pairs;
+  std::vector<std::string> walls;
+  HistoryGroups() = default;
+  HistoryGroups(std::vector<std::string> pairs, std::vector<std::string> wall_names = {})  // NOLINT: implicit
+      : contact_pairs(std::move(pairs)), walls(std::move(wall_names)) {}
 };
 
 // Call from one thread (the serial HDF5 library is not thread-safe; the writer's
@@ -78,22 +96,23 @@ class ResultWriter {
   // Creates (or overwrites) DIRECTORY/NAME.h5 with /mesh; creates DIRECTORY if
   // needed. NAME.xmf is written from the first step on (ParaView's Xdmf2 reader
   // crashes on a collection with no step); a NAME.xmf of an earlier run is removed.
-  // contact_pairs: the names of the contact pairs, whose histories go to
-  // /history/contact/NAME (one ContactHistoryRow each with every history row).
+  // groups: the names of the contact pairs, whose histories go to
+  // /history/contact/NAME (one ContactHistoryRow each with every history row), and of
+  // the rigid walls, /history/wall/NAME (one WallHistoryRow each).
   // expected_steps: how many steps the run plans to write; /steps is sized for
   // them, so that adding a step changes the file's structure in one place
   // (hdf5_support.hpp, create_step_group). More steps are fine.
   ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
-               const std::vector<input::OutputField>& fields,
-               const std::vector<std::string>& contact_pairs = {}, std::size_t expected_steps = 64,
-               const Distribution& distribution = {});
+               const std::vector<input::OutputField>& fields, const HistoryGroups& groups = {},
+               std::size_t expected_steps = 64, const Distribution& distribution = {});
   ~ResultWriter();
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
 
   // Buffers a history row, with one row per contact pair (in the constructor's
   // order); rows are flushed to /history at every write_step and flush().
-  void add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact = {});
+  void add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact = {},
+                   const std::vector<WallHistoryRow>& walls = {});
   // Writes /steps/NNNNNN, appends to /time, flushes history, closes the file,
   // then rewrites the .xmf atomically. Steps must come in strictly increasing
   // time and step number. In the background (write_in_background), the step is

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "common/errors.hpp"
 #include "contact/edge_contact.hpp"
@@ -128,15 +129,19 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
                            const std::vector<input::FaceRef>& master) {
   PassGeometry g;
   auto& s = g.surfaces;
-  s.quadrature = options.slave_points == input::SlavePoints::quadrature;
   const NodalVectors& x = model.mesh.x_ref;
   std::vector<mesh::Face> slave_faces;
+  bool eight_node_segments = false;
   for (const auto& f : slave) {
     slave_faces.push_back(mesh::face_of(model.mesh, f.part, f.side));
+    for (const auto& face_segment : slave_faces.back().segments)
+      eight_node_segments = eight_node_segments || face_segment.node_count == 8;
     s.slave_nodes.insert(s.slave_nodes.end(), slave_faces.back().nodes.begin(),
                          slave_faces.back().nodes.end());
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
   }
+  s.quadrature = input::resolved_slave_points(options.slave_points, eight_node_segments) ==
+                 input::SlavePoints::quadrature;
   std::sort(s.slave_nodes.begin(), s.slave_nodes.end());
   s.slave_nodes.erase(std::unique(s.slave_nodes.begin(), s.slave_nodes.end()), s.slave_nodes.end());
   auto slave_index = [&](std::uint32_t node) {
@@ -250,6 +255,67 @@ void quadrature_stiffness(const input::ContactOptions& options, const Model& mod
   }
 }
 
+// The stiffness of each slave point of a pass, N/m (ContactSurfaces::stiffness).
+void slave_point_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g,
+                           double dt, double courant) {
+  auto& s = g.surfaces;
+  if (s.quadrature) {
+    quadrature_stiffness(options, model, g, dt, courant);
+    return;
+  }
+  s.stiffness.resize(s.slave_nodes.size());
+  for (std::size_t i = 0; i < s.slave_nodes.size(); ++i)
+    s.stiffness[i] =
+        options.penalty.stiffness
+            ? *options.penalty.stiffness
+            : options.penalty.scale * contact::automatic_stiffness(g.modulus, g.area[i], s.normal_length[i]);
+}
+
+contact::FrictionLaw friction_law(const std::optional<input::FrictionOptions>& friction) {
+  contact::FrictionLaw law;
+  if (!friction) return law;
+  law.enabled = true;
+  law.static_coefficient = friction->static_coefficient;
+  law.dynamic_coefficient = friction->dynamic_coefficient;
+  law.decay = friction->decay;
+  return law;
+}
+
+// The penalty settings of a pair or a wall: the automatic caps at step dt.
+void set_penalty(const input::PenaltyOptions& penalty, double dt, double critical_dt,
+                 contact::ContactPassSettings& settings) {
+  settings.damping_ratio = penalty.damping;
+  settings.automatic_stiffness = !penalty.stiffness.has_value();
+  settings.stiffness_scale = penalty.scale;
+  settings.dt = settings.set_for_dt = dt;
+  settings.courant = dt / critical_dt;
+}
+
+// A rigid wall: its slave side as the slave side of a pass against the same faces (the
+// mirror image's), for the stiffness rule; the segments are not needed after.
+RigidWall build_wall(const input::Deck& deck, const Model& model, const input::RigidWallOptions& options,
+                     double dt, double critical_dt) {
+  input::ContactOptions as_pair;
+  as_pair.slave = as_pair.master = options.slave;
+  as_pair.slave_points = options.slave_points;
+  PassGeometry g = pass_geometry(deck, model, as_pair, options.slave, options.slave);
+  slave_point_stiffness(as_pair, model, g, dt, dt / critical_dt);
+  RigidWall wall;
+  wall.name = options.name;
+  wall.surfaces = std::move(g.surfaces);
+  wall.surfaces.segments.clear();
+  wall.surfaces.edges.clear();
+  wall.surfaces.moving_nodes = wall.surfaces.slave_nodes;
+  const contact::Vec3 normal{options.normal[0], options.normal[1], options.normal[2]};
+  wall.plane.normal = (1.0 / contact::norm(normal)) * normal;
+  wall.plane.point = {options.point[0], options.point[1], options.point[2]};
+  wall.plane.velocity = {options.velocity[0], options.velocity[1], options.velocity[2]};
+  set_penalty(as_pair.penalty, dt, critical_dt, wall.settings);
+  wall.settings.pass_count = 2;  // the image pair's two passes
+  wall.settings.friction = friction_law(options.friction);
+  return wall;
+}
+
 // A fixed penalty stiffness that no contact could carry stably is bad input: even
 // for the heaviest slave node of the pair, with the master side taken as rigid
 // (inverse mass 1/m_s, the most favourable case), k exceeds the bound of
@@ -270,7 +336,7 @@ void refuse_unstable_stiffness(const input::Deck& deck, const Model& model, cons
     }
   }
   if (*options.penalty.stiffness <= bound) return;
-  const bool quadrature = options.slave_points == input::SlavePoints::quadrature;
+  const bool quadrature = geometry.front().surfaces.quadrature;
   const char* units = quadrature ? "Pa/m" : "N/m";
   char text[440];
   std::snprintf(
@@ -291,30 +357,20 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
   for (const auto& options : deck.contact) {
     ContactPair pair;
     pair.name = options.name;
-    pair.slave_points = options.slave_points;
     const int pass_count = options.two_pass ? 2 : 1;
     double smallest_length = std::numeric_limits<double>::infinity();
     std::vector<PassGeometry> geometry;
     for (int p = 0; p < pass_count; ++p) {
       geometry.push_back(p == 0 ? pass_geometry(deck, model, options, options.slave, options.master)
                                 : pass_geometry(deck, model, options, options.master, options.slave));
-      PassGeometry& g = geometry.back();
-      smallest_length = std::min(smallest_length, g.smallest_length);
-      auto& s = g.surfaces;
-      if (s.quadrature) {
-        quadrature_stiffness(options, model, g, dt, dt / critical_dt);
-        continue;
-      }
-      s.stiffness.resize(s.slave_nodes.size());
-      for (std::size_t i = 0; i < s.slave_nodes.size(); ++i)
-        s.stiffness[i] = options.penalty.stiffness
-                             ? *options.penalty.stiffness
-                             : options.penalty.scale *
-                                   contact::automatic_stiffness(g.modulus, g.area[i], s.normal_length[i]);
+      smallest_length = std::min(smallest_length, geometry.back().smallest_length);
+      slave_point_stiffness(options, model, geometry.back(), dt, dt / critical_dt);
     }
     if (options.penalty.stiffness)
       refuse_unstable_stiffness(deck, model, pair, geometry, options, contact.pairs.size(), dt,
                                 dt / critical_dt);
+    pair.slave_points =
+        geometry.front().surfaces.quadrature ? input::SlavePoints::quadrature : input::SlavePoints::nodes;
     for (auto& g : geometry) pair.passes.push_back(std::move(g.surfaces));
     auto& settings = pair.settings;
     settings.project = contact::select_method(options.local_search.method);
@@ -322,11 +378,8 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
     settings.projection.tolerance = options.local_search.tolerance;
     settings.projection.max_iterations = options.local_search.max_iterations;
     settings.initial_guess = options.local_search.initial_guess;
-    settings.damping_ratio = options.penalty.damping;
-    settings.automatic_stiffness = !options.penalty.stiffness.has_value();
-    settings.stiffness_scale = options.penalty.scale;
-    settings.dt = settings.set_for_dt = dt;
-    settings.courant = dt / critical_dt;
+    set_penalty(options.penalty, dt, critical_dt, settings);
+    settings.friction = friction_law(options.friction);
     settings.pass_count = pass_count;
     // Penetrations deeper than half an element are not searched for; a node that
     // moves half the margin triggers a new global search.
@@ -338,16 +391,45 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
       contact.nodes.insert(contact.nodes.end(), pass.moving_nodes.begin(), pass.moving_nodes.end());
     contact.pairs.push_back(std::move(pair));
   }
+  for (const auto& options : deck.rigid_walls) {
+    contact.walls.push_back(build_wall(deck, model, options, dt, critical_dt));
+    const auto& slave_nodes = contact.walls.back().surfaces.slave_nodes;
+    contact.nodes.insert(contact.nodes.end(), slave_nodes.begin(), slave_nodes.end());
+  }
   std::sort(contact.nodes.begin(), contact.nodes.end());
   contact.nodes.erase(std::unique(contact.nodes.begin(), contact.nodes.end()), contact.nodes.end());
   return contact;
 }
 
 void follow_time_step(ContactModel& contact, double fall) {
-  for (ContactPair& pair : contact.pairs) {
-    pair.settings.dt = pair.settings.set_for_dt * fall;
-    pair.settings.stiffness_growth = 1.0 / (fall * fall);
-  }
+  auto follow = [fall](contact::ContactPassSettings& settings) {
+    settings.dt = settings.set_for_dt * fall;
+    settings.stiffness_growth = 1.0 / (fall * fall);
+  };
+  for (ContactPair& pair : contact.pairs) follow(pair.settings);
+  for (RigidWall& wall : contact.walls) follow(wall.settings);
+}
+
+contact::Vec3 ContactPair::normal_force() const {
+  contact::Vec3 force{};
+  for (std::size_t p = 0; p < states.size(); ++p)
+    force = p == 0 ? force + states[p].slave_normal_force : force - states[p].slave_normal_force;
+  return force;
+}
+
+contact::Vec3 ContactPair::tangential_force() const {
+  contact::Vec3 force{};
+  for (std::size_t p = 0; p < states.size(); ++p)
+    force = p == 0 ? force + states[p].slave_tangential_force : force - states[p].slave_tangential_force;
+  return force;
+}
+
+double ContactModel::friction_work() const {
+  double work = 0.0;
+  for (const ContactPair& pair : pairs)
+    for (const auto& state : pair.states) work += state.friction_work;
+  for (const RigidWall& wall : walls) work += wall.state.friction_work;
+  return work;
 }
 
 contact::Vec3 ContactPair::slave_force() const {
@@ -363,11 +445,15 @@ double ContactPair::max_penetration() const {
   return deepest;
 }
 
-std::string ContactModel::pair_of(std::uint32_t node) const {
+std::string ContactModel::contact_of(std::uint32_t node) const {
   for (const auto& pair : pairs)
     for (const auto& pass : pair.passes)
-      if (std::binary_search(pass.slave_nodes.begin(), pass.slave_nodes.end(), node)) return pair.name;
-  return "?";
+      if (std::binary_search(pass.slave_nodes.begin(), pass.slave_nodes.end(), node))
+        return "contact pair " + pair.name;
+  for (const auto& wall : walls)
+    if (std::binary_search(wall.surfaces.slave_nodes.begin(), wall.surfaces.slave_nodes.end(), node))
+      return "rigid wall " + wall.name;
+  return "contact ?";
 }
 
 }  // namespace exdyn::solver

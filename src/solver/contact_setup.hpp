@@ -1,11 +1,13 @@
-// The contact pairs of a deck as passes of the contact library: surfaces from
-// the named faces, the penalty stiffness of every slave node, the search settings.
+// The contact pairs and rigid walls of a deck as passes of the contact library:
+// surfaces from the named faces, the penalty stiffness of every slave point, the
+// search and friction settings.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "contact/contact_pass.hpp"
+#include "contact/rigid_wall.hpp"
 #include "input/options.hpp"
 #include "solver/model.hpp"
 
@@ -25,17 +27,35 @@ struct ContactPair {
   // This step's total contact force on the pair's slave side (N): the first pass's
   // slave-side force minus the second pass's (whose slave side is the pair's master side).
   contact::Vec3 slave_force() const;
+  // Its normal and tangential (friction) parts, N.
+  contact::Vec3 normal_force() const;
+  contact::Vec3 tangential_force() const;
   // This step's deepest penetration of either pass, m.
   double max_penetration() const;
 };
 
+struct RigidWall {
+  std::string name;
+  contact::WallPlane plane;
+  contact::ContactSurfaces surfaces;  // the slave side (no segments)
+  contact::ContactPassSettings settings;
+  contact::WallState state;
+  contact::ContactStatistics statistics;
+  contact::ContactPhaseSeconds seconds;
+  double max_force = 0.0;  // largest |force on the bodies| of a step, N
+};
+
 struct ContactModel {
   std::vector<ContactPair> pairs;
-  std::vector<std::uint32_t> nodes;  // every node of every contact surface, unique
+  std::vector<RigidWall> walls;
+  std::vector<std::uint32_t> nodes;  // every node of every contact surface and wall, unique
 
-  // The name of the first pair with `node` as a slave node of one of its passes
-  // ("?" if none): for messages.
-  std::string pair_of(std::uint32_t node) const;
+  bool empty() const { return pairs.empty() && walls.empty(); }
+  // "contact pair NAME" or "rigid wall NAME": the first with `node` as a slave node
+  // of one of its passes; for messages.
+  std::string contact_of(std::uint32_t node) const;
+  // Dissipated by friction since the start, all pairs and walls, J.
+  double friction_work() const;
 };
 
 // dt: the step in force (s); critical_dt: the mesh's stable step without the
@@ -43,7 +63,7 @@ struct ContactModel {
 ContactModel build_contact(const input::Deck& deck, const Model& model, double dt, double critical_dt);
 
 // The step in force follows the deformation: the automatic stiffness of every pair
-// follows it (ContactPassSettings::stiffness_growth). fall: dt^{n-1/2} / dt^{1/2}.
+// and wall follows it (ContactPassSettings::stiffness_growth). fall: dt^{n-1/2} / dt^{1/2}.
 void follow_time_step(ContactModel& contact, double fall);
 
 }  // namespace exdyn::solver

@@ -60,12 +60,14 @@ RowExchange row_exchange(const mpi::Communicator& comm, std::size_t n, const std
 
 std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mesh::Mesh& mesh) {
   std::vector<std::uint32_t> nodes;
-  for (const input::ContactOptions& pair : deck.contact)
-    for (const auto* faces : {&pair.slave, &pair.master})
-      for (const input::FaceRef& f : *faces) {
-        const mesh::Face face = mesh::face_of(mesh, f.part, f.side);
-        nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
-      }
+  auto add_faces = [&](const std::vector<input::FaceRef>& faces) {
+    for (const input::FaceRef& f : faces) {
+      const mesh::Face face = mesh::face_of(mesh, f.part, f.side);
+      nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
+    }
+  };
+  for (const input::ContactOptions& pair : deck.contact) add_faces(pair.slave), add_faces(pair.master);
+  for (const input::RigidWallOptions& wall : deck.rigid_walls) add_faces(wall.slave);
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   return nodes;
@@ -80,14 +82,16 @@ ContactModel localize_contact(const ContactModel& global, const Decomposition& d
   };
   ContactModel contact = global;
   for (std::uint32_t& node : contact.nodes) renumber(node);
+  auto renumber_surfaces = [&](contact::ContactSurfaces& s) {
+    for (std::uint32_t& node : s.slave_nodes) renumber(node);
+    for (std::uint32_t& node : s.moving_nodes) renumber(node);
+    for (auto* segments : {&s.slave_segments, &s.segments})
+      for (contact::SegmentNodes& segment : *segments)
+        for (int k = 0; k < contact::node_count(segment.type); ++k) renumber(segment.nodes[std::size_t(k)]);
+  };
   for (ContactPair& pair : contact.pairs)
-    for (contact::ContactSurfaces& s : pair.passes) {
-      for (std::uint32_t& node : s.slave_nodes) renumber(node);
-      for (std::uint32_t& node : s.moving_nodes) renumber(node);
-      for (auto* segments : {&s.slave_segments, &s.segments})
-        for (contact::SegmentNodes& segment : *segments)
-          for (int k = 0; k < contact::node_count(segment.type); ++k) renumber(segment.nodes[std::size_t(k)]);
-    }
+    for (contact::ContactSurfaces& s : pair.passes) renumber_surfaces(s);
+  for (RigidWall& wall : contact.walls) renumber_surfaces(wall.surfaces);
   return contact;
 }
 
@@ -351,6 +355,12 @@ LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact
     m.counted_mass[i] = d.owned[i] != 0 ? global.mass[g] : 0.0;
     for (int c = 0; c < 3; ++c)
       run.initial_velocity.component(c)[i] = global_initial_velocity.component(c)[g];
+  }
+  if (!global.load_acceleration.empty()) {
+    m.load_acceleration.resize(local_nodes);
+    for (std::size_t i = 0; i < local_nodes; ++i)
+      for (int c = 0; c < 3; ++c)
+        m.load_acceleration.component(c)[i] = global.load_acceleration.component(c)[d.global_node[i]];
   }
   for (std::size_t c = 0; c < 3; ++c)
     for (const std::uint32_t g : global.fixed_nodes[c])

@@ -33,6 +33,21 @@ Model build_model(const input::Deck& deck) {
     EXDYN_ASSERT(model.mass[i] > 0.0);  // every node belongs to an element
     model.inverse_mass[i] = 1.0 / model.mass[i];
   }
+  // Gravity: a body force rho g per unit volume, on the lumped mass m g per node (the
+  // consistent load of a 20-node brick has the negative corner shares of its mass;
+  // the lumped one the same total, docs/theory.md).
+  if (!deck.loads.empty()) {
+    model.load_acceleration.resize(node_count);
+    for (const input::LoadOptions& load : deck.loads)
+      for (std::size_t p = 0; p < deck.parts.size(); ++p) {
+        if (!load.parts.empty() &&
+            std::find(load.parts.begin(), load.parts.end(), int(p)) == load.parts.end())
+          continue;
+        const mesh::PartRange& range = model.mesh.parts[p];
+        for (std::uint32_t i = range.first_node; i < range.first_node + range.node_count; ++i)
+          for (int c = 0; c < 3; ++c) model.load_acceleration.component(c)[i] += load.gravity[std::size_t(c)];
+      }
+  }
   for (const auto& bc : deck.boundary_conditions)
     for (const auto& face_ref : bc.faces) {
       const mesh::Face face = mesh::face_of(model.mesh, face_ref.part, face_ref.side);

@@ -20,6 +20,9 @@ struct Model {
   // On many ranks (decomposition.hpp): the mass the energy sums count, the owned
   // nodes' (0 elsewhere); empty on one rank, where it is `mass`.
   std::vector<double> counted_mass;
+  // The body-force acceleration g of each node (loads: gravity, m/s^2), whose force
+  // m g goes with the contact forces; empty when the deck has no loads.
+  NodalVectors load_acceleration;
   // Nodes whose x, y or z velocity is held at zero (sorted, unique).
   std::array<std::vector<std::uint32_t>, 3> fixed_nodes;
 };

@@ -64,8 +64,8 @@ class TimeLoop {
     return " at step " + std::to_string(state_.step) + ", time " + format_time(state_.time);
   }
   output::HistoryRow history_row() const {
-    return {state_.time,       energy_.kinetic,       energy_.internal, energy_.contact,
-            energy_.hourglass, energy_.external_work, energy_.total(),  energy_.plastic};
+    return {state_.time,           energy_.kinetic, energy_.internal, energy_.contact, energy_.hourglass,
+            energy_.external_work, energy_.total(), energy_.plastic,  energy_.friction};
   }
 
   const input::Deck& deck_;
@@ -127,8 +127,9 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   std::vector<std::uint8_t> element_nodes(model_.mesh.element_count());
   for (std::size_t e = 0; e < element_nodes.size(); ++e)
     element_nodes[e] = static_cast<std::uint8_t>(model_.mesh.nodes_of(e));
-  std::vector<std::string> pair_names;
-  for (const auto& pair : contact_.pairs) pair_names.push_back(pair.name);
+  output::HistoryGroups history_groups;
+  for (const auto& pair : contact_.pairs) history_groups.contact_pairs.push_back(pair.name);
+  for (const auto& wall : contact_.walls) history_groups.walls.push_back(wall.name);
   output::Distribution distribution;
   if (comm.distributed()) {
     distribution.comm = comm;
@@ -141,7 +142,7 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
       directory, deck.name,
       output::MeshView{&model_.mesh.x_ref, &model_.mesh.connectivity, &model_.mesh.element_part,
                        &element_nodes},
-      deck.output.fields, pair_names,
+      deck.output.fields, history_groups,
       // steps 0, every, 2 every, ..., the last, and one more a stop may write
       static_cast<std::size_t>(clock_->planned_steps() / std::max(deck.output.every, 1) + 3), distribution);
   writer_->write_in_background(deck.output.background);
@@ -165,6 +166,16 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   state_.internal_force.resize(node_count);
   state_.contact_force.resize(node_count);
   state_.previous_contact_force.resize(node_count);
+  if (!model_.load_acceleration.empty()) {  // f_load = m g, with the contact forces from the start
+    state_.load_force.resize(node_count);
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t i = 0; i < node_count; ++i) {
+        const double f = model_.mass[i] * model_.load_acceleration.component(c)[i];
+        state_.load_force.component(c)[i] = state_.contact_force.component(c)[i] =
+            state_.previous_contact_force.component(c)[i] = f;
+        if (f != 0.0) state_.flags[std::size_t(c)][i] |= contact_flag;
+      }
+  }
   state_.gap.assign(node_count, 0.0);
   state_.previous_gap.assign(node_count, 0.0);
   state_.stress.assign(6 * model_.mesh.element_count(), 0.0);
@@ -184,8 +195,7 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
         return std::any_of(block.colours.begin(), block.colours.end(),
                            [](const auto& colour) { return colour.size() > 1; });
       });
-  side_by_side_ =
-      !contact_.pairs.empty() && max_threads() > 1 && element_pass_threaded && !comm.distributed();
+  side_by_side_ = !contact_.empty() && max_threads() > 1 && element_pass_threaded && !comm.distributed();
 }
 
 // One step n, in the order of the algorithm.
@@ -246,11 +256,14 @@ void TimeLoop::compute_forces() {
   energy_.internal = element_energy.strain;
   energy_.hourglass = element_energy.hourglass;
   energy_.plastic = element_energy.plastic;
-  if (!contact_.pairs.empty()) {
+  if (!state_.load_force.empty()) add_load_work(model_, state_, clock_->previous());
+  if (!contact_.empty()) {
     if (!side_by_side_) compute_contact_forces(model_, contact_, state_, clock_->previous());
     contact_statistics_ = total_statistics(contact_);
     energy_.contact = state_.contact_energy;
+    energy_.friction = contact_.friction_work();
   }
+  energy_.external_work = state_.external_work;  // this rank's: summed over the ranks with the energies
 }
 
 void TimeLoop::plan_time_step() {
@@ -270,6 +283,7 @@ void TimeLoop::update_velocities_and_energy() {
                                 energy_, controls_.stop_signal, stop_requested_);
     if (!update_.finite) step_back_and_stop(describe_non_finite(model_, d_, state_) + when());
     energy_.kinetic = update_.kinetic;
+    energy_.external_work += state_.wall_work;
     const double dt = clock_->next();
     mean_energy_ = energy_.total() + dt * dt * update_.mass_acceleration_squared;
     largest_speed_ = std::sqrt(3.0) * update_.largest_component;  // >= |v^{n+1/2}|_2 of every node
@@ -278,8 +292,11 @@ void TimeLoop::update_velocities_and_energy() {
   if (!std::isfinite(total)) step_back_and_stop(describe_non_finite(model_, d_, state_) + when());
   if (state_.step == 0) initial_total_ = total, initial_mean_energy_ = mean_energy_;
   largest_mean_energy_ = std::max(largest_mean_energy_, std::abs(mean_energy_));
+  // The scale counts what loads and moving walls put in: a run driven from outside
+  // starts from nothing.
   largest_energy_ =
-      std::max({largest_energy_, std::abs(total), energy_.kinetic, energy_.internal + energy_.hourglass});
+      std::max({largest_energy_, std::abs(total), energy_.kinetic, energy_.internal + energy_.hourglass,
+                std::abs(energy_.external_work) + std::abs(energy_.contact)});
   if (largest_energy_ > 0.0)
     max_energy_error_ = std::max(max_energy_error_, std::abs(total - initial_total_) / largest_energy_);
   summary_.energy = {initial_total_, total, max_energy_error_};
@@ -304,7 +321,7 @@ void TimeLoop::check_guards() {
                   100.0 * growth / scale, 100.0 * deck_.guards.energy_growth);
     std::string advice =
         "; time.courant is " + format_number(clock_->next() / critical_dt_) + " of the stable step";
-    if (!contact_.pairs.empty())
+    if (!contact_.empty())
       advice += ", the stiffest contact node pair " + format_number(contact_statistics_.max_pair_stiffness) +
                 " N/m";
     stop_run(detail + describe_fastest_node(d_, state_.velocity) + when() + advice);
@@ -313,7 +330,7 @@ void TimeLoop::check_guards() {
     char detail[200];
     std::snprintf(detail, sizeof detail, " penetrates by %.3g h (guards.max_penetration = %.3g h)",
                   contact_statistics_.max_penetration_over_h, deck_.guards.max_penetration);
-    stop_run("contact pair " + contact_.pair_of(contact_statistics_.deepest_node) + ": slave node " +
+    stop_run(contact_.contact_of(contact_statistics_.deepest_node) + ": slave node " +
              std::to_string(global_node_id(d_, contact_statistics_.deepest_node)) + detail + when());
   }
   if (moved_since_check_ >= safety_radius_) check_inversion();
@@ -383,7 +400,7 @@ void TimeLoop::warn_small_strain() {
 void TimeLoop::write_output() {
   ScopedTimer timer(summary_.phase_seconds.output);
   if (state_.step % deck_.output.history_every == 0 || last_)
-    writer_->add_history(history_row(), contact_history(contact_));
+    writer_->add_history(history_row(), contact_history(contact_), wall_history(contact_));
   if (output_step_) {
     step_writer_->write(state_, clock_->next());
     last_written_ = state_.step;
@@ -409,7 +426,7 @@ void TimeLoop::update_positions() {
 void TimeLoop::stop_run(const std::string& message) {
   ScopedTimer timer(summary_.phase_seconds.output);
   if (state_.step > last_written_) {
-    writer_->add_history(history_row(), contact_history(contact_));
+    writer_->add_history(history_row(), contact_history(contact_), wall_history(contact_));
     step_writer_->write(state_, clock_->next());
     last_written_ = state_.step;
   }
@@ -463,6 +480,7 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
   const auto write_summary = [&] {
     if (controls.comm.root()) output::write_summary(summary_path, summary);
   };
+  summary.warnings = input::deck_warnings(deck);
   TimeLoop loop(deck, controls, summary);
   try {
     loop.run();

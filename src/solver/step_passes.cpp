@@ -68,8 +68,10 @@ namespace {
 //   E_c^n = E_c^{n-1} - 1/2 (f_c^{n-1} + f_c^n).(u^n - u^{n-1}),  u^n - u^{n-1} = dt v^{n-1/2}.
 void begin_contact_forces(ContactModel& contact, State& state) {
   std::swap(state.contact_force, state.previous_contact_force);
+  const bool loads = !state.load_force.empty();
   for (std::uint32_t node : contact.nodes) {
-    state.contact_force.x[node] = state.contact_force.y[node] = state.contact_force.z[node] = 0.0;
+    for (int c = 0; c < 3; ++c)
+      state.contact_force.component(c)[node] = loads ? state.load_force.component(c)[node] : 0.0;
     state.previous_gap[node] = state.gap[node];
     state.gap[node] = std::numeric_limits<double>::infinity();
   }
@@ -83,17 +85,40 @@ void run_contact_passes(const Model& model, ContactModel& contact, State& state)
                                 state.gap, pair.statistics, pair.seconds);
     pair.max_force = std::max(pair.max_force, contact::norm(pair.slave_force()));
   }
+  for (auto& wall : contact.walls) {
+    contact::run_wall_pass(wall.surfaces, wall.plane, wall.settings, wall.state, model.mesh.x_ref,
+                           state.displacement, state.velocity, model.mass, state.time, state.contact_force,
+                           state.gap, wall.statistics, wall.seconds);
+    wall.max_force = std::max(wall.max_force, contact::norm(wall.state.force));
+  }
 }
 
 void finish_contact_forces(ContactModel& contact, State& state, double dt) {
   double power = 0.0;  // (f_c^{n-1} + f_c^n).v^{n-1/2}, W x 2
+  const bool loads = !state.load_force.empty();
   for (std::uint32_t node : contact.nodes) {
     if (state.gap[node] == std::numeric_limits<double>::infinity()) state.gap[node] = 0.0;  // no candidate
-    power += (state.previous_contact_force.x[node] + state.contact_force.x[node]) * state.velocity.x[node] +
-             (state.previous_contact_force.y[node] + state.contact_force.y[node]) * state.velocity.y[node] +
-             (state.previous_contact_force.z[node] + state.contact_force.z[node]) * state.velocity.z[node];
+    if (!loads) {
+      power += (state.previous_contact_force.x[node] + state.contact_force.x[node]) * state.velocity.x[node] +
+               (state.previous_contact_force.y[node] + state.contact_force.y[node]) * state.velocity.y[node] +
+               (state.previous_contact_force.z[node] + state.contact_force.z[node]) * state.velocity.z[node];
+      continue;
+    }
+    for (int c = 0; c < 3; ++c)
+      power += (state.previous_contact_force.component(c)[node] + state.contact_force.component(c)[node] -
+                2.0 * state.load_force.component(c)[node]) *
+               state.velocity.component(c)[node];
   }
   state.contact_energy -= 0.5 * dt * power;
+  // A moving wall puts work in, W = integral F.V dt (F its force on the bodies): that is
+  // external work, and the contact energy is the work against the wall's force in its
+  // own frame, -integral F.(v - V) dt (the same total, split as the balance reads).
+  for (const RigidWall& wall : contact.walls) {
+    const double work =
+        0.5 * dt * contact::dot(wall.state.previous_force + wall.state.force, wall.plane.velocity);
+    state.contact_energy += work;
+    state.wall_work += work;
+  }
 }
 
 }  // namespace
@@ -102,6 +127,22 @@ void compute_contact_forces(const Model& model, ContactModel& contact, State& st
   begin_contact_forces(contact, state);
   run_contact_passes(model, contact, state);
   finish_contact_forces(contact, state, dt);
+}
+
+// W += dt sum m_i g_i.v_i^{n-1/2} over the counted (on many ranks: owned) nodes, in
+// chunk order (the same on any number of threads).
+void add_load_work(const Model& model, State& state, double dt) {
+  const std::vector<double>& mass = model.counted_mass.empty() ? model.mass : model.counted_mass;
+  for_each_chunk(model.mesh.node_count(), [&](std::size_t begin, std::size_t end, std::size_t k) {
+    double power = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double* g = model.load_acceleration.component(c).data();
+      const double* v = state.velocity.component(c).data();
+      for (std::size_t i = begin; i < end; ++i) power += mass[i] * g[i] * v[i];
+    }
+    state.partial[0][k] = power;
+  });
+  state.external_work += dt * ordered_sum(state.partial[0]);
 }
 
 // f_int (compute_internal_forces) and the contact forces (compute_contact_forces) of
@@ -152,8 +193,11 @@ element::ElementEnergies compute_forces_side_by_side(const Model& model, Contact
 // The figures of all pairs together (the run's), from each pair's.
 contact::ContactStatistics total_statistics(const ContactModel& contact) {
   contact::ContactStatistics total;
-  for (const auto& pair : contact.pairs) {
-    const contact::ContactStatistics& s = pair.statistics;
+  std::vector<const contact::ContactStatistics*> all;
+  for (const auto& pair : contact.pairs) all.push_back(&pair.statistics);
+  for (const auto& wall : contact.walls) all.push_back(&wall.statistics);
+  for (const contact::ContactStatistics* each : all) {
+    const contact::ContactStatistics& s = *each;
     total.projections += s.projections;
     total.iterations += s.iterations;
     total.max_iterations = std::max(total.max_iterations, s.max_iterations);
@@ -174,7 +218,20 @@ std::vector<output::ContactHistoryRow> contact_history(const ContactModel& conta
   rows.reserve(contact.pairs.size());
   for (const auto& pair : contact.pairs) {
     const contact::Vec3 f = pair.slave_force();
-    rows.push_back({{f.x, f.y, f.z}, pair.max_penetration()});
+    rows.push_back({{f.x, f.y, f.z},
+                    pair.max_penetration(),
+                    contact::norm(pair.normal_force()),
+                    contact::norm(pair.tangential_force())});
+  }
+  return rows;
+}
+
+std::vector<output::WallHistoryRow> wall_history(const ContactModel& contact) {
+  std::vector<output::WallHistoryRow> rows;
+  rows.reserve(contact.walls.size());
+  for (const auto& wall : contact.walls) {
+    const contact::Vec3 f = wall.state.force;
+    rows.push_back({{f.x, f.y, f.z}});
   }
   return rows;
 }

@@ -28,9 +28,13 @@ struct State {
       flags;  // per component: fixed_flag | contact_flag (nodal_update.hpp)
   NodalVectors
       acceleration;  // a^n, m/s^2, computed when needed (output, a non-finite step: compute_accelerations)
-  NodalVectors internal_force;                 // f_int(u^n), N; 0 after update_velocities (see below)
-  NodalVectors contact_force;                  // f_contact(x^n), N
-  NodalVectors previous_contact_force;         // f_contact(x^{n-1}), N (for the contact work)
+  NodalVectors internal_force;  // f_int(u^n), N; 0 after update_velocities (see below)
+  // f_contact(x^n) + f_load, N: the loads' constant m g rides with the contact forces
+  // (the velocity update reads one array of external forces); contact_nodes and
+  // loaded nodes carry contact_flag.
+  NodalVectors contact_force;
+  NodalVectors previous_contact_force;         // f_contact(x^{n-1}) + f_load, N (for the contact work)
+  NodalVectors load_force;                     // f_load = m g, N; empty without loads
   std::vector<double> gap;                     // signed normal gap of each slave node, m (0: no candidate)
   std::vector<double> previous_gap;            // the gap of step n-1 (to step back after a non-finite step)
   std::vector<double> stress;                  // 6 per element: xx yy zz xy yz xz, Pa
@@ -39,6 +43,8 @@ struct State {
   long force_step = -1;                        // the step whose f_int `internal_force` holds, -1: none
   bool internal_force_zero = true;             // internal_force is all 0 (update_velocities zeroed it)
   double contact_energy = 0.0;                 // work done against the contact forces, J
+  double external_work = 0.0;                  // work of the loads, J (on many ranks: the owned nodes')
+  double wall_work = 0.0;                      // work of the moving walls, J (every rank: the whole)
   std::array<std::vector<double>, 4> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
   std::vector<element::ElementEnergies> block_energies;  // per block, scratch of compute_forces_side_by_side
 };
@@ -49,7 +55,8 @@ struct Energies {
   double hourglass = 0.0;
   double contact = 0.0;
   double external_work = 0.0;
-  double plastic = 0.0;  // plastic work so far, J: a part of `internal`
+  double plastic = 0.0;   // plastic work so far, J: a part of `internal`
+  double friction = 0.0;  // friction work so far, J: a part of `contact`
   double total() const { return kinetic + internal + hourglass + contact - external_work; }
 };
 
@@ -72,11 +79,15 @@ void forces_of_this_step(const Model& model, Decomposition& d, State& state);
 // The contact forces of every pair at x^n with v^{n-1/2}, and the contact work over
 // the last step dt = t^n - t^{n-1}.
 void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt);
+// The work of the loads over the last step dt, added to state.external_work (before
+// the velocity update: v^{n-1/2}).
+void add_load_work(const Model& model, State& state, double dt);
 // The two above side by side as OpenMP tasks (the same bits).
 element::ElementEnergies compute_forces_side_by_side(const Model& model, ContactModel& contact, State& state,
                                                      double dt, bool with_stress, double& element_seconds);
 contact::ContactStatistics total_statistics(const ContactModel& contact);
 std::vector<output::ContactHistoryRow> contact_history(const ContactModel& contact);
+std::vector<output::WallHistoryRow> wall_history(const ContactModel& contact);
 // a^n = (f_contact - f_int) / m (0 on fixed components); false where some a is not finite.
 bool compute_accelerations(const Model& model, State& state);
 // v^{n+1/2} = v^{n-1/2} + dt a^n in place, with the energy sums.

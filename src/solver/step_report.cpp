@@ -95,6 +95,13 @@ void StepWriter::write(State& state, double dt) {
     }
   });
   gather_plastic_strain(model_, state);
+  // The contact force field without the loads that ride in the same array.
+  const NodalVectors* contact_force = &state.contact_force;
+  if (!state.load_force.empty()) {
+    contact_only_ = state.contact_force;
+    add_scaled(contact_only_, -1.0, state.load_force);
+    contact_force = &contact_only_;
+  }
   output::StepData data;
   data.step = state.step;
   data.time = state.time;
@@ -102,7 +109,7 @@ void StepWriter::write(State& state, double dt) {
     data.displacement = &state.displacement;
     data.velocity = &velocity_;
     data.acceleration = &state.acceleration;
-    data.contact_force = &state.contact_force;
+    data.contact_force = contact_force;
     data.gap = state.gap.data();
     data.stress = state.stress.data();
     data.von_mises = von_mises_.data();
@@ -111,7 +118,7 @@ void StepWriter::write(State& state, double dt) {
     const std::pair<const NodalVectors*, NodalVectors*> vectors[] = {{&state.displacement, &rows_[0]},
                                                                      {&velocity_, &rows_[1]},
                                                                      {&state.acceleration, &rows_[2]},
-                                                                     {&state.contact_force, &rows_[3]}};
+                                                                     {contact_force, &rows_[3]}};
     for (const auto& [local, rows] : vectors) rows_of(d_, *local, *rows);
     rows_of(d_, state.gap.data(), 1, true, gap_rows_);
     rows_of(d_, state.stress.data(), 6, false, stress_rows_);
@@ -179,7 +186,7 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
     stop_requested = signal;
     return update;
   }
-  constexpr std::size_t n = 8;
+  constexpr std::size_t n = 9;
   const double mine[n] = {update.finite ? 0.0 : 1.0,
                           update.kinetic,
                           update.mass_acceleration_squared,
@@ -187,7 +194,8 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
                           energy.internal,
                           energy.hourglass,
                           double(signal),
-                          energy.plastic};
+                          energy.plastic,
+                          energy.external_work};
   const std::vector<double> all = mpi::all_gather(comm, mine, int(n));
   NodalUpdate total;
   total.finite = all[0] == 0.0;
@@ -198,6 +206,7 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
   energy.hourglass = all[5];
   stop_requested = int(all[6]);
   energy.plastic = all[7];
+  energy.external_work = all[8];
   for (std::size_t r = 1; r < std::size_t(comm.size); ++r) {
     const double* f = all.data() + n * r;
     total.finite = total.finite && f[0] == 0.0;
@@ -208,6 +217,7 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
     energy.hourglass += f[5];
     stop_requested = std::max(stop_requested, int(f[6]));
     energy.plastic += f[7];
+    energy.external_work += f[8];
   }
   return total;
 }

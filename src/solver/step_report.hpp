@@ -33,6 +33,7 @@ class StepWriter {
   NodalVectors velocity_;
   std::vector<double> von_mises_;
   std::array<NodalVectors, 4> rows_;  // many ranks: this rank's rows of u, v, a, f_contact
+  NodalVectors contact_only_;         // with loads: f_contact alone (state.contact_force holds f_load too)
   std::vector<double> gap_rows_, stress_rows_, von_mises_rows_, plastic_strain_rows_;
 };
 

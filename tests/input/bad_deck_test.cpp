@@ -84,7 +84,7 @@ const BadDeck bad_decks[] = {
     {"quadrature_zero.yaml", "contact[0].quadrature", 21,
      "expected an integer from 1 to 6 (Gauss points per direction on each slave segment), got 0"},
     {"unknown_slave_points.yaml", "contact[0].slave_points", 20,
-     "unknown slave points 'gauss'; expected nodes, quadrature"},
+     "unknown slave points 'gauss'; expected auto, nodes, quadrature"},
     {"contact_name_with_slash.yaml", "contact[0].name", 17, "expected a contact pair name without '/'"},
     {"keep_unknown_half_space.yaml", "parts[0].sphere.keep[1]", 7, "unknown half-space 'w-'"},
     {"cylinder_zero_radius.yaml", "parts[0].cylinder.radius", 7, "expected a number > 0, got 0"},

@@ -266,7 +266,7 @@ TEST_F(ResultWriterTest, MeshIsWrittenOnceWithContractShapesAndTypes) {
 
   EXPECT_EQ(file.info("/time").shape, (std::vector<hsize_t>{0}));
   EXPECT_TRUE(file.members("/steps").empty());
-  EXPECT_EQ(file.members("/history").size(), 8u);  // the seven energies and plastic_work
+  EXPECT_EQ(file.members("/history").size(), 9u);  // the seven energies, plastic_work and friction_work
 }
 
 TEST_F(ResultWriterTest, NoXdmfBeforeTheFirstStepAndAStaleOneIsRemoved) {
@@ -693,6 +693,30 @@ TEST_F(ResultWriterTest, MeshWithoutPartsIsOnePart) {
   ResultWriter writer(directory_.string(), "run", {&mesh_.x_ref, &mesh_.connectivity, nullptr}, all_fields);
   H5Reader file(h5());
   EXPECT_EQ(file.read<std::int32_t>("/mesh/part", H5T_NATIVE_INT32), (std::vector<std::int32_t>{0, 0}));
+}
+
+// The friction histories: friction_work beside the energies, each pair's normal and
+// tangential force, each rigid wall's force, one row per history row.
+TEST_F(ResultWriterTest, WallAndFrictionHistoriesAreWrittenRowByRow) {
+  {
+    ResultWriter writer(directory_.string(), "run", mesh_.view(), all_fields,
+                        HistoryGroups{{"interface"}, {"floor"}});
+    for (int row = 0; row < 5; ++row) {
+      const double t = 1e-3 * row;
+      writer.add_history({t, 0, 0, 0, 0, 0, 0, 0, 2 * t}, {{{{t, 0, 0}}, 0.0, 4.0 + t, 5.0 + t}},
+                         {{{{t, 0, -t}}}});
+    }
+    EXPECT_THROW(writer.add_history({1.0}, {{}}), std::logic_error) << "a row for each wall";
+    writer.flush();
+  }
+  H5Reader file(h5());
+  EXPECT_EQ(file.info("/history/wall/floor/force").shape, (std::vector<hsize_t>{5, 3}));
+  EXPECT_EQ(file.doubles("/history/wall/floor/force")[3 * 4 + 2], -4e-3);
+  EXPECT_EQ(file.doubles("/history/friction_work")[4], 8e-3);
+  EXPECT_EQ(file.doubles("/history/contact/interface/normal_force")[2], 4.0 + 2e-3);
+  EXPECT_EQ(file.doubles("/history/contact/interface/tangential_force")[2], 5.0 + 2e-3);
+  EXPECT_THROW(ResultWriter(directory_.string(), "bad", mesh_.view(), all_fields, HistoryGroups{{}, {"a/b"}}),
+               std::invalid_argument);
 }
 
 }  // namespace
