@@ -62,6 +62,27 @@ TEST(Cli, CheckOutputIsAValidDeckThatChecksToTheSameText) {
   EXPECT_EQ(body(second.output), body(first.output));
 }
 
+// Slave nodes on 8-node segments: `check` and `run` say what it does to the answer.
+TEST(Cli, NodesOnEightNodeSegmentsAreWarnedAboutByCheckAndRun) {
+  const auto warned =
+      exdyn("check " + deck("plate_impact_hex20.yaml") + " --set contact[0].slave_points=nodes");
+  ASSERT_EQ(warned.status, 0) << warned.output;
+  EXPECT_NE(warned.output.find(
+                "exdyn: warning: contact pair interface: slave_points: nodes on the 8-node segments"),
+            std::string::npos)
+      << warned.output;
+  const auto quiet =
+      exdyn("check " + deck("plate_impact_hex20.yaml") + " --set contact[0].slave_points=auto");
+  ASSERT_EQ(quiet.status, 0) << quiet.output;
+  EXPECT_EQ(quiet.output.find("warning"), std::string::npos) << quiet.output;
+  exdyn::testing::TempDir directory;
+  const auto run = exdyn("run " + deck("plate_impact_hex20.yaml") + " --output " + directory.path().string() +
+                         " --set contact[0].slave_points=nodes --set time.end_time=1e-9 --quiet");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("warning: contact pair interface: slave_points: nodes"), std::string::npos)
+      << run.output;
+}
+
 // A mapped part: check reports the mesh (a quarter ball's cube-sphere: its smallest
 // scaled Jacobian is 1/sqrt(3), at the cube's corners) and echoes the sphere keys.
 TEST(Cli, CheckReportsTheMeshOfAMappedPartAndEchoesItsKeys) {

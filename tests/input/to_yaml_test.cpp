@@ -155,5 +155,47 @@ TEST(ToYaml, OverriddenDeckEchoesTheOverride) {
   EXPECT_EQ(round_trip(deck), deck);
 }
 
+// Friction, rigid walls and loads: written with every key, read back the same.
+TEST(ToYaml, FrictionWallsAndLoadsRoundTrip) {
+  const std::string source = std::string(EXDYN_SOURCE_DIR) + "/input/";
+  for (const char* name : {"sliding_block.yaml", "oblique_impact.yaml"}) {
+    Deck deck = read_deck(source + name);
+    EXPECT_EQ(round_trip(deck), deck) << to_yaml(deck);
+  }
+  Deck deck = read_deck(source + "oblique_impact.yaml");
+  deck.rigid_walls[0].velocity = {0, 0, 0.5};
+  deck.rigid_walls[0].slave_points = SlavePoints::quadrature;
+  deck.rigid_walls[0].friction = FrictionOptions{0.4, 0.2, 3.5};
+  deck.loads.push_back({{0, 0, -9.81}, {0}});
+  EXPECT_EQ(round_trip(deck), deck) << to_yaml(deck);
+  const std::string text = to_yaml(deck);
+  for (const char* line :
+       {"    friction: {static: 0.4, dynamic: 0.2, decay: 3.5}\n", "    velocity: [0, 0, 0.5]\n",
+        "    slave_points: quadrature\n", "  - {gravity: [0, 0, -9.81], parts: [block]}\n"})
+    EXPECT_TRUE(contains(text, line)) << line << " missing from\n" << text;
+  EXPECT_TRUE(
+      contains(to_yaml(read_deck(test_deck_path("decks/plate_impact.yaml"))), "slave_points: auto\n"));
+}
+
+// `auto` is the default, and resolves by the slave segments; a deck that asks for
+// nodes on 8-node segments is warned about, one that gets them by default is not.
+TEST(SlavePointsAuto, IsTheDefaultAndWarnsOnlyOnNodesOfEightNodeSegments) {
+  const std::string hex20 = std::string(EXDYN_SOURCE_DIR) + "/input/plate_impact_hex20.yaml";
+  const Deck automatic = read_deck(hex20, {{"contact[0].slave_points", "auto"}});
+  EXPECT_EQ(automatic.contact[0].slave_points, SlavePoints::automatic);
+  EXPECT_TRUE(deck_warnings(automatic).empty());
+  EXPECT_EQ(resolved_slave_points(SlavePoints::automatic, true), SlavePoints::quadrature);
+  EXPECT_EQ(resolved_slave_points(SlavePoints::automatic, false), SlavePoints::nodes);
+  EXPECT_EQ(resolved_slave_points(SlavePoints::nodes, true), SlavePoints::nodes);
+  const std::vector<std::string> warnings =
+      deck_warnings(read_deck(hex20, {{"contact[0].slave_points", "nodes"}}));
+  ASSERT_EQ(warnings.size(), 2u);  // both passes
+  EXPECT_TRUE(contains(warnings[0], "slave_points: nodes on the 8-node segments of plate_a.xmax"))
+      << warnings[0];
+  EXPECT_TRUE(deck_warnings(read_deck(test_deck_path("decks/plate_impact.yaml"),
+                                      {{"contact[0].slave_points", "nodes"}}))
+                  .empty());  // 4-node segments
+}
+
 }  // namespace
 }  // namespace exdyn::input

@@ -1,7 +1,8 @@
 // Coulomb friction, rigid walls and gravity through whole runs, against the exact
 // values of ../shared/reference/large-deformation-and-friction.md, section 4: a block
 // sliding to rest (input/sliding_block.yaml), the same block on an incline, an
-// oblique impact slipping throughout (input/oblique_impact.yaml), a bar on a wall
+// oblique impact slipping throughout (input/oblique_impact.yaml), a block sliding along
+// a rail of curved segments (input/block_on_rail.yaml), a bar on a wall
 // against two bars meeting, a moving wall, free fall, and the mirror symmetry of a
 // symmetric scene with friction.
 #include <gtest/gtest.h>
@@ -297,6 +298,36 @@ TEST(ObliqueImpact, SlipsThroughoutWithTheCoulombRatioAndExitSpeed) {
 TEST(ObliqueImpact, QuadraturePointsOfA20NodeBlockToo) {
   expect_slipping_impact(FrictionRun("oblique_impact.yaml", {{"parts[0].formulation", "hex20"}}), 0.2, 10.0,
                          5.0);
+}
+
+// --- long sliding on a curved surface: a block along a rail of curved 8-node segments
+
+// While the block slips, its centre decelerates at mu g whatever it spins at; it
+// crosses 23 of the rail's 1 mm segments, its anchor carried from one to the next.
+TEST(BlockOnRail, SlidesAcrossTwentyCurvedSegmentsDeceleratingAtMuG) {
+  const FrictionRun run("block_on_rail.yaml");
+  ASSERT_EQ(run.summary.status, "completed");
+  const double mu_rail = 0.1, v_start = 50.0, t_end = run.deck.time.end_time;
+  const double a = mean_acceleration(run, 1, 0, 0.1 * t_end, 0.9 * t_end);
+  const double slid = run.centre(run.summary.steps, "displacement", 1)[0];
+  const double exact = v_start * t_end - 0.5 * mu_rail * g * t_end * t_end;  // 23.75 mm
+  std::printf(
+      "block on rail: deceleration %.6g m/s^2 (mu g = %.6g, %.3f %% off), slid %.4f mm (%.4f exact) "
+      "across %d segments of 1 mm; %ld projections, %ld failed; energy error %.3g\n",
+      -a, mu_rail * g, 100 * std::abs(-a / (mu_rail * g) - 1), 1e3 * slid, 1e3 * exact, int(slid / 1e-3),
+      run.summary.contact.projections, run.summary.contact.not_converged + run.summary.contact.saddle_points,
+      run.summary.energy.max_relative_error);
+  EXPECT_NEAR(-a, mu_rail * g, 0.01 * mu_rail * g);
+  EXPECT_NEAR(slid, exact, 0.01 * exact);
+  EXPECT_GE(slid, 20e-3);
+  EXPECT_EQ(run.summary.contact.not_converged + run.summary.contact.saddle_points, 0);
+  EXPECT_LT(run.summary.energy.max_relative_error, 1e-3);
+  // In contact throughout, once it has settled: the pair pushes in every history row.
+  const auto normal = run.history("contact/slide/normal_force"), time = run.history("time");
+  int apart = 0;
+  for (std::size_t i = 0; i < time.size(); ++i) apart += time[i] > 0.1 * t_end && !(normal[i] > 0.0);
+  std::printf("rows without contact after settling: %d of %zu\n", apart, time.size());
+  EXPECT_LT(apart, int(time.size() / 100));
 }
 
 // --- walls against contact, a moving wall, gravity
