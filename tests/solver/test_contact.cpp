@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 
+#include "../support/deck_run.hpp"
 #include "../support/result_file.hpp"
 #include "../support/temp_dir.hpp"
 #include "input/deck_reader.hpp"
@@ -18,21 +19,9 @@ namespace {
 using exdyn::testing::read_dataset;
 using exdyn::testing::step_path;
 
-struct ContactRun {
-  exdyn::testing::TempDir directory{"exdyn_contact"};
-  exdyn::input::Deck deck;
-  exdyn::output::RunSummary summary;
-
-  explicit ContactRun(const std::string& file, const std::vector<exdyn::input::Override>& overrides = {}) {
-    deck = exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/" + file, overrides);
-    exdyn::solver::RunControls controls;
-    controls.output_directory = directory.path().string();
-    summary = exdyn::solver::run_simulation(deck, controls);
-  }
-  std::string h5() const { return directory.file(deck.name + ".h5"); }
-  std::vector<double> field(long step, const std::string& name) const {
-    return read_dataset(h5(), step_path(step, name)).values;
-  }
+struct ContactRun : exdyn::testing::DeckRun {
+  using DeckRun::DeckRun;
+  std::vector<double> field(long step, const std::string& name) const { return at(step, name); }
   std::vector<long> steps() const {
     std::vector<long> result;
     const auto times = read_dataset(h5(), "/time").values;

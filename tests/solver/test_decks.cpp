@@ -8,6 +8,7 @@
 #include <set>
 
 #include "../support/chain.hpp"
+#include "../support/deck_run.hpp"
 #include "../support/result_file.hpp"
 #include "../support/temp_dir.hpp"
 #include "common/errors.hpp"
@@ -22,23 +23,13 @@ using exdyn::testing::step_path;
 
 std::string deck_path(const std::string& name) { return std::string(EXDYN_SOURCE_DIR) + "/input/" + name; }
 
-struct DeckRun {
-  exdyn::testing::TempDir directory{"exdyn_deck"};
-  exdyn::input::Deck deck;
-  exdyn::output::RunSummary summary;
+struct DeckRun : exdyn::testing::DeckRun {
   exdyn::material::ElasticConstants material;
 
-  explicit DeckRun(const std::string& file, const std::vector<exdyn::input::Override>& overrides = {}) {
-    deck = exdyn::input::read_deck(deck_path(file), overrides);
-    exdyn::solver::RunControls controls;
-    controls.output_directory = directory.path().string();
-    summary = exdyn::solver::run_simulation(deck, controls);
+  explicit DeckRun(const std::string& file, const std::vector<exdyn::input::Override>& overrides = {})
+      : exdyn::testing::DeckRun(file, overrides) {
     const auto& m = deck.materials[0];
     material = exdyn::material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density);
-  }
-  std::string h5() const { return directory.file(deck.name + ".h5"); }
-  std::vector<double> final(const std::string& field) const {
-    return read_dataset(h5(), step_path(summary.steps, field)).values;
   }
 };
 

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/deck_run.hpp"
 #include "../support/result_file.hpp"
-#include "../support/temp_dir.hpp"
 #include "input/deck_reader.hpp"
 #include "solver/model.hpp"
 #include "solver/simulation.hpp"
@@ -27,28 +27,15 @@ using exdyn::input::Override;
 using exdyn::testing::read_dataset;
 using exdyn::testing::step_path;
 
-struct FrictionRun {
-  exdyn::testing::TempDir directory{"exdyn_friction"};
-  exdyn::input::Deck deck;
-  exdyn::output::RunSummary summary;
+// A run with its model (the lumped masses) for the centre of mass.
+struct FrictionRun : exdyn::testing::DeckRun {
   exdyn::solver::Model model;
 
-  explicit FrictionRun(exdyn::input::Deck d) : deck(std::move(d)) {
-    exdyn::solver::RunControls controls;
-    controls.output_directory = directory.path().string();
-    summary = exdyn::solver::run_simulation(deck, controls);
-    model = exdyn::solver::build_model(deck);
-  }
+  explicit FrictionRun(exdyn::input::Deck d)
+      : DeckRun(std::move(d)), model(exdyn::solver::build_model(deck)) {}
   explicit FrictionRun(const std::string& file, const std::vector<Override>& overrides = {})
-      : FrictionRun(exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/" + file, overrides)) {}
+      : FrictionRun(exdyn::input::read_deck(source_path(file), overrides)) {}
 
-  std::string h5() const { return directory.file(deck.name + ".h5"); }
-  std::vector<double> at(long step, const std::string& field) const {
-    return read_dataset(h5(), step_path(step, field)).values;
-  }
-  std::vector<double> history(const std::string& name) const {
-    return read_dataset(h5(), "/history/" + name).values;
-  }
   // The written steps, in order.
   std::vector<long> steps() const {
     std::vector<long> written;

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "../support/deck_run.hpp"
 #include "../support/result_file.hpp"
-#include "../support/temp_dir.hpp"
 #include "common/errors.hpp"
 #include "element/element_block.hpp"
 #include "input/deck_reader.hpp"
@@ -28,28 +28,7 @@ using exdyn::input::Override;
 using exdyn::testing::read_dataset;
 using exdyn::testing::step_path;
 
-struct DeckRun {
-  exdyn::testing::TempDir directory{"exdyn_large"};
-  exdyn::input::Deck deck;
-  exdyn::output::RunSummary summary;
-
-  // file: a deck of input/, or a path from the source directory (scripts/decks/...).
-  explicit DeckRun(const std::string& file, const std::vector<Override>& overrides = {}) {
-    const std::string path = file.find('/') == std::string::npos ? "/input/" + file : "/" + file;
-    deck = exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + path, overrides);
-    exdyn::solver::RunControls controls;
-    controls.output_directory = directory.path().string();
-    summary = exdyn::solver::run_simulation(deck, controls);
-  }
-  std::string h5() const { return directory.file(deck.name + ".h5"); }
-  std::vector<double> at(long step, const std::string& field) const {
-    return read_dataset(h5(), step_path(step, field)).values;
-  }
-  std::vector<double> final(const std::string& field) const { return at(summary.steps, field); }
-  std::vector<double> history(const std::string& name) const {
-    return read_dataset(h5(), "/history/" + name).values;
-  }
-};
+using exdyn::testing::DeckRun;
 
 double largest(const std::vector<double>& v) {
   double m = 0.0;

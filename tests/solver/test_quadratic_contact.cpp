@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <memory>
 
+#include "../support/deck_run.hpp"
 #include "../support/result_file.hpp"
-#include "../support/temp_dir.hpp"
 #include "contact/quadrature.hpp"
 #include "contact/segment.hpp"
 #include "input/deck_reader.hpp"
@@ -21,19 +21,9 @@ namespace {
 using exdyn::testing::read_dataset;
 using exdyn::testing::step_path;
 
-struct PlateRun {
-  exdyn::testing::TempDir directory{"exdyn_quadratic"};
-  exdyn::input::Deck deck;
-  exdyn::output::RunSummary summary;
-
-  explicit PlateRun(exdyn::input::Deck d) : deck(std::move(d)) {
-    exdyn::solver::RunControls controls;
-    controls.output_directory = directory.path().string();
-    summary = exdyn::solver::run_simulation(deck, controls);
-  }
-  std::vector<double> stress() const {
-    return read_dataset(directory.file(deck.name + ".h5"), step_path(summary.steps, "stress")).values;
-  }
+struct PlateRun : exdyn::testing::DeckRun {
+  using DeckRun::DeckRun;
+  std::vector<double> stress() const { return final("stress"); }
 };
 
 exdyn::input::Deck plate_deck(const std::vector<exdyn::input::Override>& overrides = {}) {
