@@ -165,6 +165,34 @@ inline double make_reference(const ElementVectors20& x_ref, const GaussRule& rul
   return smallest;
 }
 
+// H_ij = du_i/dx_j at a point: D_ia = sum_I u_iI dN_I/dxi_a (dn: the point's row of the
+// derivative table), nine sums carried together over the nodes, so the adds of one sum
+// do not wait on each other (nine 20-term chains would be bound by the add latency;
+// the order of each sum is still node 0 to 19); then H = D r, r = dxi/dx (row a).
+template <class Real>
+inline void gradient_at_point(const double* dn, const NodeValues<20, Real>& u, const Real r[9], Real h[9]) {
+  const std::array<const std::array<Real, 20>*, 3> u_component{&u.x, &u.y, &u.z};
+  Real d[3][3] = {};
+  for (int node = 0; node < 20; ++node) {
+    const double n0 = dn[node], n1 = dn[20 + node], n2 = dn[40 + node];
+    for (int i = 0; i < 3; ++i) {
+      const Real ui = (*u_component[i])[node];
+      d[i][0] += ui * n0;
+      d[i][1] += ui * n1;
+      d[i][2] += ui * n2;
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) h[3 * i + j] = d[i][0] * r[j] + d[i][1] * r[3 + j] + d[i][2] * r[6 + j];
+}
+
+// f_iI += sum_a q_a dN_I/dxi_a at a point, for one component i.
+template <class Real>
+inline void add_point_forces(const double* dn, const Real q[3], std::array<Real, 20>& out) {
+  for (int node = 0; node < 20; ++node)
+    out[node] += q[0] * dn[node] + q[1] * dn[20 + node] + q[2] * dn[40 + node];
+}
+
 // f = K u (f in N, u in m) by Gauss quadrature, the volume-averaged stress (Pa) and
 // the strain energy u.f / 2 (J):
 //   D_g = du/dxi at g, H_g = D_g dxi/dx, s_g = w det J (lambda tr H I + mu (H + H^T)),
@@ -178,28 +206,13 @@ inline Real internal_forces(int gauss_points, const double* table, const double*
                             std::array<Real, 6>& mean_stress) {
   f = NodeValues<20, Real>{};
   std::array<Real, 6> stress_sum{};
-  const std::array<const std::array<Real, 20>*, 3> u_component{&u.x, &u.y, &u.z};
   const std::array<std::array<Real, 20>*, 3> f_component{&f.x, &f.y, &f.z};
   for (int g = 0; g < gauss_points; ++g) {
     const double* dn = table + table_stride * g;
-    // du_i/dxi_a = sum_I u_iI dN_I/dxi_a: nine sums carried together over the nodes,
-    // so the adds of one sum do not wait on each other (nine 20-term chains would be
-    // bound by the add latency; the order of each sum is still node 0 to 19).
-    Real d[3][3] = {};
-    for (int node = 0; node < 20; ++node) {
-      const double n0 = dn[node], n1 = dn[20 + node], n2 = dn[40 + node];
-      for (int i = 0; i < 3; ++i) {
-        const Real ui = (*u_component[i])[node];
-        d[i][0] += ui * n0;
-        d[i][1] += ui * n1;
-        d[i][2] += ui * n2;
-      }
-    }
     Real r[10];  // dxi_a/dx_j (row a), then w det J
     for (int k = 0; k < 10; ++k) r[k] = load<Real>(reference, 10 * g + k);
     Real h[9];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) h[3 * i + j] = d[i][0] * r[j] + d[i][1] * r[3 + j] + d[i][2] * r[6 + j];
+    gradient_at_point(dn, u, r, h);
     const Real w = r[9];
     const Real lambda_trace = lambda * (h[0] + h[4] + h[8]);
     const Real s[6] = {w * (lambda_trace + 2.0 * mu * h[0]),
@@ -214,9 +227,7 @@ inline Real internal_forces(int gauss_points, const double* table, const double*
       Real p[3];  // P_ia = sum_j s_ij dxi_a/dx_j
       for (int a = 0; a < 3; ++a)
         p[a] = s[row[i][0]] * r[3 * a] + s[row[i][1]] * r[3 * a + 1] + s[row[i][2]] * r[3 * a + 2];
-      std::array<Real, 20>& out = *f_component[i];
-      for (int node = 0; node < 20; ++node)
-        out[node] += p[0] * dn[node] + p[1] * dn[20 + node] + p[2] * dn[40 + node];
+      add_point_forces(dn, p, *f_component[i]);
     }
   }
   const Real inverse_volume = load<Real>(reference, 10 * gauss_points);

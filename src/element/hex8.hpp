@@ -317,6 +317,58 @@ inline constexpr double gauss_sign_zeta[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
 inline constexpr double gauss_sign_eta_zeta[8] = {1, 1, -1, -1, -1, -1, 1, 1};
 inline constexpr double gauss_sign_zeta_xi[8] = {1, -1, -1, 1, -1, 1, 1, -1};
 inline constexpr double gauss_sign_xi_eta[8] = {1, -1, 1, -1, 1, -1, 1, -1};
+
+// The mode coefficients of u that the gradients need (modes 1..7 of each component),
+// the abscissa folded into the higher ones (4..7).
+template <class Real>
+struct GradientModes {
+  Real m1[3], m2[3], m3[3], m4[3], m5[3], m6[3], m7[3];
+};
+
+template <class Real>
+inline GradientModes<Real> gradient_modes(const BasicElementModes<Real>& c) {
+  constexpr double a = gauss_abscissa, a2 = gauss_abscissa * gauss_abscissa;
+  const std::array<const std::array<Real, 8>*, 3> modes{&c.x, &c.y, &c.z};
+  GradientModes<Real> g;
+  for (int i = 0; i < 3; ++i) {
+    const std::array<Real, 8>& m = *modes[i];
+    g.m1[i] = m[1], g.m2[i] = m[2], g.m3[i] = m[3];
+    g.m4[i] = a * m[4], g.m5[i] = a * m[5], g.m6[i] = a * m[6], g.m7[i] = a2 * m[7];
+  }
+  return g;
+}
+
+// H_ij = du_i/dx_j at Gauss point g: D[3 i + a] = du_i/dxi_a from the modes, times
+// r = dxi/dx at the point (row-major (a, j)).
+template <class Real>
+inline void gradient_at_point(const GradientModes<Real>& m, int g, const Real r[9], Real h[9]) {
+  const double sx = gauss_sign_xi[g], se = gauss_sign_eta[g], sz = gauss_sign_zeta[g];
+  const double sez = gauss_sign_eta_zeta[g], szx = gauss_sign_zeta_xi[g], sxe = gauss_sign_xi_eta[g];
+  Real d[9];
+  for (int i = 0; i < 3; ++i) {
+    d[3 * i + 0] = m.m1[i] + sz * m.m5[i] + se * m.m6[i] + sez * m.m7[i];
+    d[3 * i + 1] = m.m2[i] + sz * m.m4[i] + sx * m.m6[i] + szx * m.m7[i];
+    d[3 * i + 2] = m.m3[i] + se * m.m4[i] + sx * m.m5[i] + sxe * m.m7[i];
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      h[3 * i + j] = d[3 * i] * r[j] + d[3 * i + 1] * r[3 + j] + d[3 * i + 2] * r[6 + j];
+}
+
+// The mode forces of one component at Gauss point g: F_m += sum_a q_a dphi_m/dxi_a (g)
+// (m = 1..7, before the abscissa scaling of 4..7), q_a = sum_j P_ij dxi_a/dx_j.
+template <class Real>
+inline void add_mode_forces(int g, const Real q[3], Real fm[8]) {
+  const double sx = gauss_sign_xi[g], se = gauss_sign_eta[g], sz = gauss_sign_zeta[g];
+  const double sez = gauss_sign_eta_zeta[g], szx = gauss_sign_zeta_xi[g], sxe = gauss_sign_xi_eta[g];
+  fm[1] += q[0];
+  fm[2] += q[1];
+  fm[3] += q[2];
+  fm[4] += sz * q[1] + se * q[2];
+  fm[5] += sz * q[0] + sx * q[2];
+  fm[6] += se * q[0] + sx * q[1];
+  fm[7] += sez * q[0] + szx * q[1] + sxe * q[2];
+}
 }  // namespace detail
 
 // f = K u for one element (Real = double) or a pack of elements (Real = Pack<L>,
@@ -337,14 +389,7 @@ inline Real internal_forces(const double* reference, double lambda, double mu,
   using namespace detail;
   const BasicElementModes<Real> c = modes_from_nodal(u);
   constexpr double a = gauss_abscissa, a2 = gauss_abscissa * gauss_abscissa;
-  const std::array<const std::array<Real, 8>*, 3> modes{&c.x, &c.y, &c.z};
-  // The mode coefficients that D needs, the abscissa folded into the higher ones.
-  Real m1[3], m2[3], m3[3], m4[3], m5[3], m6[3], m7[3];
-  for (int i = 0; i < 3; ++i) {
-    const std::array<Real, 8>& m = *modes[i];
-    m1[i] = m[1], m2[i] = m[2], m3[i] = m[3];
-    m4[i] = a * m[4], m5[i] = a * m[5], m6[i] = a * m[6], m7[i] = a2 * m[7];
-  }
+  const GradientModes<Real> m = gradient_modes(c);
   const double two_mu = 2.0 * mu;
   std::array<Real, 6> stress_sum{};
   // F_m per component i (m = 1..7, before the abscissa scaling of 4..7).
@@ -352,22 +397,11 @@ inline Real internal_forces(const double* reference, double lambda, double mu,
   constexpr int row[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};  // s_ij in SymTensor order
 #pragma GCC unroll 8
   for (int g = 0; g < 8; ++g) {
-    const double sx = gauss_sign_xi[g], se = gauss_sign_eta[g], sz = gauss_sign_zeta[g];
-    const double sez = gauss_sign_eta_zeta[g], szx = gauss_sign_zeta_xi[g], sxe = gauss_sign_xi_eta[g];
-    // D[3 i + a] = du_i/dxi_a at g.
-    Real d[9];
-    for (int i = 0; i < 3; ++i) {
-      d[3 * i + 0] = m1[i] + sz * m5[i] + se * m6[i] + sez * m7[i];
-      d[3 * i + 1] = m2[i] + sz * m4[i] + sx * m6[i] + szx * m7[i];
-      d[3 * i + 2] = m3[i] + se * m4[i] + sx * m5[i] + sxe * m7[i];
-    }
     Real r[9];  // dxi_a/dx_j at g, row-major (a, j)
     for (int k = 0; k < 9; ++k) r[k] = load<Real>(reference, 10 * g + k);
     // H_ij = sum_a D_ia dxi_a/dx_j, then the weighted stress s = (w det J / 8) sigma.
     Real h[9];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        h[3 * i + j] = d[3 * i] * r[j] + d[3 * i + 1] * r[3 + j] + d[3 * i + 2] * r[6 + j];
+    gradient_at_point(m, g, r, h);
     const Real w = load<Real>(reference, 10 * g + 9);
     const Real lambda_trace = lambda * (h[0] + h[4] + h[8]);
     const Real s[6] = {w * (lambda_trace + two_mu * h[0]), w * (lambda_trace + two_mu * h[4]),
@@ -379,14 +413,7 @@ inline Real internal_forces(const double* reference, double lambda, double mu,
       Real p[3];
       for (int k = 0; k < 3; ++k)
         p[k] = s[row[i][0]] * r[3 * k] + s[row[i][1]] * r[3 * k + 1] + s[row[i][2]] * r[3 * k + 2];
-      Real* fm = force[i];
-      fm[1] += p[0];
-      fm[2] += p[1];
-      fm[3] += p[2];
-      fm[4] += sz * p[1] + se * p[2];
-      fm[5] += sz * p[0] + sx * p[2];
-      fm[6] += se * p[0] + sx * p[1];
-      fm[7] += sez * p[0] + szx * p[1] + sxe * p[2];
+      add_mode_forces(g, p, force[i]);
     }
   }
   const Real inverse_volume_8 = load<Real>(reference, 80);

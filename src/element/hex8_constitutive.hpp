@@ -28,30 +28,14 @@ inline ConstitutiveResult<Real> constitutive_forces(const double* reference,
   using namespace detail;
   const BasicElementModes<Real> c = modes_from_nodal(u);
   constexpr double a = gauss_abscissa, a2 = gauss_abscissa * gauss_abscissa;
-  const std::array<const std::array<Real, 8>*, 3> modes{&c.x, &c.y, &c.z};
-  Real m1[3], m2[3], m3[3], m4[3], m5[3], m6[3], m7[3];
-  for (int i = 0; i < 3; ++i) {
-    const std::array<Real, 8>& m = *modes[i];
-    m1[i] = m[1], m2[i] = m[2], m3[i] = m[3];
-    m4[i] = a * m[4], m5[i] = a * m[5], m6[i] = a * m[6], m7[i] = a2 * m[7];
-  }
+  const GradientModes<Real> m = gradient_modes(c);
   std::array<std::array<Real, 9>, 8> h;
   std::array<Real, 8> w;
 #pragma GCC unroll 8
   for (int g = 0; g < 8; ++g) {
-    const double sx = gauss_sign_xi[g], se = gauss_sign_eta[g], sz = gauss_sign_zeta[g];
-    const double sez = gauss_sign_eta_zeta[g], szx = gauss_sign_zeta_xi[g], sxe = gauss_sign_xi_eta[g];
-    Real d[9];
-    for (int i = 0; i < 3; ++i) {
-      d[3 * i + 0] = m1[i] + sz * m5[i] + se * m6[i] + sez * m7[i];
-      d[3 * i + 1] = m2[i] + sz * m4[i] + sx * m6[i] + szx * m7[i];
-      d[3 * i + 2] = m3[i] + se * m4[i] + sx * m5[i] + sxe * m7[i];
-    }
     Real r[9];
     for (int k = 0; k < 9; ++k) r[k] = load<Real>(reference, 10 * g + k);
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j)
-        h[g][3 * i + j] = d[3 * i] * r[j] + d[3 * i + 1] * r[3 + j] + d[3 * i + 2] * r[6 + j];
+    gradient_at_point(m, g, r, h[g].data());
     w[g] = 8.0 * load<Real>(reference, 10 * g + 9);  // w det J (the layout stores it / 8)
   }
   const ConstitutiveResult<Real> result =
@@ -59,8 +43,6 @@ inline ConstitutiveResult<Real> constitutive_forces(const double* reference,
   Real force[3][8] = {};
 #pragma GCC unroll 8
   for (int g = 0; g < 8; ++g) {
-    const double sx = gauss_sign_xi[g], se = gauss_sign_eta[g], sz = gauss_sign_zeta[g];
-    const double sez = gauss_sign_eta_zeta[g], szx = gauss_sign_zeta_xi[g], sxe = gauss_sign_xi_eta[g];
     Real r[9];
     for (int k = 0; k < 9; ++k) r[k] = load<Real>(reference, 10 * g + k);
     const std::array<Real, 9>& p = h[g];  // w_g P_g
@@ -68,14 +50,7 @@ inline ConstitutiveResult<Real> constitutive_forces(const double* reference,
       Real q[3];  // sum_j P_ij dxi_k/dX_j
       for (int k = 0; k < 3; ++k)
         q[k] = p[3 * i] * r[3 * k] + p[3 * i + 1] * r[3 * k + 1] + p[3 * i + 2] * r[3 * k + 2];
-      Real* fm = force[i];
-      fm[1] += q[0];
-      fm[2] += q[1];
-      fm[3] += q[2];
-      fm[4] += sz * q[1] + se * q[2];
-      fm[5] += sz * q[0] + sx * q[2];
-      fm[6] += se * q[0] + sx * q[1];
-      fm[7] += sez * q[0] + szx * q[1] + sxe * q[2];
+      add_mode_forces(g, q, force[i]);
     }
   }
   std::array<Real, 8> fx{}, fy{}, fz{};
