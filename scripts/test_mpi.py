@@ -119,7 +119,7 @@ def test_equal_fields(exdyn, work, quick):
              ("contact_patch_hex20", ["time.end_time=3.0e-7"] if quick else []),
              ("hertz_ball", ["time.end_time=3.0e-6" if quick else "time.end_time=1.2e-5", "output.every=100"]),
              # friction with anchors, gravity, curved 8-node master segments
-             ("block_on_rail", ["time.end_time=5.0e-5" if quick else "time.end_time=2.0e-4", "output.every=200"])]
+             ("block_on_rail", ["time.end_time=3.0e-5", "output.every=200"])]
     for deck, sets in cases:
         reference = os.path.join(work, f"{deck}_1")
         code, text = run(exdyn, deck, reference, 0, sets=sets)
