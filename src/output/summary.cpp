@@ -60,9 +60,21 @@ Json to_json(const RunSummary& s) {
     json["method"] = pair.method;
     json["local_search_seconds"] = number(pair.local_search_seconds);
     json["max_force"] = number(pair.max_force);
+    json["friction_work"] = number(pair.friction_work);
     pairs[pair.name] = std::move(json);
   }
   contact["pairs"] = std::move(pairs);
+  Json walls = Json::object();
+  for (const WallSummary& wall : s.contact.walls) {
+    Json json;
+    json["slave_points"] = wall.slave_points;
+    json["max_force"] = number(wall.max_force);
+    json["max_penetration_over_h"] = number(wall.max_penetration_over_h);
+    json["penalty_stiffness"] = number(wall.penalty_stiffness);
+    json["friction_work"] = number(wall.friction_work);
+    walls[wall.name] = std::move(json);
+  }
+  contact["rigid_walls"] = std::move(walls);
 
   Json mesh;
   mesh["nodes"] = s.nodes;

@@ -45,10 +45,22 @@ struct ContactPairSummary {
   ContactFigures figures;
   double local_search_seconds = 0.0;  // wall time of the pair's local search, s
   double max_force = 0.0;             // largest |total force on the slave side| over the steps, N
+  double friction_work = 0.0;         // dissipated by its friction, J
+};
+
+// One rigid wall's figures (contact.rigid_walls.NAME), an addition to the spec's keys.
+struct WallSummary {
+  std::string name;
+  std::string slave_points;  // "nodes" or "quadrature"
+  double max_force = 0.0;    // largest |force on the bodies| over the steps, N
+  double max_penetration_over_h = 0.0;
+  double penalty_stiffness = 0.0;  // the largest point stiffness used, N/m
+  double friction_work = 0.0;      // J
 };
 
 struct ContactSummary : ContactFigures {
   std::vector<ContactPairSummary> pairs;  // deck order
+  std::vector<WallSummary> walls;         // deck order
 };
 
 // The run-time guards (docs/stability.md); an addition to the spec's keys.

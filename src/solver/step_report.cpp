@@ -167,9 +167,23 @@ void summarise_contact(const ContactModel& contact, const contact::ContactStatis
     out.figures = contact_figures(pair.statistics);
     out.local_search_seconds = pair.seconds.local_search;
     out.max_force = pair.max_force;
+    out.friction_work = 0.0;
+    for (const auto& state : pair.states) out.friction_work += state.friction_work;
     global_search += pair.seconds.global_search;
     local_search += pair.seconds.local_search;
     forces += pair.seconds.forces;
+  }
+  summary.contact.walls.resize(contact.walls.size());
+  for (std::size_t k = 0; k < contact.walls.size(); ++k) {
+    const RigidWall& wall = contact.walls[k];
+    output::WallSummary& out = summary.contact.walls[k];
+    out.name = wall.name;
+    out.slave_points = wall.surfaces.quadrature ? "quadrature" : "nodes";
+    out.max_force = wall.max_force;
+    out.max_penetration_over_h = wall.statistics.max_penetration_over_h;
+    out.penalty_stiffness = wall.statistics.max_pair_stiffness;
+    out.friction_work = wall.state.friction_work;
+    forces += wall.seconds.forces;
   }
   summary.phase_seconds.contact_global_search = global_search;
   summary.phase_seconds.contact_local_search = local_search;

@@ -98,7 +98,8 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                                 {"saddle_points", 1},
                                 {"max_penetration_over_h", 0.01},
                                 {"penalty_stiffness", 1.5e9},
-                                {"pairs", Json::object()}}));
+                                {"pairs", Json::object()},
+                                {"rigid_walls", Json::object()}}));  // the spec's keys, then ours
   EXPECT_EQ(j["mpi"], (Json{{"ranks", 1},  // the spec's key, then ours (docs/output.md)
                             {"shared_nodes", 0},
                             {"messages_per_step", 0},

@@ -279,7 +279,21 @@ void expect_slipping_impact(const FrictionRun& run, double mu_wall, double vt0, 
 }
 
 TEST(ObliqueImpact, SlipsThroughoutWithTheCoulombRatioAndExitSpeed) {
-  expect_slipping_impact(FrictionRun("oblique_impact.yaml"), 0.2, 10.0, 5.0);
+  const FrictionRun run("oblique_impact.yaml");
+  expect_slipping_impact(run, 0.2, 10.0, 5.0);
+  // The wall's figures in the summary: its largest force is the history's, its
+  // friction work the run's.
+  ASSERT_EQ(run.summary.contact.walls.size(), 1u);
+  const exdyn::output::WallSummary& wall = run.summary.contact.walls[0];
+  EXPECT_EQ(wall.name, "floor");
+  EXPECT_EQ(wall.slave_points, "nodes");
+  const auto force = run.history("wall/floor/force");
+  double largest = 0.0;
+  for (std::size_t i = 0; i < force.size() / 3; ++i)
+    largest = std::max(largest, std::hypot(force[3 * i], force[3 * i + 1], force[3 * i + 2]));
+  EXPECT_DOUBLE_EQ(wall.max_force, largest);
+  EXPECT_DOUBLE_EQ(wall.friction_work, run.history("friction_work").back());
+  EXPECT_GT(wall.penalty_stiffness, 0.0);
 }
 
 TEST(ObliqueImpact, QuadraturePointsOfA20NodeBlockToo) {
