@@ -33,6 +33,27 @@ PenaltyOptions DeckValidator::penalty(const YAML::Node& node, const std::string&
   return result;
 }
 
+// The name of entry `index` of the list at `path` (a contact pair, a rigid wall): it names
+// an HDF5 group of the results (`group`, docs/output.md), so it has no '/', and no two
+// entries share it.
+std::string DeckValidator::group_name(const YAML::Node& entry, const std::string& path, std::size_t index,
+                                      const std::string& what, const std::string& group,
+                                      std::map<std::string, std::size_t>& index_by_name) const {
+  const std::string entry_path = child_path(path, index);
+  const std::string name_path = child_path(entry_path, "name");
+  const YAML::Node name_node = required(entry, entry_path, "name");
+  const std::string name = text(name_node, name_path, "a " + what + " name");
+  if (name.find('/') != std::string::npos || name == "." || name == "..")
+    fail(name_node, name_path,
+         "expected a " + what + " name without '/' (it names the group " + group + " of the results), got '" +
+             name + "'");
+  const auto [first, inserted] = index_by_name.emplace(name, index);
+  if (!inserted)
+    fail(name_node, name_path,
+         what + " name '" + name + "' is used twice (first by " + child_path(path, first->second) + ")");
+  return name;
+}
+
 SlavePoints DeckValidator::slave_points(const YAML::Node& node, const std::string& path) const {
   return all_slave_points[choice(node, path, "slave points", names_of(all_slave_points))];
 }
@@ -79,20 +100,7 @@ std::vector<RigidWallOptions> DeckValidator::rigid_walls(const YAML::Node& node,
     const YAML::Node entry = node[w];
     check_map(entry, wall_path, {"name", "point", "normal", "slave", "slave_points", "friction", "velocity"});
     RigidWallOptions wall;
-    const std::string name_path = child_path(wall_path, "name");
-    const YAML::Node name_node = required(entry, wall_path, "name");
-    wall.name = text(name_node, name_path, "a rigid wall name");
-    // The name is an HDF5 group, /history/wall/NAME (docs/output.md).
-    if (wall.name.find('/') != std::string::npos || wall.name == "." || wall.name == "..")
-      fail(name_node, name_path,
-           "expected a rigid wall name without '/' (it names the group /history/wall/NAME of the results), "
-           "got '" +
-               wall.name + "'");
-    const auto [first, inserted] = index_by_name.emplace(wall.name, w);
-    if (!inserted)
-      fail(name_node, name_path,
-           "rigid wall name '" + wall.name + "' is used twice (first by " + child_path(path, first->second) +
-               ")");
+    wall.name = group_name(entry, path, w, "rigid wall", "/history/wall/NAME", index_by_name);
     wall.point = vector3(required(entry, wall_path, "point"), child_path(wall_path, "point"));
     const YAML::Node normal = required(entry, wall_path, "normal");
     wall.normal = vector3(normal, child_path(wall_path, "normal"));
@@ -184,20 +192,7 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
               {"name", "slave", "master", "two_pass", "slave_points", "quadrature", "penalty", "search",
                "local_search", "friction"});
     ContactOptions pair;
-    const std::string name_path = child_path(pair_path, "name");
-    const YAML::Node name_node = required(entry, pair_path, "name");
-    pair.name = text(name_node, name_path, "a contact pair name");
-    // The name is an HDF5 group, /history/contact/NAME (docs/output.md).
-    if (pair.name.find('/') != std::string::npos || pair.name == "." || pair.name == "..")
-      fail(name_node, name_path,
-           "expected a contact pair name without '/' (it names the group /history/contact/NAME of the "
-           "results), got '" +
-               pair.name + "'");
-    const auto [first, inserted] = index_by_name.emplace(pair.name, c);
-    if (!inserted)
-      fail(name_node, name_path,
-           "contact pair name '" + pair.name + "' is used twice (first by " +
-               child_path(path, first->second) + ")");
+    pair.name = group_name(entry, path, c, "contact pair", "/history/contact/NAME", index_by_name);
     pair.slave = face_list(required(entry, pair_path, "slave"), child_path(pair_path, "slave"), parts);
     pair.master = face_list(required(entry, pair_path, "master"), child_path(pair_path, "master"), parts);
     if (const YAML::Node two_pass = optional(entry, "two_pass"); two_pass.IsDefined())

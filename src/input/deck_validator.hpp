@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -150,6 +151,9 @@ class DeckValidator {
                                             const std::vector<PartOptions>& parts) const;
   PenaltyOptions penalty(const YAML::Node& node, const std::string& path) const;
   FrictionOptions friction(const YAML::Node& node, const std::string& path) const;
+  std::string group_name(const YAML::Node& entry, const std::string& path, std::size_t index,
+                         const std::string& what, const std::string& group,
+                         std::map<std::string, std::size_t>& index_by_name) const;
   SlavePoints slave_points(const YAML::Node& node, const std::string& path) const;
   std::vector<RigidWallOptions> rigid_walls(const YAML::Node& node, const std::string& path,
                                             const std::vector<PartOptions>& parts) const;

@@ -410,18 +410,21 @@ void follow_time_step(ContactModel& contact, double fall) {
   for (RigidWall& wall : contact.walls) follow(wall.settings);
 }
 
-contact::Vec3 ContactPair::normal_force() const {
+// A pass state's slave-side vector, the first pass's less the second's (whose slave
+// side is the pair's master side): the pair's force on its slave side.
+contact::Vec3 ContactPair::first_pass_less_second(contact::Vec3 contact::ContactPassState::*member) const {
   contact::Vec3 force{};
   for (std::size_t p = 0; p < states.size(); ++p)
-    force = p == 0 ? force + states[p].slave_normal_force : force - states[p].slave_normal_force;
+    force = p == 0 ? force + states[p].*member : force - states[p].*member;
   return force;
 }
 
+contact::Vec3 ContactPair::normal_force() const {
+  return first_pass_less_second(&contact::ContactPassState::slave_normal_force);
+}
+
 contact::Vec3 ContactPair::tangential_force() const {
-  contact::Vec3 force{};
-  for (std::size_t p = 0; p < states.size(); ++p)
-    force = p == 0 ? force + states[p].slave_tangential_force : force - states[p].slave_tangential_force;
-  return force;
+  return first_pass_less_second(&contact::ContactPassState::slave_tangential_force);
 }
 
 double ContactModel::friction_work() const {
@@ -433,10 +436,7 @@ double ContactModel::friction_work() const {
 }
 
 contact::Vec3 ContactPair::slave_force() const {
-  contact::Vec3 force{};
-  for (std::size_t p = 0; p < states.size(); ++p)
-    force = p == 0 ? force + states[p].slave_force : force - states[p].slave_force;
-  return force;
+  return first_pass_less_second(&contact::ContactPassState::slave_force);
 }
 
 double ContactPair::max_penetration() const {

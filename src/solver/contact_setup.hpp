@@ -32,6 +32,7 @@ struct ContactPair {
   contact::Vec3 tangential_force() const;
   // This step's deepest penetration of either pass, m.
   double max_penetration() const;
+  contact::Vec3 first_pass_less_second(contact::Vec3 contact::ContactPassState::*member) const;
 };
 
 struct RigidWall {
