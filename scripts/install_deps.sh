@@ -2,16 +2,18 @@
 # Installs the Debian 12 packages exdyn needs that are missing (run as root).
 #   scripts/install_deps.sh           build and run dependencies
 #   scripts/install_deps.sh --test    also ParaView, xvfb and the Python packages of the tests
+#   scripts/install_deps.sh --mesher  also the gmsh program (scripts/make_meshes.sh)
 #   scripts/install_deps.sh --fuzz    also clang 14, its libFuzzer runtime and llvm-symbolizer (scripts/fuzz.sh)
 set -euo pipefail
 packages=(cmake g++ make pkg-config libeigen3-dev libhdf5-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
-          libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+          libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libgmsh-dev libmetis-dev
           libgtest-dev libbenchmark-dev hdf5-tools python3-numpy python3-h5py python3-matplotlib)
 for option in "$@"; do
   case "$option" in
     --test) packages+=(paraview python3-paraview xvfb xauth) ;;
+    --mesher) packages+=(gmsh) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev llvm-14) ;;
-    *) echo "usage: scripts/install_deps.sh [--test] [--fuzz]" >&2; exit 2 ;;
+    *) echo "usage: scripts/install_deps.sh [--test] [--mesher] [--fuzz]" >&2; exit 2 ;;
   esac
 done
 missing=()

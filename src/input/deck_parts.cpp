@@ -1,10 +1,12 @@
 // The deck's materials, parts, face names and boundary conditions.
 #include <algorithm>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "input/deck_validator.hpp"
+#include "input/gmsh_file.hpp"
 #include "input/text_tools.hpp"
 
 namespace exdyn::input::deck {
@@ -180,11 +182,54 @@ std::array<int, 3> DeckValidator::keep_cuts(const YAML::Node& node, const std::s
   return keep;
 }
 
+MeshFileOptions DeckValidator::mesh_file(const YAML::Node& node, const std::string& path) const {
+  check_map(node, path, {"file", "volume", "reorder"});
+  MeshFileOptions result;
+  const std::string file_path = child_path(path, "file");
+  const YAML::Node file = required(node, path, "file");
+  const std::string written = text(file, file_path, "the path of a Gmsh mesh file (.msh)");
+  // Relative to the deck's folder, so a deck runs from anywhere.
+  std::filesystem::path resolved(written);
+  if (resolved.is_relative()) resolved = std::filesystem::path(source_name_).parent_path() / resolved;
+  std::error_code error;
+  const std::filesystem::path absolute = std::filesystem::absolute(resolved, error);
+  result.path = (error ? resolved : absolute).lexically_normal().string();
+  const std::string volume_path = child_path(path, "volume");
+  const YAML::Node volume = required(node, path, "volume");
+  result.volume = text(volume, volume_path, "the name of a physical volume of the mesh file");
+  if (const YAML::Node reorder = optional(node, "reorder"); reorder.IsDefined())
+    result.reorder = boolean(reorder, child_path(path, "reorder"));
+
+  // The file's names, so that faces and volumes are checked here, at their line.
+  auto names = mesh_names_.find(result.path);
+  if (names == mesh_names_.end()) {
+    const GmshMesh mesh = read_gmsh(result.path, locate(file, file_path), file_path);
+    std::array<std::vector<std::string>, 2> read;
+    for (const GmshGroup& group : mesh.volumes) read[0].push_back(group.name);
+    for (const GmshGroup& group : mesh.surfaces) read[1].push_back(group.name);
+    names = mesh_names_.emplace(result.path, std::move(read)).first;
+  }
+  const std::vector<std::string>& volumes = names->second[0];
+  if (std::find(volumes.begin(), volumes.end(), result.volume) == volumes.end())
+    fail(volume, volume_path,
+         "'" + written + "' has no physical volume '" + result.volume + "'" +
+             (volumes.empty() ? std::string("; it has none (add Physical Volume(\"NAME\") = {...}; to the .geo)")
+                              : suggestion(result.volume, volumes, "its physical volumes are")));
+  for (const std::string& surface : names->second[1]) {
+    if (surface == name(PartFace::surface))
+      fail(file, file_path,
+           "'" + written +
+               "' has a physical surface named 'surface', the name of a mesh part's whole boundary: rename it");
+    result.surfaces.push_back(surface);
+  }
+  return result;
+}
+
 PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
                                 const std::vector<MaterialOptions>& materials) const {
   check_map(
       node, path,
-      {"name", "box", "cylinder", "sphere", "elements", "grading", "material", "formulation", "hourglass",
+      {"name", "box", "cylinder", "sphere", "mesh", "elements", "grading", "material", "formulation", "hourglass",
        "initial_velocity", "initial_angular_velocity", "kinematics", "f_bar", "perturbation"});
   PartOptions result;
   result.name = text(required(node, path, "name"), child_path(path, "name"), "a part name");
@@ -194,7 +239,7 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
   for (const Geometry geometry : all_geometries)
     if (optional(node, name(geometry)).IsDefined()) geometry_keys.emplace_back(name(geometry));
   if (geometry_keys.empty())
-    fail(node, path, "expected one geometry key: box, cylinder or sphere (docs/input.md)");
+    fail(node, path, "expected one geometry key: box, cylinder, sphere or mesh (docs/input.md)");
   if (geometry_keys.size() > 1)
     fail(node[geometry_keys[1]], child_path(path, geometry_keys[1]),
          "a part has exactly one geometry key; this one has " + join(geometry_keys, " and "));
@@ -211,6 +256,9 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
            "expected max > min in every component, got " + std::string(component_names[i]) + ": max " +
                format_number(result.box_max[i]) + " <= min " + format_number(result.box_min[i]));
     }
+  } else if (geometry_keys[0] == "mesh") {
+    result.geometry = Geometry::mesh;
+    result.mesh = mesh_file(geometry, geometry_path);
   } else {
     result.geometry = geometry_keys[0] == "cylinder" ? Geometry::cylinder : Geometry::sphere;
     const bool cylinder = result.geometry == Geometry::cylinder;
@@ -231,40 +279,47 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
       result.keep = keep_cuts(keep, child_path(geometry_path, "keep"), cylinder ? result.axis : -1);
   }
 
-  const std::string elements_path = child_path(path, "elements");
-  const YAML::Node elements = required(node, path, "elements");
-  const std::size_t counts = result.geometry == Geometry::sphere ? 2 : 3;
-  const std::string expected = result.geometry == Geometry::box ? "a list of 3 integers >= 1 [nx, ny, nz]"
-                               : result.geometry == Geometry::cylinder
-                                   ? "a list of 3 integers >= 1 [n_around, "
-                                     "n_radius, n_axis]"
-                                   : "a list of 2 integers >= 1 [n_around, "
-                                     "n_radius]";
-  check_sequence(elements, elements_path, expected);
-  if (elements.size() != counts)
-    fail(elements, elements_path, "expected " + expected + ", got " + describe(elements));
-  for (std::size_t i = 0; i < counts; ++i)
-    result.elements[i] = integer_where(elements[i], child_path(elements_path, i), "an integer >= 1", 1);
-  const bool cut = result.keep != std::array<int, 3>{};
-  if (cut && result.elements[0] % 2 != 0)
-    fail(elements[0], child_path(elements_path, 0),
-         "n_around must be even when `keep` cuts the part: a cut runs along the middle grid line of the "
-         "square core (docs/input.md), got " +
-             std::to_string(result.elements[0]));
-
-  if (const YAML::Node grading = optional(node, "grading"); grading.IsDefined() && !grading.IsNull()) {
-    const std::string grading_path = child_path(path, "grading");
-    const std::string grading_expected =
-        "a list of " + std::to_string(counts) + " numbers > 0, one per count of `elements`";
-    check_sequence(grading, grading_path, grading_expected);
-    if (grading.size() != counts)
-      fail(grading, grading_path, "expected " + grading_expected + ", got " + describe(grading));
+  if (result.geometry == Geometry::mesh) {
+    for (const char* key : {"elements", "grading"})
+      if (const YAML::Node given = optional(node, key); given.IsDefined())
+        fail(given, child_path(path, key),
+             std::string(key) + " does not apply to a mesh part: its elements come from the file; remove the key");
+  } else {
+    const std::string elements_path = child_path(path, "elements");
+    const YAML::Node elements = required(node, path, "elements");
+    const std::size_t counts = result.geometry == Geometry::sphere ? 2 : 3;
+    const std::string expected = result.geometry == Geometry::box ? "a list of 3 integers >= 1 [nx, ny, nz]"
+                                 : result.geometry == Geometry::cylinder
+                                     ? "a list of 3 integers >= 1 [n_around, "
+                                       "n_radius, n_axis]"
+                                     : "a list of 2 integers >= 1 [n_around, "
+                                       "n_radius]";
+    check_sequence(elements, elements_path, expected);
+    if (elements.size() != counts)
+      fail(elements, elements_path, "expected " + expected + ", got " + describe(elements));
     for (std::size_t i = 0; i < counts; ++i)
-      result.grading[i] = number_where(grading[i], child_path(grading_path, i), "a number > 0", positive);
-    if (result.geometry != Geometry::box && result.grading[0] != 1.0)
-      fail(grading[0], child_path(grading_path, 0),
-           "the elements around a cylinder or ball are equal: the grading along n_around must be 1, got " +
-               format_number(result.grading[0]));
+      result.elements[i] = integer_where(elements[i], child_path(elements_path, i), "an integer >= 1", 1);
+    const bool cut = result.keep != std::array<int, 3>{};
+    if (cut && result.elements[0] % 2 != 0)
+      fail(elements[0], child_path(elements_path, 0),
+           "n_around must be even when `keep` cuts the part: a cut runs along the middle grid line of the "
+           "square core (docs/input.md), got " +
+               std::to_string(result.elements[0]));
+
+    if (const YAML::Node grading = optional(node, "grading"); grading.IsDefined() && !grading.IsNull()) {
+      const std::string grading_path = child_path(path, "grading");
+      const std::string grading_expected =
+          "a list of " + std::to_string(counts) + " numbers > 0, one per count of `elements`";
+      check_sequence(grading, grading_path, grading_expected);
+      if (grading.size() != counts)
+        fail(grading, grading_path, "expected " + grading_expected + ", got " + describe(grading));
+      for (std::size_t i = 0; i < counts; ++i)
+        result.grading[i] = number_where(grading[i], child_path(grading_path, i), "a number > 0", positive);
+      if (result.geometry != Geometry::box && result.grading[0] != 1.0)
+        fail(grading[0], child_path(grading_path, 0),
+             "the elements around a cylinder or ball are equal: the grading along n_around must be 1, got " +
+                 format_number(result.grading[0]));
+    }
   }
 
   const std::string material_path = child_path(path, "material");
@@ -369,7 +424,7 @@ FaceRef DeckValidator::face(const YAML::Node& node, const std::string& path,
   std::vector<std::string> face_names;
   for (const PartOptions& known : parts) {
     part_names.push_back(known.name);
-    for (const PartFace side : faces_of(known)) face_names.push_back(known.name + "." + name(side));
+    for (const std::string& side : side_names(known)) face_names.push_back(known.name + "." + side);
   }
   std::string hint = "; the faces are " + join(face_names, ", ");
   if (const std::optional<std::string> nearest = nearest_name(value, face_names))
@@ -384,14 +439,18 @@ FaceRef DeckValidator::face(const YAML::Node& node, const std::string& path,
   if (part_found == part_names.end())
     fail(node, path, "unknown part '" + part_name + "' in face '" + value + "'" + hint);
   const PartOptions& part = parts[static_cast<std::size_t>(part_found - part_names.begin())];
+  const int part_index = static_cast<int>(part_found - part_names.begin());
   const std::vector<PartFace> sides = faces_of(part);
   const auto side_found =
       std::find_if(sides.begin(), sides.end(), [&](PartFace side) { return side_name == name(side); });
-  if (side_found == sides.end())
-    fail(node, path,
-         "unknown side '" + side_name + "' of the " + name(part.geometry) + " part '" + part.name +
-             "' in face '" + value + "'" + hint);
-  return FaceRef{static_cast<int>(part_found - part_names.begin()), *side_found};
+  if (side_found != sides.end()) return FaceRef{part_index, *side_found};
+  const auto& surfaces = part.mesh.surfaces;
+  if (const auto surface = std::find(surfaces.begin(), surfaces.end(), side_name);
+      part.geometry == Geometry::mesh && surface != surfaces.end())
+    return FaceRef{part_index, PartFace::physical, static_cast<int>(surface - surfaces.begin())};
+  fail(node, path,
+       "unknown side '" + side_name + "' of the " + name(part.geometry) + " part '" + part.name + "' in face '" +
+           value + "'" + hint);
 }
 
 std::vector<FaceRef> DeckValidator::face_list(const YAML::Node& node, const std::string& path,

@@ -37,7 +37,8 @@ inline constexpr std::array<SlavePoints, 3> all_slave_points{SlavePoints::automa
                                                              SlavePoints::quadrature};
 inline constexpr std::array<PartFace, 6> box_faces{PartFace::xmin, PartFace::xmax, PartFace::ymin,
                                                    PartFace::ymax, PartFace::zmin, PartFace::zmax};
-inline constexpr std::array<Geometry, 3> all_geometries{Geometry::box, Geometry::cylinder, Geometry::sphere};
+inline constexpr std::array<Geometry, 4> all_geometries{Geometry::box, Geometry::cylinder, Geometry::sphere,
+                                                       Geometry::mesh};
 inline constexpr std::array<PartFace, 3> cut_faces{PartFace::cut_x, PartFace::cut_y, PartFace::cut_z};
 inline constexpr std::array<std::string_view, 3> component_names{"x", "y", "z"};
 
@@ -140,6 +141,7 @@ class DeckValidator {
   std::vector<PartOptions> parts(const YAML::Node& node, const std::string& path,
                                  const std::vector<MaterialOptions>& materials) const;
   std::array<int, 3> keep_cuts(const YAML::Node& node, const std::string& path, int axis) const;
+  MeshFileOptions mesh_file(const YAML::Node& node, const std::string& path) const;
   PartOptions part(const YAML::Node& node, const std::string& path,
                    const std::vector<MaterialOptions>& materials) const;
   FaceRef face(const YAML::Node& node, const std::string& path, const std::vector<PartOptions>& parts) const;
@@ -167,6 +169,9 @@ class DeckValidator {
 
   std::string source_name_;
   const std::vector<Override>& overrides_;
+  // The physical volume and surface names of each mesh file read so far (parts that
+  // share a file read it once).
+  mutable std::map<std::string, std::array<std::vector<std::string>, 2>> mesh_names_;
   std::vector<std::string> override_paths_;  // normalised, parallel to overrides_
 };
 

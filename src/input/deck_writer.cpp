@@ -120,7 +120,10 @@ std::string to_yaml(const Deck& deck) {
   for (const PartOptions& part : deck.parts) {
     const bool sphere = part.geometry == Geometry::sphere;
     out << "  - name: " << yaml_text(part.name) << "\n";
-    if (part.geometry == Geometry::box) {
+    if (part.geometry == Geometry::mesh) {
+      out << "    mesh: {file: " << yaml_text(part.mesh.path) << ", volume: " << yaml_text(part.mesh.volume)
+          << ", reorder: " << (part.mesh.reorder ? "true" : "false") << "}\n";
+    } else if (part.geometry == Geometry::box) {
       out << "    box: {min: " << yaml_vector(part.box_min) << ", max: " << yaml_vector(part.box_max)
           << "}\n";
     } else {
@@ -134,12 +137,14 @@ std::string to_yaml(const Deck& deck) {
           << (sphere ? std::string() : ", length: " + yaml_number(part.length)) << ", keep: ["
           << join(keep, ", ") << "]}\n";
     }
-    out << "    elements: [" << part.elements[0] << ", " << part.elements[1];
-    if (!sphere) out << ", " << part.elements[2];
-    out << "]\n    grading: [" << yaml_number(part.grading[0]) << ", " << yaml_number(part.grading[1]);
-    if (!sphere) out << ", " << yaml_number(part.grading[2]);
-    out << "]\n"
-        << "    material: " << yaml_text(part.material) << "\n"
+    if (part.geometry != Geometry::mesh) {
+      out << "    elements: [" << part.elements[0] << ", " << part.elements[1];
+      if (!sphere) out << ", " << part.elements[2];
+      out << "]\n    grading: [" << yaml_number(part.grading[0]) << ", " << yaml_number(part.grading[1]);
+      if (!sphere) out << ", " << yaml_number(part.grading[2]);
+      out << "]\n";
+    }
+    out << "    material: " << yaml_text(part.material) << "\n"
         << "    formulation: " << name(part.formulation) << "\n"
         << (is_quadratic(part.formulation)
                 ? std::string()

@@ -90,6 +90,8 @@ const char* name(PartFace side) {
       return "cut_y";
     case PartFace::cut_z:
       return "cut_z";
+    case PartFace::physical:
+      return "physical";
   }
   return "?";
 }
@@ -103,6 +105,7 @@ std::vector<PartFace> faces_of(const PartOptions& part) {
       faces = {PartFace::surface, PartFace::start, PartFace::end};
       break;
     case Geometry::sphere:
+    case Geometry::mesh:
       faces = {PartFace::surface};
       break;
   }
@@ -120,6 +123,8 @@ const char* name(Geometry geometry) {
       return "cylinder";
     case Geometry::sphere:
       return "sphere";
+    case Geometry::mesh:
+      return "mesh";
   }
   return "?";
 }
@@ -151,7 +156,16 @@ std::string face_name(const Deck& deck, const FaceRef& face) {
   EXDYN_ASSERT(known_part);
   const std::string part =
       known_part ? deck.parts[static_cast<std::size_t>(face.part)].name : "part#" + std::to_string(face.part);
+  if (face.side == PartFace::physical && known_part)
+    return part + "." + deck.parts[static_cast<std::size_t>(face.part)].mesh.surfaces.at(std::size_t(face.surface));
   return part + "." + name(face.side);
+}
+
+std::vector<std::string> side_names(const PartOptions& part) {
+  std::vector<std::string> names;
+  for (const PartFace side : faces_of(part)) names.emplace_back(name(side));
+  if (part.geometry == Geometry::mesh) names.insert(names.end(), part.mesh.surfaces.begin(), part.mesh.surfaces.end());
+  return names;
 }
 
 // A quad8 face cannot carry a uniform pressure on its nodes alone: the consistent

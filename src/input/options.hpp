@@ -53,8 +53,23 @@ constexpr bool is_quadratic(Formulation formulation) {
   return formulation == Formulation::hex20 || formulation == Formulation::hex20r;
 }
 
-// The shape of a part (docs/input.md): a box, or a mapped cylinder or ball.
-enum class Geometry { box, cylinder, sphere };
+// The shape of a part (docs/input.md): a box, a mapped cylinder or ball, or the
+// hexahedra of a physical volume of a Gmsh mesh file.
+enum class Geometry { box, cylinder, sphere, mesh };
+
+// `mesh: {file, volume, reorder}`: a part read from a Gmsh mesh file.
+struct MeshFileOptions {
+  // The file: `file` of the deck resolved against the deck's folder, absolute, so that the
+  // echo of `exdyn check` reads the same file from anywhere.
+  std::string path;
+  std::string volume;                 // the physical volume's name
+  std::vector<std::string> surfaces;  // the file's physical surfaces (read with the deck)
+  // Number elements along a space-filling curve and nodes by first use (mesh/imported.hpp);
+  // false keeps the file's order.
+  bool reorder = true;
+
+  bool operator==(const MeshFileOptions&) const = default;
+};
 
 // How a part's strains are measured (docs/theory.md, "Finite strain"): small strain on
 // the reference configuration, or large deformation (total Lagrangian, hyperelastic-
@@ -95,18 +110,21 @@ struct PartOptions {
   // nodes move by up to fraction x h per component; 0 = the regular grid.
   double perturbation_fraction = 0.0;  // in [0, 0.5)
   unsigned perturbation_seed = 1;
+  MeshFileOptions mesh;  // Geometry::mesh
 
   bool operator==(const PartOptions&) const = default;
 };
 
 // The named faces of a part: a box's six sides; a cylinder's curved side (surface) and its
-// flat ends (start, end); a ball's surface; the flat face a `keep` cut leaves (cut_x ...).
-enum class PartFace { xmin, xmax, ymin, ymax, zmin, zmax, surface, start, end, cut_x, cut_y, cut_z };
+// flat ends (start, end); a ball's surface; the flat face a `keep` cut leaves (cut_x ...);
+// a mesh part's whole boundary (surface) and its physical surfaces (physical).
+enum class PartFace { xmin, xmax, ymin, ymax, zmin, zmax, surface, start, end, cut_x, cut_y, cut_z, physical };
 
 // A named face `<part>.<side>`.
 struct FaceRef {
   int part = -1;  // index into Deck::parts
   PartFace side = PartFace::xmin;
+  int surface = -1;  // physical: index into the part's mesh.surfaces
 
   bool operator==(const FaceRef&) const = default;
 };
@@ -286,6 +304,8 @@ std::vector<PartFace> faces_of(const PartOptions& part);
 const char* name(OutputField field);
 // "<part>.<side>"
 std::string face_name(const Deck& deck, const FaceRef& face);
+// The face names of a part after "<part>.": faces_of(part), then a mesh part's physical surfaces.
+std::vector<std::string> side_names(const PartOptions& part);
 // What a valid deck asks for that gives a poor answer (printed by `exdyn check` and
 // `exdyn run`): slave_points: nodes on the 8-node segments of 20-node parts.
 std::vector<std::string> deck_warnings(const Deck& deck);

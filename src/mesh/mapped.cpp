@@ -172,12 +172,6 @@ std::array<int, 20> mirror_xi() {
   return mirror;
 }
 
-// The six faces of a VTK brick, outward: corners (counter-clockwise seen from
-// outside), then the mid-edge nodes of the edges 0-1, 1-2, 2-3, 3-0 of the face.
-constexpr int brick_faces[6][8] = {{0, 3, 2, 1, 11, 10, 9, 8},   {4, 5, 6, 7, 12, 13, 14, 15},
-                                   {0, 1, 5, 4, 8, 17, 12, 16},  {1, 2, 6, 5, 9, 18, 13, 17},
-                                   {2, 3, 7, 6, 10, 19, 14, 18}, {3, 0, 4, 7, 11, 16, 15, 19}};
-
 }  // namespace
 
 std::uint64_t mapped_element_count(const input::PartOptions& o) {
@@ -313,14 +307,6 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
   auto coordinate = [&](std::uint32_t node, int c) {
     return c == 0 ? x.x[node] : (c == 1 ? x.y[node] : x.z[node]);
   };
-  std::map<std::array<std::uint32_t, 4>, int> shared;
-  for (const auto& nodes : kept)
-    for (const auto& f : brick_faces) {
-      std::array<std::uint32_t, 4> key{nodes[std::size_t(f[0])], nodes[std::size_t(f[1])],
-                                       nodes[std::size_t(f[2])], nodes[std::size_t(f[3])]};
-      std::sort(key.begin(), key.end());
-      ++shared[key];
-    }
   const double start = options.center[std::size_t(ax)];
   const double end = options.center[std::size_t(ax)] + options.length * 1.0;  // as the last grid point
   const std::array<input::PartFace, 3> cut_names{input::PartFace::cut_x, input::PartFace::cut_y,
@@ -339,55 +325,37 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
   }
   for (int c = 0; c < 3; ++c)
     if (options.keep[std::size_t(c)] != 0) face_named(cut_names[std::size_t(c)]);
-  for (const auto& nodes : kept)
-    for (int fi = 0; fi < 6; ++fi) {
-      const int* f = brick_faces[fi];
-      std::array<std::uint32_t, 4> key{nodes[std::size_t(f[0])], nodes[std::size_t(f[1])],
-                                       nodes[std::size_t(f[2])], nodes[std::size_t(f[3])]};
-      std::sort(key.begin(), key.end());
-      if (shared[key] != 1) continue;
-      auto all_at = [&](int c, double value) {
-        for (int k = 0; k < 4; ++k)
-          if (coordinate(nodes[std::size_t(f[k])], c) != value) return false;
-        return true;
-      };
-      input::PartFace name = input::PartFace::surface;
-      for (int c = 0; c < 3; ++c)
-        if (options.keep[std::size_t(c)] != 0 && all_at(c, options.center[std::size_t(c)]))
-          name = cut_names[std::size_t(c)];
-      if (cylinder && name == input::PartFace::surface) {
-        if (all_at(ax, start)) name = input::PartFace::start;
-        if (all_at(ax, end)) name = input::PartFace::end;
-      }
-      FaceSegment segment;
-      segment.node_count = order == 2 ? 8 : 4;
-      for (int k = 0; k < segment.node_count; ++k) segment.nodes[std::size_t(k)] = nodes[std::size_t(f[k])];
-      Face& face = face_named(name);
-      face.segments.push_back(segment);
-      // The element's length normal to this face: from the face's centroid to the
-      // opposite face's.
-      constexpr int opposite[6] = {1, 0, 4, 5, 2, 3};
-      const int* g = brick_faces[opposite[fi]];
-      double distance2 = 0.0;
-      for (int c = 0; c < 3; ++c) {
-        double here = 0.0, there = 0.0;
-        for (int k = 0; k < 4; ++k) {
-          here += coordinate(nodes[std::size_t(f[k])], c) / 4.0;
-          there += coordinate(nodes[std::size_t(g[k])], c) / 4.0;
-        }
-        distance2 += (here - there) * (here - there);
-      }
-      face.normal_length += std::sqrt(distance2);
+  std::vector<double> normal_length_sum(faces.size(), 0.0);
+  auto face_index = [&](input::PartFace name) {  // every name the loop can meet is made above
+    std::size_t i = 0;
+    while (faces[i].first != name) ++i;
+    return i;
+  };
+  for (const BoundarySegment& boundary : boundary_segments(kept, nodes_per_element, x)) {
+    const FaceSegment& segment = boundary.segment;
+    auto all_at = [&](int c, double value) {
+      for (int k = 0; k < 4; ++k)
+        if (coordinate(segment.nodes[std::size_t(k)], c) != value) return false;
+      return true;
+    };
+    input::PartFace name = input::PartFace::surface;
+    for (int c = 0; c < 3; ++c)
+      if (options.keep[std::size_t(c)] != 0 && all_at(c, options.center[std::size_t(c)]))
+        name = cut_names[std::size_t(c)];
+    if (cylinder && name == input::PartFace::surface) {
+      if (all_at(ax, start)) name = input::PartFace::start;
+      if (all_at(ax, end)) name = input::PartFace::end;
     }
-  for (auto& [name, face] : faces) {
+    const std::size_t f = face_index(name);
+    faces[f].second.segments.push_back(segment);
+    normal_length_sum[f] += boundary.normal_length;
+  }
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    auto& [name, face] = faces[f];
     if (face.segments.empty())
       throw std::logic_error(std::string("add_mapped_part: the face ") + input::name(name) + " of part " +
                              std::to_string(part_index) + " has no segment");
-    face.normal_length /= static_cast<double>(face.segments.size());
-    for (const FaceSegment& segment : face.segments)
-      face.nodes.insert(face.nodes.end(), segment.nodes.begin(), segment.nodes.begin() + segment.node_count);
-    std::sort(face.nodes.begin(), face.nodes.end());
-    face.nodes.erase(std::unique(face.nodes.begin(), face.nodes.end()), face.nodes.end());
+    finish_face(face, normal_length_sum[f]);
   }
   part.faces = std::move(faces);
   mesh.parts.push_back(std::move(part));

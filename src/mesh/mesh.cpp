@@ -1,12 +1,15 @@
 #include "mesh/mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 
 #include "common/errors.hpp"
+#include "mesh/imported.hpp"
 #include "mesh/mapped.hpp"
 
 namespace exdyn::mesh {
@@ -197,6 +200,32 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
   mesh.parts.push_back(std::move(part));
 }
 
+// Every physical surface the deck names must bound its part's volume.
+void check_physical_faces(const Mesh& mesh, const input::Deck& deck) {
+  auto check = [&](const std::vector<input::FaceRef>& faces, const std::string& path) {
+    for (std::size_t i = 0; i < faces.size(); ++i) {
+      const input::FaceRef& f = faces[i];
+      if (f.side != input::PartFace::physical) continue;
+      const PartRange& part = mesh.parts[static_cast<std::size_t>(f.part)];
+      if (!part.physical_faces[static_cast<std::size_t>(f.surface)].segments.empty()) continue;
+      const input::PartOptions& options = deck.parts[static_cast<std::size_t>(f.part)];
+      throw InputError(SourceLocation{deck.source_file, 0, 0}, path + "[" + std::to_string(i) + "]",
+                       "the face '" + input::face_name(deck, f) + "': the physical surface '" +
+                           options.mesh.surfaces[static_cast<std::size_t>(f.surface)] + "' of '" +
+                           options.mesh.path + "' has no quadrilateral on the boundary of the volume '" +
+                           options.mesh.volume + "'");
+    }
+  };
+  for (std::size_t b = 0; b < deck.boundary_conditions.size(); ++b)
+    check(deck.boundary_conditions[b].faces, "boundary_conditions[" + std::to_string(b) + "].faces");
+  for (std::size_t c = 0; c < deck.contact.size(); ++c) {
+    check(deck.contact[c].slave, "contact[" + std::to_string(c) + "].slave");
+    check(deck.contact[c].master, "contact[" + std::to_string(c) + "].master");
+  }
+  for (std::size_t w = 0; w < deck.rigid_walls.size(); ++w)
+    check(deck.rigid_walls[w].slave, "rigid_walls[" + std::to_string(w) + "].slave");
+}
+
 }  // namespace
 
 double graded_fraction(int i, int n, double grading) {
@@ -210,6 +239,7 @@ double graded_fraction(int i, int n, double grading) {
 Mesh build_mesh(const input::Deck& deck) {
   std::uint64_t nodes = 0, elements = 0, connectivity = 0;
   for (const auto& part : deck.parts) {
+    if (part.geometry == input::Geometry::mesh) continue;  // counted as it is read
     const auto& n = part.elements;
     const int order = input::is_quadratic(part.formulation) ? 2 : 1;
     const std::uint64_t count = part.geometry == input::Geometry::box
@@ -233,7 +263,17 @@ Mesh build_mesh(const input::Deck& deck) {
   mesh.x_ref.z.reserve(nodes);
   mesh.connectivity.reserve(connectivity);
   mesh.element_part.reserve(elements);
+  std::map<std::string, input::GmshMesh> files;  // each file read once
   for (std::size_t p = 0; p < deck.parts.size(); ++p) {
+    const std::string key_path = "parts[" + std::to_string(p) + "].mesh";
+    const SourceLocation where{deck.source_file, 0, 0};
+    if (deck.parts[p].geometry == input::Geometry::mesh) {
+      const std::string& path = deck.parts[p].mesh.path;
+      auto file = files.find(path);
+      if (file == files.end()) file = files.emplace(path, input::read_gmsh(path, where, key_path + ".file")).first;
+      add_imported_part(mesh, deck.parts[p], static_cast<int>(p), file->second, where, key_path);
+      continue;
+    }
     if (deck.parts[p].geometry != input::Geometry::box) {
       add_mapped_part(mesh, deck.parts[p], static_cast<int>(p));
       continue;
@@ -241,12 +281,97 @@ Mesh build_mesh(const input::Deck& deck) {
     add_part(mesh, deck.parts[p], static_cast<int>(p));
     if (deck.parts[p].perturbation_fraction > 0.0) check_perturbed_part(mesh, deck, p);
   }
+  check_physical_faces(mesh, deck);
   return mesh;
 }
 
-Face face_of(const Mesh& mesh, int part_index, input::PartFace side) {
+std::vector<BoundarySegment> boundary_segments(const std::vector<std::array<std::uint32_t, 20>>& elements,
+                                               int nodes_per_element, const NodalVectors& x,
+                                               std::array<std::uint32_t, 4>* non_manifold) {
+  // Every brick face by its sorted corners; equal keys are neighbours. Sorting (not
+  // hashing) keeps the result independent of the standard library.
+  struct Entry {
+    std::array<std::uint32_t, 4> corners;
+    std::uint64_t where;  // 6 element + local face
+  };
+  std::vector<Entry> entries;
+  entries.reserve(6 * elements.size());
+  for (std::size_t e = 0; e < elements.size(); ++e)
+    for (int f = 0; f < 6; ++f) {
+      Entry entry{};
+      for (int k = 0; k < 4; ++k) entry.corners[std::size_t(k)] = elements[e][std::size_t(brick_faces[f][k])];
+      std::sort(entry.corners.begin(), entry.corners.end());
+      entry.where = 6 * std::uint64_t(e) + std::uint64_t(f);
+      entries.push_back(entry);
+    }
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.corners != b.corners ? a.corners < b.corners : a.where < b.where;
+  });
+  std::vector<std::uint64_t> boundary;
+  if (non_manifold != nullptr) *non_manifold = {};
+  for (std::size_t i = 0; i < entries.size();) {
+    std::size_t j = i + 1;
+    while (j < entries.size() && entries[j].corners == entries[i].corners) ++j;
+    if (j - i == 1) boundary.push_back(entries[i].where);
+    if (j - i > 2 && non_manifold != nullptr && *non_manifold == std::array<std::uint32_t, 4>{})
+      *non_manifold = entries[i].corners;
+    i = j;
+  }
+  std::sort(boundary.begin(), boundary.end());
+
+  auto coordinate = [&](std::uint32_t node, int c) {
+    return c == 0 ? x.x[node] : (c == 1 ? x.y[node] : x.z[node]);
+  };
+  std::vector<BoundarySegment> result;
+  result.reserve(boundary.size());
+  for (const std::uint64_t where : boundary) {
+    const auto& nodes = elements[std::size_t(where / 6)];
+    const int fi = static_cast<int>(where % 6);
+    const int* f = brick_faces[fi];
+    BoundarySegment b;
+    b.segment.node_count = nodes_per_element == 20 ? 8 : 4;
+    for (int k = 0; k < b.segment.node_count; ++k) b.segment.nodes[std::size_t(k)] = nodes[std::size_t(f[k])];
+    for (int k = 0; k < 4; ++k) b.corners[std::size_t(k)] = nodes[std::size_t(f[k])];
+    std::sort(b.corners.begin(), b.corners.end());
+    // The element's length normal to this face: from the face's centroid to the
+    // opposite face's.
+    constexpr int opposite[6] = {1, 0, 4, 5, 2, 3};
+    const int* g = brick_faces[opposite[fi]];
+    double distance2 = 0.0;
+    for (int c = 0; c < 3; ++c) {
+      double here = 0.0, there = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        here += coordinate(nodes[std::size_t(f[k])], c) / 4.0;
+        there += coordinate(nodes[std::size_t(g[k])], c) / 4.0;
+      }
+      distance2 += (here - there) * (here - there);
+    }
+    b.normal_length = std::sqrt(distance2);
+    result.push_back(b);
+  }
+  return result;
+}
+
+void finish_face(Face& face, double normal_length_sum) {
+  face.normal_length = normal_length_sum / static_cast<double>(face.segments.size());
+  for (const FaceSegment& segment : face.segments)
+    face.nodes.insert(face.nodes.end(), segment.nodes.begin(), segment.nodes.begin() + segment.node_count);
+  std::sort(face.nodes.begin(), face.nodes.end());
+  face.nodes.erase(std::unique(face.nodes.begin(), face.nodes.end()), face.nodes.end());
+}
+
+Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
+  const int part_index = reference.part;
+  const input::PartFace side = reference.side;
   const PartRange& part = mesh.parts.at(static_cast<std::size_t>(part_index));
-  if (part.lattice.empty()) {  // a mapped part: its faces were built with it
+  if (side == input::PartFace::physical) {
+    const Face& face = part.physical_faces.at(static_cast<std::size_t>(reference.surface));
+    if (face.segments.empty())
+      throw std::logic_error("face_of: physical surface " + std::to_string(reference.surface) + " of part " +
+                             std::to_string(part_index) + " has no segment");
+    return face;
+  }
+  if (part.lattice.empty()) {  // a mapped or imported part: its faces were built with it
     for (const auto& [name, face] : part.faces)
       if (name == side) return face;
     throw std::logic_error("face_of: part " + std::to_string(part_index) + " has no face " +
@@ -281,6 +406,7 @@ Face face_of(const Mesh& mesh, int part_index, input::PartFace side) {
     case input::PartFace::cut_x:
     case input::PartFace::cut_y:
     case input::PartFace::cut_z:
+    case input::PartFace::physical:
       throw std::logic_error(std::string("face_of: a box part has no face ") + input::name(side));
   }
   // Lattice point (a, b) of the face plane, in lattice units along p and q.

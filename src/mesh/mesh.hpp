@@ -56,8 +56,11 @@ struct PartRange {
   std::array<int, 3> lattice_size{};   // order n + 1 along each axis
   // A box: the element length (m) normal to each side, xmin, xmax, ... zmax.
   std::array<double, 6> normal_lengths{};
-  // A mapped part (cylinder, sphere) has no lattice: its named faces are built with it.
+  // A mapped or imported part has no lattice: its named faces are built with it; an
+  // imported part's physical surfaces, one per name of its MeshFileOptions::surfaces
+  // (empty where the surface does not bound the part's volume).
   std::vector<std::pair<input::PartFace, Face>> faces;
+  std::vector<Face> physical_faces;
 
   // Node id at lattice point (I, J, K); no_node where the lattice has no node.
   std::uint32_t node_at(int i, int j, int k) const {
@@ -96,8 +99,35 @@ struct Mesh {
 // a perturbed part has no element with a non-positive corner Jacobian).
 Mesh build_mesh(const input::Deck& deck);
 
-// The nodes and outward-oriented segments of one face of a part.
-Face face_of(const Mesh& mesh, int part, input::PartFace side);
+// The nodes and outward-oriented segments of one named face.
+Face face_of(const Mesh& mesh, const input::FaceRef& face);
+inline Face face_of(const Mesh& mesh, int part, input::PartFace side) {
+  return face_of(mesh, input::FaceRef{part, side});
+}
+
+// The six faces of a VTK brick, outward: corners (counter-clockwise seen from
+// outside), then the mid-edge nodes of the edges 0-1, 1-2, 2-3, 3-0 of the face.
+inline constexpr int brick_faces[6][8] = {{0, 3, 2, 1, 11, 10, 9, 8},   {4, 5, 6, 7, 12, 13, 14, 15},
+                                          {0, 1, 5, 4, 8, 17, 12, 16},  {1, 2, 6, 5, 9, 18, 13, 17},
+                                          {2, 3, 7, 6, 10, 19, 14, 18}, {3, 0, 4, 7, 11, 16, 15, 19}};
+
+// A face of a brick that no other brick of its part shares.
+struct BoundarySegment {
+  FaceSegment segment;                  // outward, 4 or 8 nodes
+  std::array<std::uint32_t, 4> corners;  // the corner node ids, ascending (a key to match faces by)
+  double normal_length = 0.0;           // centroid of this face to the opposite face's, m
+};
+
+// The boundary faces of bricks of `nodes_per_element` (8 or 20) nodes each, in order of
+// element and then local face. A face shared by more than two bricks is no manifold's:
+// its sorted corners are returned in `non_manifold` (left empty when none is).
+std::vector<BoundarySegment> boundary_segments(const std::vector<std::array<std::uint32_t, 20>>& elements,
+                                               int nodes_per_element, const NodalVectors& x,
+                                               std::array<std::uint32_t, 4>* non_manifold = nullptr);
+
+// A face's nodes (every node of its segments, ascending, once) and its mean normal
+// length, from its segments and the sum of their normal lengths.
+void finish_face(Face& face, double normal_length_sum);
 
 // Lattice offsets (along x, y, z, in units of half an element) of the nodes of a brick
 // from its lowest corner, in VTK order: the 8 corners, then for 20 nodes the mid-edge

@@ -133,7 +133,7 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
   std::vector<mesh::Face> slave_faces;
   bool eight_node_segments = false;
   for (const auto& f : slave) {
-    slave_faces.push_back(mesh::face_of(model.mesh, f.part, f.side));
+    slave_faces.push_back(mesh::face_of(model.mesh, f));
     for (const auto& face_segment : slave_faces.back().segments)
       eight_node_segments = eight_node_segments || face_segment.node_count == 8;
     s.slave_nodes.insert(s.slave_nodes.end(), slave_faces.back().nodes.begin(),
@@ -193,7 +193,7 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
   }
   if (!s.quadrature) s.normal_length = node_length;
   for (const auto& f : master) {
-    const mesh::Face face = mesh::face_of(model.mesh, f.part, f.side);
+    const mesh::Face face = mesh::face_of(model.mesh, f);
     for (const auto& face_segment : face.segments) s.segments.push_back(segment_nodes(face_segment));
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
     g.smallest_length = std::min(g.smallest_length, face.normal_length);

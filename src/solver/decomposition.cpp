@@ -62,7 +62,7 @@ std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mes
   std::vector<std::uint32_t> nodes;
   auto add_faces = [&](const std::vector<input::FaceRef>& faces) {
     for (const input::FaceRef& f : faces) {
-      const mesh::Face face = mesh::face_of(mesh, f.part, f.side);
+      const mesh::Face face = mesh::face_of(mesh, f);
       nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
     }
   };

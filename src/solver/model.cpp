@@ -50,7 +50,7 @@ Model build_model(const input::Deck& deck) {
   }
   for (const auto& bc : deck.boundary_conditions)
     for (const auto& face_ref : bc.faces) {
-      const mesh::Face face = mesh::face_of(model.mesh, face_ref.part, face_ref.side);
+      const mesh::Face face = mesh::face_of(model.mesh, face_ref);
       for (int c = 0; c < 3; ++c)  // every node of the face, mid-side nodes included
         if (bc.fix[c])
           model.fixed_nodes[c].insert(model.fixed_nodes[c].end(), face.nodes.begin(), face.nodes.end());

@@ -1,0 +1,309 @@
+#include "mesh/imported.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+#include <vector>
+
+namespace exdyn::mesh {
+
+namespace {
+
+using Point = std::array<double, 3>;
+
+bool is_tetrahedron(int type) { return type == 4 || type == 11 || type == 29 || type == 30 || type == 31; }
+bool is_prism(int type) { return type == 6 || type == 13 || type == 18 || type == 90 || type == 91; }
+bool is_pyramid(int type) { return type == 7 || type == 14 || type == 19 || type == 118 || type == 119; }
+
+std::string plural(std::size_t count, const std::string& what) {
+  return std::to_string(count) + " " + what + (count == 1 ? "" : "s");
+}
+
+}  // namespace
+
+std::uint64_t hilbert_index(const std::array<double, 3>& unit_point) {
+  // Skilling, "Programming the Hilbert curve", AIP Conf. Proc. 707 (2004): the axes to
+  // the transposed Hilbert index, then its bits interleaved, most significant first.
+  constexpr int bits = 21;
+  std::array<std::uint32_t, 3> x{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    const double scaled = std::clamp(unit_point[c], 0.0, 1.0) * double((1u << bits) - 1);
+    x[c] = static_cast<std::uint32_t>(scaled);
+  }
+  for (std::uint32_t q = 1u << (bits - 1); q > 1; q >>= 1) {
+    const std::uint32_t p = q - 1;
+    for (std::size_t i = 0; i < 3; ++i) {
+      if (x[i] & q) {
+        x[0] ^= p;  // invert
+      } else {      // exchange
+        const std::uint32_t t = (x[0] ^ x[i]) & p;
+        x[0] ^= t;
+        x[i] ^= t;
+      }
+    }
+  }
+  for (std::size_t i = 1; i < 3; ++i) x[i] ^= x[i - 1];  // Gray encode
+  std::uint32_t t = 0;
+  for (std::uint32_t q = 1u << (bits - 1); q > 1; q >>= 1)
+    if (x[2] & q) t ^= q - 1;
+  for (std::uint32_t& v : x) v ^= t;
+  std::uint64_t index = 0;
+  for (int bit = bits - 1; bit >= 0; --bit)
+    for (std::size_t i = 0; i < 3; ++i) index = (index << 1) | ((x[i] >> bit) & 1u);
+  return index;
+}
+
+void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_index,
+                       const input::GmshMesh& file, const SourceLocation& where, const std::string& key_path) {
+  auto fail = [&](const std::string& message) { throw InputError(where, key_path, message); };
+  const std::string in_file = " of '" + file.file + "'";
+  const input::GmshGroup* volume = nullptr;
+  for (const input::GmshGroup& group : file.volumes)
+    if (group.name == options.mesh.volume) volume = &group;
+  if (volume == nullptr) fail("no physical volume '" + options.mesh.volume + "'" + in_file);
+  const std::string volume_text = "the physical volume '" + volume->name + "'" + in_file;
+
+  // Only hexahedra of the formulation's node count.
+  const bool quadratic = input::is_quadratic(options.formulation);
+  const int wanted = quadratic ? input::gmsh_type::hex20 : input::gmsh_type::hex8;
+  std::vector<std::string> others;
+  std::size_t hex8 = 0, hex20 = 0;
+  for (const input::GmshElements& block : volume->elements) {
+    if (block.type == input::gmsh_type::hex8) hex8 += block.tags.size();
+    if (block.type == input::gmsh_type::hex20) hex20 += block.tags.size();
+    if (block.type == input::gmsh_type::hex8 || block.type == input::gmsh_type::hex20) continue;
+    std::string kind = "elements";
+    if (is_tetrahedron(block.type)) kind = "tetrahedra";
+    if (is_prism(block.type)) kind = "prisms";
+    if (is_pyramid(block.type)) kind = "pyramids";
+    if (block.type == 12) kind = "27-node hexahedra";
+    others.push_back(std::to_string(block.tags.size()) + " " + kind + " ('" + block.name + "', Gmsh type " +
+                     std::to_string(block.type) + ")");
+  }
+  if (!others.empty()) {
+    std::string list;
+    for (const std::string& other : others) list += (list.empty() ? "" : ", ") + other;
+    fail(volume_text + " has " + list +
+         ": a part takes only 8-node hexahedra (hex8, hex8r) or 20-node ones (hex20, hex20r); mesh it with "
+         "hexahedra (Recombine, Transfinite), and for 20 nodes with Mesh.SecondOrderIncomplete = 1");
+  }
+  if (hex8 > 0 && hex20 > 0)
+    fail(volume_text + " mixes " + plural(hex8, "8-node hexahedron") + " and " +
+         plural(hex20, "20-node hexahedron") + ": a part's elements all have the same nodes");
+  if (hex8 + hex20 == 0) fail(volume_text + " has no elements");
+  if ((quadratic && hex8 > 0) || (!quadratic && hex20 > 0))
+    fail(volume_text + " has " + (hex8 > 0 ? "8" : "20") + "-node hexahedra, but the part's formulation " +
+         input::name(options.formulation) + " takes " + (quadratic ? "20" : "8") + "-node ones" +
+         (quadratic ? " (gmsh -3 -order 2 with Mesh.SecondOrderIncomplete = 1)" : " (gmsh -3 -order 1)"));
+
+  // The file's nodes by tag.
+  const std::size_t file_nodes = file.node_tags.size();
+  if (file.coordinates.size() != 3 * file_nodes)
+    fail("'" + file.file + "' gives " + std::to_string(file.coordinates.size()) + " coordinates for " +
+         plural(file_nodes, "node"));
+  std::unordered_map<std::size_t, std::uint32_t> index_of_tag;
+  index_of_tag.reserve(file_nodes);
+  for (std::size_t i = 0; i < file_nodes; ++i)
+    if (!index_of_tag.emplace(file.node_tags[i], static_cast<std::uint32_t>(i)).second)
+      fail("'" + file.file + "' has node tag " + std::to_string(file.node_tags[i]) + " twice");
+  auto file_point = [&](std::uint32_t i) {
+    return Point{file.coordinates[3 * std::size_t(i)], file.coordinates[3 * std::size_t(i) + 1],
+                 file.coordinates[3 * std::size_t(i) + 2]};
+  };
+
+  // Elements in VTK order (file node indices), each checked.
+  const int nodes_per_element = quadratic ? 20 : 8;
+  std::vector<std::array<std::uint32_t, 20>> elements;
+  std::vector<std::size_t> element_tags;
+  for (const input::GmshElements& block : volume->elements) {
+    if (block.type != wanted) continue;
+    if (block.nodes.size() != std::size_t(nodes_per_element) * block.tags.size())
+      fail(volume_text + ": " + plural(block.tags.size(), "element") + " with " +
+           std::to_string(block.nodes.size()) + " node tags");
+    for (std::size_t e = 0; e < block.tags.size(); ++e) {
+      const std::string element_text = "element " + std::to_string(block.tags[e]) + " of " + volume_text;
+      std::array<std::uint32_t, 20> nodes{};
+      for (int v = 0; v < nodes_per_element; ++v) {
+        const int g = quadratic ? gmsh_hex20_node[std::size_t(v)] : v;
+        const std::size_t tag = block.nodes[std::size_t(nodes_per_element) * e + std::size_t(g)];
+        const auto found = index_of_tag.find(tag);
+        if (found == index_of_tag.end())
+          fail(element_text + " names node " + std::to_string(tag) + ", which the file does not have");
+        nodes[std::size_t(v)] = found->second;
+      }
+      std::array<std::uint32_t, 20> sorted = nodes;
+      std::sort(sorted.begin(), sorted.begin() + nodes_per_element);
+      if (const auto twice = std::adjacent_find(sorted.begin(), sorted.begin() + nodes_per_element);
+          twice != sorted.begin() + nodes_per_element)
+        fail(element_text + " is degenerate: node " + std::to_string(file.node_tags[*twice]) +
+             " is two of its nodes");
+      for (int v = 0; v < nodes_per_element; ++v)
+        for (const double c : file_point(nodes[std::size_t(v)]))
+          if (!std::isfinite(c))
+            fail(element_text + " has node " + std::to_string(file.node_tags[nodes[std::size_t(v)]]) +
+                 " at a coordinate that is not a finite number");
+      // The trilinear corner map's Jacobian at each corner: det[e_xi, e_eta, e_zeta] of
+      // the edges from the corner towards the next corner along each direction (m^3).
+      // Not positive: the element is inverted or flat there.
+      constexpr int along[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7},
+                                   {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
+      constexpr double sign[8] = {1, -1, 1, -1, -1, 1, -1, 1};  // the edges' handedness at each corner
+      for (int corner = 0; corner < 8; ++corner) {
+        const Point o = file_point(nodes[std::size_t(corner)]);
+        Point edge[3];
+        for (int a = 0; a < 3; ++a) {
+          const Point p = file_point(nodes[std::size_t(along[corner][a])]);
+          for (std::size_t c = 0; c < 3; ++c) edge[a][c] = p[c] - o[c];
+        }
+        const double det = sign[corner] * (edge[0][0] * (edge[1][1] * edge[2][2] - edge[1][2] * edge[2][1]) -
+                                           edge[0][1] * (edge[1][0] * edge[2][2] - edge[1][2] * edge[2][0]) +
+                                           edge[0][2] * (edge[1][0] * edge[2][1] - edge[1][1] * edge[2][0]));
+        if (!(det > 0.0))
+          fail(element_text + " is " + (det < 0.0 ? "inverted" : "degenerate") +
+               ": the Jacobian at its corner node " + std::to_string(file.node_tags[nodes[std::size_t(corner)]]) +
+               " is " + (det < 0.0 ? "negative" : "zero") +
+               " (Gmsh's hexahedron numbers its bottom corners counter-clockwise seen from the top)");
+      }
+      elements.push_back(nodes);
+      element_tags.push_back(block.tags[e]);
+    }
+  }
+
+  // Element order: along a Hilbert curve through the centroids in the volume's
+  // bounding box (ties by file order), or the file's.
+  std::vector<std::size_t> order(elements.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  if (options.mesh.reorder) {
+    Point low{}, high{};
+    low.fill(std::numeric_limits<double>::infinity());
+    high.fill(-std::numeric_limits<double>::infinity());
+    std::vector<Point> centroid(elements.size());
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+      for (int v = 0; v < 8; ++v) {
+        const Point p = file_point(elements[e][std::size_t(v)]);
+        for (std::size_t c = 0; c < 3; ++c) centroid[e][c] += p[c] / 8.0;
+      }
+      for (std::size_t c = 0; c < 3; ++c) {
+        low[c] = std::min(low[c], centroid[e][c]);
+        high[c] = std::max(high[c], centroid[e][c]);
+      }
+    }
+    // One scale for the three axes keeps the curve's cells cubes.
+    const double extent = std::max({high[0] - low[0], high[1] - low[1], high[2] - low[2], 0.0});
+    std::vector<std::uint64_t> key(elements.size());
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+      Point unit{};
+      for (std::size_t c = 0; c < 3; ++c) unit[c] = extent > 0.0 ? (centroid[e][c] - low[c]) / extent : 0.0;
+      key[e] = hilbert_index(unit);
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  }
+
+  // Part node ids by first use along the element order.
+  const std::size_t total_nodes = mesh.node_count() + file_nodes;
+  if (total_nodes > std::numeric_limits<std::uint32_t>::max() ||
+      mesh.element_count() + elements.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
+    fail("the mesh would pass 4294967295 nodes or 2147483647 elements");
+  PartRange part;
+  part.order = quadratic ? 2 : 1;
+  part.nodes_per_element = nodes_per_element;
+  part.first_node = static_cast<std::uint32_t>(mesh.node_count());
+  part.first_element = static_cast<std::uint32_t>(mesh.element_count());
+  part.first_connectivity = mesh.connectivity.size();
+  part.element_count = static_cast<std::uint32_t>(elements.size());
+  std::vector<std::uint32_t> part_node(file_nodes, no_node);
+  std::uint32_t next = part.first_node;
+  std::vector<std::array<std::uint32_t, 20>> numbered;
+  numbered.reserve(elements.size());
+  for (const std::size_t e : order) {
+    std::array<std::uint32_t, 20> nodes{};
+    for (int v = 0; v < nodes_per_element; ++v) {
+      std::uint32_t& id = part_node[elements[e][std::size_t(v)]];
+      if (id == no_node) {
+        id = next++;
+        const Point p = file_point(elements[e][std::size_t(v)]);
+        mesh.x_ref.x.push_back(p[0]);
+        mesh.x_ref.y.push_back(p[1]);
+        mesh.x_ref.z.push_back(p[2]);
+      }
+      nodes[std::size_t(v)] = id;
+      mesh.connectivity.push_back(id);
+    }
+    mesh.element_part.push_back(part_index);
+    numbered.push_back(nodes);
+  }
+  part.node_count = next - part.first_node;
+
+  // The boundary, whole (surface) and by physical surface.
+  std::array<std::uint32_t, 4> non_manifold{};
+  const std::vector<BoundarySegment> boundary =
+      boundary_segments(numbered, nodes_per_element, mesh.x_ref, &non_manifold);
+  if (non_manifold != std::array<std::uint32_t, 4>{}) {
+    std::vector<std::uint32_t> file_index_of(part.node_count);
+    for (std::size_t i = 0; i < file_nodes; ++i)
+      if (part_node[i] != no_node) file_index_of[part_node[i] - part.first_node] = static_cast<std::uint32_t>(i);
+    std::string corners;
+    for (const std::uint32_t node : non_manifold)
+      corners += (corners.empty() ? "" : ", ") + std::to_string(file.node_tags[file_index_of[node - part.first_node]]);
+    fail(volume_text + " has a face (corner nodes " + corners +
+         ") shared by more than two elements: elements overlap or the mesh is not a manifold");
+  }
+  Face whole;
+  double whole_length = 0.0;
+  for (const BoundarySegment& b : boundary) {
+    whole.segments.push_back(b.segment);
+    whole_length += b.normal_length;
+  }
+  finish_face(whole, whole_length);
+  part.faces.emplace_back(input::PartFace::surface, std::move(whole));
+
+  std::vector<std::size_t> by_corners(boundary.size());
+  std::iota(by_corners.begin(), by_corners.end(), std::size_t(0));
+  std::sort(by_corners.begin(), by_corners.end(),
+            [&](std::size_t a, std::size_t b) { return boundary[a].corners < boundary[b].corners; });
+  for (const std::string& surface_name : options.mesh.surfaces) {
+    const input::GmshGroup* surface = nullptr;
+    for (const input::GmshGroup& group : file.surfaces)
+      if (group.name == surface_name) surface = &group;
+    // Which boundary faces the surface's quadrilaterals are, in boundary order.
+    std::vector<std::size_t> matched;
+    if (surface != nullptr)
+      for (const input::GmshElements& block : surface->elements) {
+        const int n = block.nodes_per_element;
+        if ((block.type != input::gmsh_type::quad4 && block.type != input::gmsh_type::quad8) ||
+            block.nodes.size() != std::size_t(n) * block.tags.size())
+          continue;  // triangles and the like bound no hexahedron
+        for (std::size_t q = 0; q < block.tags.size(); ++q) {
+          std::array<std::uint32_t, 4> corners{};
+          bool in_part = true;
+          for (std::size_t k = 0; k < 4; ++k) {
+            const auto found = index_of_tag.find(block.nodes[std::size_t(n) * q + k]);
+            in_part = in_part && found != index_of_tag.end() && part_node[found->second] != no_node;
+            if (in_part) corners[k] = part_node[found->second];
+          }
+          if (!in_part) continue;
+          std::sort(corners.begin(), corners.end());
+          const auto hit = std::lower_bound(by_corners.begin(), by_corners.end(), corners,
+                                            [&](std::size_t b, const std::array<std::uint32_t, 4>& key) {
+                                              return boundary[b].corners < key;
+                                            });
+          if (hit != by_corners.end() && boundary[*hit].corners == corners) matched.push_back(*hit);
+        }
+      }
+    std::sort(matched.begin(), matched.end());
+    matched.erase(std::unique(matched.begin(), matched.end()), matched.end());
+    Face face;
+    double length = 0.0;
+    for (const std::size_t b : matched) {
+      face.segments.push_back(boundary[b].segment);
+      length += boundary[b].normal_length;
+    }
+    if (!face.segments.empty()) finish_face(face, length);
+    part.physical_faces.push_back(std::move(face));
+  }
+  mesh.parts.push_back(std::move(part));
+}
+
+}  // namespace exdyn::mesh
