@@ -30,25 +30,35 @@ namespace {
 
 // Chunks of consecutive elements, coloured greedily in chunk order: a chunk takes
 // the lowest colour that no earlier chunk sharing one of its nodes has (a bit mask
-// of colours per node; structured blocks need two or three colours).
+// of colours per node; structured blocks and meshes in Hilbert order need a few).
+// The masks cover 64 colours from `base`; a chunk that finds them all taken (a mesh in
+// a scattered order, every chunk touching every other) moves the window past them,
+// with the masks cleared: an earlier chunk's colour is below the new base, so it
+// cannot clash with a colour chosen from there on.
 void build_schedule(ElementBlock& block, std::size_t node_count) {
   const std::uint32_t chunks = (block.count + element_chunk - 1) / element_chunk;
   block.chunk_begin.resize(chunks + 1);
   for (std::uint32_t c = 0; c <= chunks; ++c) block.chunk_begin[c] = std::min(c * element_chunk, block.count);
   std::vector<std::uint64_t> colours_at_node(node_count, 0);
+  std::size_t base = 0;
   for (std::uint32_t c = 0; c < chunks; ++c) {
     const std::size_t nodes = static_cast<std::size_t>(block.nodes_per_element);
     const std::uint32_t* begin = block.connectivity + nodes * std::size_t(block.chunk_begin[c]);
     const std::uint32_t* end = block.connectivity + nodes * std::size_t(block.chunk_begin[c + 1]);
     std::uint64_t taken = 0;
     for (const std::uint32_t* node = begin; node != end; ++node) taken |= colours_at_node[*node];
-    if (taken == ~std::uint64_t{0}) throw std::logic_error("element colouring: more than 64 colours");
+    if (taken == ~std::uint64_t{0}) {
+      base += 64;
+      std::fill(colours_at_node.begin(), colours_at_node.end(), std::uint64_t{0});
+      taken = 0;
+    }
     int colour = 0;
     while (taken & (std::uint64_t{1} << colour)) ++colour;
     for (const std::uint32_t* node = begin; node != end; ++node)
       colours_at_node[*node] |= std::uint64_t{1} << colour;
-    if (block.colours.size() <= std::size_t(colour)) block.colours.resize(std::size_t(colour) + 1);
-    block.colours[std::size_t(colour)].push_back(c);
+    const std::size_t index = base + std::size_t(colour);
+    if (block.colours.size() <= index) block.colours.resize(index + 1);
+    block.colours[index].push_back(c);
   }
   block.chunk_energies.assign(chunks, ElementEnergies{});
 }

@@ -21,6 +21,182 @@ std::string plural(std::size_t count, const std::string& what) {
   return std::to_string(count) + " " + what + (count == 1 ? "" : "s");
 }
 
+using Brick = std::array<std::uint32_t, 20>;
+
+// The 24 rotations of the brick as permutations of its local nodes: a brick rotated by
+// r has node v = the old node rotations[r][v]. Each is a signed permutation of the axes
+// with determinant +1 acting on the offsets (brick_offsets, about the centre 1, 1, 1),
+// so a rotated brick keeps its positive orientation.
+std::vector<std::array<int, 20>> brick_rotations() {
+  std::vector<std::array<int, 20>> rotations;
+  const int axes[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  const int parity[6] = {1, -1, -1, 1, 1, -1};
+  for (int a = 0; a < 6; ++a)
+    for (int signs = 0; signs < 8; ++signs) {
+      const int sign[3] = {signs & 1 ? -1 : 1, signs & 2 ? -1 : 1, signs & 4 ? -1 : 1};
+      if (parity[a] * sign[0] * sign[1] * sign[2] != 1) continue;
+      std::array<int, 20> permutation{};
+      for (int v = 0; v < 20; ++v) {
+        std::array<int, 3> d{};
+        for (int c = 0; c < 3; ++c)
+          d[std::size_t(c)] = 1 + sign[c] * (brick_offsets[std::size_t(v)][std::size_t(axes[a][c])] - 1);
+        for (int u = 0; u < 20; ++u)
+          if (brick_offsets[std::size_t(u)] == d) permutation[std::size_t(v)] = u;
+      }
+      rotations.push_back(permutation);
+    }
+  return rotations;
+}
+
+// The opposite face of each face of brick_faces: bottom-top, front-back, right-left.
+constexpr int opposite_face[6] = {1, 0, 4, 5, 2, 3};
+
+// The elements in rows for the packed kernels (docs/performance.md): chains of
+// elements joined through opposite faces, each element turned so that the chain runs
+// along its xi axis (its face 5 on the previous element's face 3), as the x-rows of a
+// built-in box. A chain starts from the first element not yet in one, in Hilbert order
+// of the centroids, and runs both ways along that element's axis with the most
+// elements. Returns the elements (turned) in chain order; `chains` gets each chain's
+// first position.
+std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const std::vector<std::size_t>& seeds,
+                                    int nodes_per_element, std::vector<std::size_t>& chains) {
+  const std::size_t count = elements.size();
+  // Each element face's neighbour across it: 6 e + f, or none.
+  constexpr std::uint64_t none = ~std::uint64_t{0};
+  std::vector<std::uint64_t> neighbour(6 * count, none);
+  {
+    std::vector<std::pair<std::array<std::uint32_t, 4>, std::uint64_t>> faces;
+    faces.reserve(6 * count);
+    for (std::size_t e = 0; e < count; ++e)
+      for (int f = 0; f < 6; ++f) {
+        std::array<std::uint32_t, 4> corners{};
+        for (int k = 0; k < 4; ++k) corners[std::size_t(k)] = elements[e][std::size_t(brick_faces[f][k])];
+        std::sort(corners.begin(), corners.end());
+        faces.emplace_back(corners, 6 * std::uint64_t(e) + std::uint64_t(f));
+      }
+    std::sort(faces.begin(), faces.end());
+    for (std::size_t i = 0; i + 1 < faces.size(); ++i)
+      if (faces[i].first == faces[i + 1].first && (i + 2 == faces.size() || faces[i + 2].first != faces[i].first) &&
+          (i == 0 || faces[i - 1].first != faces[i].first)) {
+        neighbour[faces[i].second] = faces[i + 1].second;
+        neighbour[faces[i + 1].second] = faces[i].second;
+      }
+  }
+  const std::vector<std::array<int, 20>> rotations = brick_rotations();
+  std::vector<char> placed(count, 0);
+  std::vector<std::size_t> stamp(count, count);  // the walk that last passed an element
+  // Steps from e out through face f (then on through the opposite of each entry face)
+  // over elements not placed; calls visit(element, entry face) for each.
+  auto walk = [&](std::size_t e, int f, std::size_t walk_id, auto visit) {
+    stamp[e] = walk_id;
+    std::uint64_t across = neighbour[6 * e + std::size_t(f)];
+    while (across != none) {
+      const std::size_t next = std::size_t(across / 6);
+      const int entry = int(across % 6);
+      if (placed[next] || stamp[next] == walk_id) break;
+      stamp[next] = walk_id;
+      visit(next, entry);
+      across = neighbour[6 * next + std::size_t(opposite_face[entry])];
+    }
+  };
+  std::vector<Brick> result;
+  result.reserve(count);
+  std::size_t walks = 0;
+  for (const std::size_t seed : seeds) {
+    if (placed[seed]) continue;
+    // The axis with the most elements not yet placed.
+    int exit = 3;
+    std::size_t longest = 0;
+    for (const int f : {3, 4, 1}) {
+      std::size_t length = 1;
+      const std::size_t id = walks++ % count;
+      walk(seed, f, id, [&](std::size_t, int) { ++length; });
+      walk(seed, opposite_face[f], id, [&](std::size_t, int) { ++length; });
+      if (length > longest) longest = length, exit = f;
+    }
+    // Back to the chain's first element: its face toward the seed is its exit.
+    std::size_t first = seed;
+    int first_exit = exit;
+    walk(seed, opposite_face[exit], walks++ % count, [&](std::size_t e, int entry) { first = e, first_exit = entry; });
+    // Forward, each element turned to continue the previous one's row.
+    chains.push_back(result.size());
+    std::size_t e = first;
+    int out = first_exit;
+    bool start = true;
+    while (true) {
+      const Brick& old = elements[e];
+      const Brick* previous = start ? nullptr : &result.back();
+      const std::array<int, 20>* turn = nullptr;
+      for (const auto& r : rotations) {
+        bool fits = true;
+        if (previous == nullptr) {  // the exit face becomes face 3 (xi = +1): nodes 1, 2, 6, 5
+          for (const int v : {1, 2, 6, 5})
+            fits = fits && std::count(brick_faces[out], brick_faces[out] + 4, r[std::size_t(v)]) == 1;
+        } else {  // nodes 0, 3, 7, 4 are the previous element's 1, 2, 6, 5
+          const int here[4] = {0, 3, 7, 4}, there[4] = {1, 2, 6, 5};
+          for (int k = 0; k < 4; ++k)
+            fits = fits && old[std::size_t(r[std::size_t(here[k])])] == (*previous)[std::size_t(there[k])];
+        }
+        if (fits) {
+          turn = &r;
+          break;
+        }
+      }
+      if (turn == nullptr) break;  // no rotation continues the row: it ends here
+      Brick turned{};
+      for (int v = 0; v < nodes_per_element; ++v) turned[std::size_t(v)] = old[std::size_t((*turn)[std::size_t(v)])];
+      result.push_back(turned);
+      placed[e] = 1;
+      start = false;
+      // The next element across the new face 3, which is the old face `out`.
+      const std::uint64_t across = neighbour[6 * e + std::size_t(out)];
+      if (across == none || placed[std::size_t(across / 6)]) break;
+      e = std::size_t(across / 6);
+      out = opposite_face[across % 6];
+    }
+    if (chains.back() == result.size()) chains.pop_back();
+    if (!placed[seed]) {  // the seed could not continue a row (an inconsistent neighbour): alone
+      chains.push_back(result.size());
+      result.push_back(elements[seed]);
+      placed[seed] = 1;
+    }
+  }
+  return result;
+}
+
+// The order of a face's segments, and of each segment's nodes, from the geometry alone,
+// not from the numbering: segments by centroid (z, then y, then x), each segment's
+// corners turned (orientation kept) to start at its corner lowest in (z, y, x). The
+// contact pass gives a point on the edge between two segments to the first of them, so
+// this makes the answer independent of the mesher's numbering and of the reordering;
+// on an axis-aligned box it is the built-in faces' order (mesh.cpp, face_of) wherever
+// those run z-major, as the faces x = const of a box one element thick in y do.
+void in_geometric_order(std::vector<BoundarySegment>& boundary, const NodalVectors& x) {
+  auto key = [&](std::uint32_t node) { return std::array<double, 3>{x.z[node], x.y[node], x.x[node]}; };
+  std::vector<std::array<double, 3>> centroid(boundary.size());
+  for (std::size_t b = 0; b < boundary.size(); ++b) {
+    FaceSegment& s = boundary[b].segment;
+    int lowest = 0;
+    for (int k = 1; k < 4; ++k)
+      if (key(s.nodes[std::size_t(k)]) < key(s.nodes[std::size_t(lowest)])) lowest = k;
+    FaceSegment turned = s;
+    for (int k = 0; k < 4; ++k) {
+      turned.nodes[std::size_t(k)] = s.nodes[std::size_t((k + lowest) % 4)];
+      if (s.node_count == 8) turned.nodes[std::size_t(4 + k)] = s.nodes[std::size_t(4 + (k + lowest) % 4)];
+    }
+    s = turned;
+    for (int k = 0; k < 4; ++k)
+      for (std::size_t c = 0; c < 3; ++c) centroid[b][c] += 0.25 * key(s.nodes[std::size_t(k)])[c];
+  }
+  std::vector<std::size_t> order(boundary.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return centroid[a] < centroid[b]; });
+  std::vector<BoundarySegment> sorted;
+  sorted.reserve(boundary.size());
+  for (const std::size_t b : order) sorted.push_back(boundary[b]);
+  boundary = std::move(sorted);
+}
+
 }  // namespace
 
 std::uint64_t hilbert_index(const std::array<double, 3>& unit_point) {
@@ -115,8 +291,7 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
 
   // Elements in VTK order (file node indices), each checked.
   const int nodes_per_element = quadratic ? 20 : 8;
-  std::vector<std::array<std::uint32_t, 20>> elements;
-  std::vector<std::size_t> element_tags;
+  std::vector<Brick> elements;
   for (const input::GmshElements& block : volume->elements) {
     if (block.type != wanted) continue;
     if (block.nodes.size() != std::size_t(nodes_per_element) * block.tags.size())
@@ -167,14 +342,14 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
                " (Gmsh's hexahedron numbers its bottom corners counter-clockwise seen from the top)");
       }
       elements.push_back(nodes);
-      element_tags.push_back(block.tags[e]);
     }
   }
 
-  // Element order: along a Hilbert curve through the centroids in the volume's
-  // bounding box (ties by file order), or the file's.
-  std::vector<std::size_t> order(elements.size());
-  std::iota(order.begin(), order.end(), std::size_t(0));
+  // Element order: in rows seeded along a Hilbert curve through the centroids (in the
+  // volume's bounding box, one scale for the three axes so that the curve's cells are
+  // cubes), or the file's.
+  std::vector<Brick> ordered = elements;
+  std::vector<std::size_t> chains;
   if (options.mesh.reorder) {
     Point low{}, high{};
     low.fill(std::numeric_limits<double>::infinity());
@@ -190,7 +365,6 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
         high[c] = std::max(high[c], centroid[e][c]);
       }
     }
-    // One scale for the three axes keeps the curve's cells cubes.
     const double extent = std::max({high[0] - low[0], high[1] - low[1], high[2] - low[2], 0.0});
     std::vector<std::uint64_t> key(elements.size());
     for (std::size_t e = 0; e < elements.size(); ++e) {
@@ -198,10 +372,15 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
       for (std::size_t c = 0; c < 3; ++c) unit[c] = extent > 0.0 ? (centroid[e][c] - low[c]) / extent : 0.0;
       key[e] = hilbert_index(unit);
     }
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+    std::vector<std::size_t> seeds(elements.size());
+    std::iota(seeds.begin(), seeds.end(), std::size_t(0));
+    std::stable_sort(seeds.begin(), seeds.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+    ordered = elements_in_rows(elements, seeds, nodes_per_element, chains);
   }
 
-  // Part node ids by first use along the element order.
+  // Part node ids: along each row's four lines of corners (0-1-..., 3-2-..., 4-5-...,
+  // 7-6-...), each line's nodes consecutive as in a built-in box (so a row's packs
+  // load their nodes as vectors), then any other node by first use.
   const std::size_t total_nodes = mesh.node_count() + file_nodes;
   if (total_nodes > std::numeric_limits<std::uint32_t>::max() ||
       mesh.element_count() + elements.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
@@ -215,21 +394,29 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
   part.element_count = static_cast<std::uint32_t>(elements.size());
   std::vector<std::uint32_t> part_node(file_nodes, no_node);
   std::uint32_t next = part.first_node;
+  auto number = [&](std::uint32_t file_index) {
+    std::uint32_t& id = part_node[file_index];
+    if (id != no_node) return;
+    id = next++;
+    const Point p = file_point(file_index);
+    mesh.x_ref.x.push_back(p[0]);
+    mesh.x_ref.y.push_back(p[1]);
+    mesh.x_ref.z.push_back(p[2]);
+  };
+  chains.push_back(ordered.size());
+  for (std::size_t c = 0; c + 1 < chains.size(); ++c)
+    for (const auto& [start, along] : {std::pair{0, 1}, std::pair{3, 2}, std::pair{4, 5}, std::pair{7, 6}}) {
+      number(ordered[chains[c]][std::size_t(start)]);
+      for (std::size_t e = chains[c]; e < chains[c + 1]; ++e) number(ordered[e][std::size_t(along)]);
+    }
   std::vector<std::array<std::uint32_t, 20>> numbered;
-  numbered.reserve(elements.size());
-  for (const std::size_t e : order) {
+  numbered.reserve(ordered.size());
+  for (const Brick& old : ordered) {
     std::array<std::uint32_t, 20> nodes{};
     for (int v = 0; v < nodes_per_element; ++v) {
-      std::uint32_t& id = part_node[elements[e][std::size_t(v)]];
-      if (id == no_node) {
-        id = next++;
-        const Point p = file_point(elements[e][std::size_t(v)]);
-        mesh.x_ref.x.push_back(p[0]);
-        mesh.x_ref.y.push_back(p[1]);
-        mesh.x_ref.z.push_back(p[2]);
-      }
-      nodes[std::size_t(v)] = id;
-      mesh.connectivity.push_back(id);
+      number(old[std::size_t(v)]);
+      nodes[std::size_t(v)] = part_node[old[std::size_t(v)]];
+      mesh.connectivity.push_back(nodes[std::size_t(v)]);
     }
     mesh.element_part.push_back(part_index);
     numbered.push_back(nodes);
@@ -238,8 +425,8 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
 
   // The boundary, whole (surface) and by physical surface.
   std::array<std::uint32_t, 4> non_manifold{};
-  const std::vector<BoundarySegment> boundary =
-      boundary_segments(numbered, nodes_per_element, mesh.x_ref, &non_manifold);
+  std::vector<BoundarySegment> boundary = boundary_segments(numbered, nodes_per_element, mesh.x_ref, &non_manifold);
+  in_geometric_order(boundary, mesh.x_ref);
   if (non_manifold != std::array<std::uint32_t, 4>{}) {
     std::vector<std::uint32_t> file_index_of(part.node_count);
     for (std::size_t i = 0; i < file_nodes; ++i)

@@ -100,19 +100,33 @@ double worst_field_difference(const DeckRun& a, const DeckRun& b, double size) {
 }
 
 // The built-in plate impact decks and their Gmsh twins: every field at every written
-// step to 1e-8 of its largest value. Measured: hex8 6.8e-9 (the velocity of interface
-// nodes near the free corner, where a slave node projects onto the edge between two
-// master segments of the bent face and the last bits pick the segment: see
-// docs/verification.md), hex20 2.8e-11.
+// step to 1e-8 of its largest value. The Gmsh nodes lie within 3.3e-15 m of the
+// built-in lattice's (its transfinite lines), and the numbering differs, so the runs
+// start 1e-12 apart. Measured: hex20 with quadrature slave points 2.8e-11; hex8 with
+// quadrature slave points 1.0e-10.
 TEST(MeshImport, GmshPlatesGiveTheBuiltInPlateImpactFields) {
+  const std::vector<exdyn::input::Override> quadrature{{"contact[0].slave_points", "quadrature"}};
   for (const auto& [built_in, imported] : {std::pair{"plate_impact.yaml", "plate_impact_gmsh.yaml"},
                                            std::pair{"plate_impact_hex20.yaml", "plate_impact_hex20_gmsh.yaml"}}) {
-    const DeckRun a(built_in), b(imported);
+    const DeckRun a(built_in, quadrature), b(imported, quadrature);
     EXPECT_EQ(a.summary.steps, b.summary.steps);
     const double worst = worst_field_difference(a, b, 5e-3);
     std::printf("%s vs %s: worst field difference %.3e of the largest value\n", built_in, imported, worst);
     EXPECT_LE(worst, 1e-8) << imported;
   }
+}
+
+// The hex8 plates with slave nodes (the decks as written): each slave node sits on a
+// master node, on the edge between two master segments. Near the free corner, where the
+// face bends, the last bits decide which segment takes the node or whether it falls
+// between them to the edge rule, and the force turns by the bend's angle: the 1e-12
+// start grows to 5e-9 at step 12 and 2.2e-6 of the velocity by step 64, then stays
+// (docs/verification.md, "Mesh import"). The bound says it stays at that level.
+TEST(MeshImport, GmshPlatesWithSlaveNodesDifferOnlyByTheNodeOnNodeTies) {
+  const DeckRun a("plate_impact.yaml"), b("plate_impact_gmsh.yaml");
+  const double worst = worst_field_difference(a, b, 5e-3);
+  std::printf("plate_impact.yaml vs plate_impact_gmsh.yaml (slave nodes): worst field difference %.3e\n", worst);
+  EXPECT_LE(worst, 1e-5);
 }
 
 // The Hertz peak force and contact time (quarter model, whole-ball force) from the
