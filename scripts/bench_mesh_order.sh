@@ -24,32 +24,36 @@ h=$(/usr/bin/python3 -c "print(2.5e-3 / $n)")
 end=$(/usr/bin/python3 -c "import math; c=math.sqrt(2.1e11*0.7/(1.3*0.4*7800)); print(0.125*$h/c*$steps*(1-1e-9))")
 echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'); load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "plate impact, $n x 1 x $n bricks per plate, $steps steps, 1 thread, median of $runs runs"
-run() {  # label deck overrides...
-  local label=$1 deck=$2; shift 2
-  for r in $(seq "$runs"); do
-    "$exdyn" run "$deck" --quiet --threads 1 --output "$out" --set name=run_$r \
-      --set time.end_time="$end" --set output.every=100000 "$@"
+# The cases take turns (built-in, gmsh, shuffled, shuffled+order, then again), so that a
+# drift of the machine's speed touches them alike.
+labels=(built-in gmsh shuffled shuffled+order)
+case_args() {  # the deck and overrides of case $1
+  local mesh reorder
+  case $1 in
+    built-in) echo input/plate_impact.yaml --set "parts[0].elements=[$n,1,$n]" --set "parts[1].elements=[$n,1,$n]"
+              return ;;
+    gmsh) mesh=$out/plate.msh reorder=true ;;
+    shuffled) mesh=$out/shuffled.msh reorder=false ;;
+    shuffled+order) mesh=$out/shuffled.msh reorder=true ;;
+  esac
+  echo input/plate_impact_gmsh.yaml --set "parts[0].mesh.file=$mesh" --set "parts[1].mesh.file=$mesh" \
+       --set "parts[0].mesh.reorder=$reorder" --set "parts[1].mesh.reorder=$reorder"
+}
+for r in $(seq "$runs"); do
+  for label in "${labels[@]}"; do
+    # shellcheck disable=SC2046
+    "$exdyn" run $(case_args "$label") --quiet --threads 1 --output "$out" --set "name=${label//+/_}_$r" \
+      --set time.end_time="$end" --set output.every=100000
   done
-  /usr/bin/python3 - "$label" "$out" "$runs" <<'PY'
+done
+/usr/bin/python3 - "$out" "$runs" "${labels[@]}" <<'PY'
 import json, statistics, sys
-label, out, runs = sys.argv[1], sys.argv[2], int(sys.argv[3])
-rates = [json.load(open(f"{out}/run_{r}.json"))["element_cycles_per_second"] for r in range(1, runs + 1)]
-rate = statistics.median(rates)
-with open(f"{out}/rates.txt", "a") as f:
-    f.write(f"{label} {rate}\n")
-base = float(open(f"{out}/rates.txt").readline().split()[1])
-print(f"{label:<16} {rate / 1e6:8.2f} Mcycles/s   {100 * (rate / base - 1):+6.1f} % against built-in   "
-      f"(runs {', '.join(f'{r / 1e6:.2f}' for r in rates)})")
+out, runs, labels = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
+rate = {}
+for label in labels:
+    rates = [json.load(open(f"{out}/{label.replace('+', '_')}_{r}.json"))["element_cycles_per_second"]
+             for r in range(1, runs + 1)]
+    rate[label] = statistics.median(rates)
+    print(f"{label:<16} {rate[label] / 1e6:8.2f} Mcycles/s   {100 * (rate[label] / rate[labels[0]] - 1):+6.1f} % "
+          f"against built-in   (runs {', '.join(f'{x / 1e6:.2f}' for x in rates)})")
 PY
-}
-mesh_set() {  # the plate_impact_gmsh deck on FILE, reordered or not
-  echo --set "parts[0].mesh.file=$1" --set "parts[1].mesh.file=$1" \
-       --set "parts[0].mesh.reorder=$2" --set "parts[1].mesh.reorder=$2"
-}
-run built-in input/plate_impact.yaml --set "parts[0].elements=[$n,1,$n]" --set "parts[1].elements=[$n,1,$n]"
-# shellcheck disable=SC2046
-run gmsh input/plate_impact_gmsh.yaml $(mesh_set "$out/plate.msh" true)
-# shellcheck disable=SC2046
-run shuffled input/plate_impact_gmsh.yaml $(mesh_set "$out/shuffled.msh" false)
-# shellcheck disable=SC2046
-run shuffled+order input/plate_impact_gmsh.yaml $(mesh_set "$out/shuffled.msh" true)

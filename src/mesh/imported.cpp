@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <unordered_map>
@@ -56,10 +57,14 @@ constexpr int opposite_face[6] = {1, 0, 4, 5, 2, 3};
 // along its xi axis (its face 5 on the previous element's face 3), as the x-rows of a
 // built-in box. A chain starts from the first element not yet in one, in Hilbert order
 // of the centroids, and runs both ways along that element's axis with the most
-// elements. Returns the elements (turned) in chain order; `chains` gets each chain's
-// first position.
+// elements (of equal ones, the axis nearest x), from its end at lower x (y, z); its
+// first element is turned so that eta and zeta run as near y and z as the row allows,
+// and the others follow it. On an axis-aligned box this is the built-in lattice's
+// orientation, whose elements take the axis-aligned kernel. Returns the elements
+// (turned) in chain order; `chains` gets each chain's first position.
 std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const std::vector<std::size_t>& seeds,
-                                    int nodes_per_element, std::vector<std::size_t>& chains) {
+                                    int nodes_per_element, const std::function<Point(std::uint32_t)>& at,
+                                    std::vector<std::size_t>& chains) {
   const std::size_t count = elements.size();
   // Each element face's neighbour across it: 6 e + f, or none.
   constexpr std::uint64_t none = ~std::uint64_t{0};
@@ -102,17 +107,42 @@ std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const st
   std::vector<Brick> result;
   result.reserve(count);
   std::size_t walks = 0;
+  // The direction from an element's centroid to a face's, and its leaning towards x,
+  // then y, then z.
+  auto outward = [&](const Brick& nodes, int f) {
+    Point d{};
+    for (int k = 0; k < 8; ++k) {
+      const Point p = at(nodes[std::size_t(k)]);
+      for (std::size_t c = 0; c < 3; ++c) d[c] -= p[c] / 8.0;
+    }
+    for (int k = 0; k < 4; ++k) {
+      const Point p = at(nodes[std::size_t(brick_faces[f][k])]);
+      for (std::size_t c = 0; c < 3; ++c) d[c] += p[c] / 4.0;
+    }
+    return d;
+  };
+  auto unit = [](const Point& d) {
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    return Point{d[0] / length, d[1] / length, d[2] / length};
+  };
   for (const std::size_t seed : seeds) {
     if (placed[seed]) continue;
-    // The axis with the most elements not yet placed.
+    // The axis with the most elements not yet placed; of equal ones, the nearest x.
     int exit = 3;
     std::size_t longest = 0;
+    double along_x = -1.0;
     for (const int f : {3, 4, 1}) {
       std::size_t length = 1;
       const std::size_t id = walks++ % count;
       walk(seed, f, id, [&](std::size_t, int) { ++length; });
       walk(seed, opposite_face[f], id, [&](std::size_t, int) { ++length; });
-      if (length > longest) longest = length, exit = f;
+      const Point d = unit(outward(elements[seed], f));
+      if (length > longest || (length == longest && std::abs(d[0]) > along_x)) {
+        longest = length, along_x = std::abs(d[0]);
+        // Towards +x (else +y, else +z): the row runs from its lower end.
+        const double lean = d[0] + 1e-3 * d[1] + 1e-6 * d[2];
+        exit = lean >= 0.0 ? f : opposite_face[f];
+      }
     }
     // Back to the chain's first element: its face toward the seed is its exit.
     std::size_t first = seed;
@@ -127,16 +157,26 @@ std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const st
       const Brick& old = elements[e];
       const Brick* previous = start ? nullptr : &result.back();
       const std::array<int, 20>* turn = nullptr;
+      double best_alignment = -1e300;
       for (const auto& r : rotations) {
         bool fits = true;
         if (previous == nullptr) {  // the exit face becomes face 3 (xi = +1): nodes 1, 2, 6, 5
           for (const int v : {1, 2, 6, 5})
             fits = fits && std::count(brick_faces[out], brick_faces[out] + 4, r[std::size_t(v)]) == 1;
-        } else {  // nodes 0, 3, 7, 4 are the previous element's 1, 2, 6, 5
-          const int here[4] = {0, 3, 7, 4}, there[4] = {1, 2, 6, 5};
-          for (int k = 0; k < 4; ++k)
-            fits = fits && old[std::size_t(r[std::size_t(here[k])])] == (*previous)[std::size_t(there[k])];
+          if (!fits) continue;
+          // Of the four turns about xi, the one with eta nearest y and zeta nearest z.
+          auto edge = [&](int from, int to) {
+            const Point a = at(old[std::size_t(r[std::size_t(from)])]), b = at(old[std::size_t(r[std::size_t(to)])]);
+            return unit(Point{b[0] - a[0], b[1] - a[1], b[2] - a[2]});
+          };
+          const double alignment = edge(0, 3)[1] + edge(0, 4)[2];
+          if (alignment > best_alignment) best_alignment = alignment, turn = &r;
+          continue;
         }
+        // nodes 0, 3, 7, 4 are the previous element's 1, 2, 6, 5
+        const int here[4] = {0, 3, 7, 4}, there[4] = {1, 2, 6, 5};
+        for (int k = 0; k < 4; ++k)
+          fits = fits && old[std::size_t(r[std::size_t(here[k])])] == (*previous)[std::size_t(there[k])];
         if (fits) {
           turn = &r;
           break;
@@ -375,7 +415,7 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
     std::vector<std::size_t> seeds(elements.size());
     std::iota(seeds.begin(), seeds.end(), std::size_t(0));
     std::stable_sort(seeds.begin(), seeds.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
-    ordered = elements_in_rows(elements, seeds, nodes_per_element, chains);
+    ordered = elements_in_rows(elements, seeds, nodes_per_element, file_point, chains);
   }
 
   // Part node ids: along each row's four lines of corners (0-1-..., 3-2-..., 4-5-...,
