@@ -58,13 +58,13 @@ def mpirun(ranks, oversubscribe=True):
     return cmd
 
 
-def command(exdyn, deck, out, ranks, threads=1, sets=()):
+def command(exdyn, deck, out, ranks, threads=1, sets=(), options=()):
     """ranks 0: the executable alone, without mpirun."""
     cmd = (mpirun(ranks) if ranks > 0 else []) + [exdyn, "run", os.path.join(ROOT, "input", deck + ".yaml"),
                                                   "--quiet", "--output", out, "--threads", str(threads)]
     for s in sets:
         cmd += ["--set", s]
-    return cmd
+    return cmd + list(options)
 
 
 def environment(ranks):
@@ -77,8 +77,8 @@ def environment(ranks):
     return env
 
 
-def run(exdyn, deck, out, ranks, threads=1, sets=()):
-    proc = subprocess.run(command(exdyn, deck, out, ranks, threads, sets), capture_output=True, text=True,
+def run(exdyn, deck, out, ranks, threads=1, sets=(), options=()):
+    proc = subprocess.run(command(exdyn, deck, out, ranks, threads, sets, options), capture_output=True, text=True,
                           timeout=1800, env=environment(ranks))
     return proc.returncode, proc.stdout + proc.stderr
 
@@ -143,6 +143,26 @@ def test_equal_fields(exdyn, work, quick):
                                          "saddle_points", "max_penetration_over_h"))
             check(f"{deck}: {ranks} ranks: the contact figures of one process", same_contact,
                   f"{s['contact']} vs {one['contact']}")
+
+
+def test_partitions(exdyn, work):
+    """Imported meshes dealt by METIS: every field of N ranks is one rank's, bit for bit."""
+    for deck, sets in [("plate_impact_gmsh", ["output.every=112"]),
+                       ("hertz_ball_gmsh", ["time.end_time=3.0e-6", "output.every=100"])]:
+        reference = os.path.join(work, f"{deck}_partition_1")
+        code, text = run(exdyn, deck, reference, 0, sets=sets)
+        if not check(f"{deck}: one process runs", code == 0, text[-400:]):
+            continue
+        for ranks in (2, 3):
+            out = os.path.join(work, f"{deck}_metis_{ranks}")
+            code, text = run(exdyn, deck, out, ranks, 1, sets, options=["--partition", "metis"])
+            if not check(f"{deck}: {ranks} ranks with --partition metis run", code == 0, text[-600:]):
+                continue
+            same, history, detail = compare(os.path.join(reference, deck + ".h5"), os.path.join(out, deck + ".h5"))
+            check(f"{deck}: {ranks} ranks, METIS: every field of every step bit for bit", same, detail)
+            check(f"{deck}: {ranks} ranks, METIS: the history to 1e-12 ({history:.1e})", history <= 1e-12)
+            s = summary(out, deck)
+            check(f"{deck}: {ranks} ranks: the summary names the partition", s["mpi"]["partition"] == "metis")
 
 
 def test_mirror(exdyn, work, quick):
@@ -294,6 +314,7 @@ def main():
     with tempfile.TemporaryDirectory(prefix="exdyn_mpi_") as work:
         test_errors(args.exdyn, work)
         test_equal_fields(args.exdyn, work, args.quick)
+        test_partitions(args.exdyn, work)
         test_mirror(args.exdyn, work, args.quick)
         test_guards(args.exdyn, work)
         if not args.quick:

@@ -90,6 +90,7 @@ struct RunArguments {
   std::vector<std::string> sets;
   int threads = 0;
   std::string isa;  // empty: EXDYN_ISA, else the best this CPU runs
+  std::string partition = "bisection";
   bool quiet = false;
 };
 
@@ -105,6 +106,8 @@ int run_command(const RunArguments& arguments, const exdyn::mpi::Communicator& c
     controls.threads =
         std::max(1, static_cast<int>(std::thread::hardware_concurrency()) / comm.ranks_on_this_machine);
   controls.comm = comm;
+  controls.partitioning = arguments.partition == "metis" ? exdyn::solver::Partitioning::metis
+                                                         : exdyn::solver::Partitioning::bisection;
   controls.stop_signal = &stop_signal;
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);
@@ -165,6 +168,12 @@ int main(int argc, char** argv) {
   run->add_option("--isa", run_arguments.isa,
                   "Instruction set of the element kernels: x86-64-v2 (SSE4.2), x86-64-v3 (AVX2 + FMA) or "
                   "x86-64-v4 (AVX-512); default: EXDYN_ISA, else the best this CPU runs");
+  run->add_option("--partition", run_arguments.partition,
+                  "How the chunks are dealt to MPI ranks: bisection (recursive coordinate bisection, the "
+                  "default) or metis (METIS on the graph of chunks that share nodes); results are the same "
+                  "bits either way")
+      ->check(CLI::IsMember({"bisection", "metis"}))
+      ->capture_default_str();
   run->add_flag("--quiet", run_arguments.quiet, "No progress line and no summary line");
 
   std::string check_deck;

@@ -213,13 +213,15 @@ MeshFileOptions DeckValidator::mesh_file(const YAML::Node& node, const std::stri
   if (std::find(volumes.begin(), volumes.end(), result.volume) == volumes.end())
     fail(volume, volume_path,
          "'" + written + "' has no physical volume '" + result.volume + "'" +
-             (volumes.empty() ? std::string("; it has none (add Physical Volume(\"NAME\") = {...}; to the .geo)")
-                              : suggestion(result.volume, volumes, "its physical volumes are")));
+             (volumes.empty()
+                  ? std::string("; it has none (add Physical Volume(\"NAME\") = {...}; to the .geo)")
+                  : suggestion(result.volume, volumes, "its physical volumes are")));
   for (const std::string& surface : names->second[1]) {
     if (surface == name(PartFace::surface))
       fail(file, file_path,
            "'" + written +
-               "' has a physical surface named 'surface', the name of a mesh part's whole boundary: rename it");
+               "' has a physical surface named 'surface', the name of a mesh part's whole boundary: rename "
+               "it");
     result.surfaces.push_back(surface);
   }
   return result;
@@ -229,8 +231,8 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
                                 const std::vector<MaterialOptions>& materials) const {
   check_map(
       node, path,
-      {"name", "box", "cylinder", "sphere", "mesh", "elements", "grading", "material", "formulation", "hourglass",
-       "initial_velocity", "initial_angular_velocity", "kinematics", "f_bar", "perturbation"});
+      {"name", "box", "cylinder", "sphere", "mesh", "elements", "grading", "material", "formulation",
+       "hourglass", "initial_velocity", "initial_angular_velocity", "kinematics", "f_bar", "perturbation"});
   PartOptions result;
   result.name = text(required(node, path, "name"), child_path(path, "name"), "a part name");
 
@@ -283,7 +285,8 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
     for (const char* key : {"elements", "grading"})
       if (const YAML::Node given = optional(node, key); given.IsDefined())
         fail(given, child_path(path, key),
-             std::string(key) + " does not apply to a mesh part: its elements come from the file; remove the key");
+             std::string(key) +
+                 " does not apply to a mesh part: its elements come from the file; remove the key");
   } else {
     const std::string elements_path = child_path(path, "elements");
     const YAML::Node elements = required(node, path, "elements");
@@ -449,8 +452,8 @@ FaceRef DeckValidator::face(const YAML::Node& node, const std::string& path,
       part.geometry == Geometry::mesh && surface != surfaces.end())
     return FaceRef{part_index, PartFace::physical, static_cast<int>(surface - surfaces.begin())};
   fail(node, path,
-       "unknown side '" + side_name + "' of the " + name(part.geometry) + " part '" + part.name + "' in face '" +
-           value + "'" + hint);
+       "unknown side '" + side_name + "' of the " + name(part.geometry) + " part '" + part.name +
+           "' in face '" + value + "'" + hint);
 }
 
 std::vector<FaceRef> DeckValidator::face_list(const YAML::Node& node, const std::string& path,

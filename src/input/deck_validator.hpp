@@ -38,7 +38,7 @@ inline constexpr std::array<SlavePoints, 3> all_slave_points{SlavePoints::automa
 inline constexpr std::array<PartFace, 6> box_faces{PartFace::xmin, PartFace::xmax, PartFace::ymin,
                                                    PartFace::ymax, PartFace::zmin, PartFace::zmax};
 inline constexpr std::array<Geometry, 4> all_geometries{Geometry::box, Geometry::cylinder, Geometry::sphere,
-                                                       Geometry::mesh};
+                                                        Geometry::mesh};
 inline constexpr std::array<PartFace, 3> cut_faces{PartFace::cut_x, PartFace::cut_y, PartFace::cut_z};
 inline constexpr std::array<std::string_view, 3> component_names{"x", "y", "z"};
 

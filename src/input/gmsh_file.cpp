@@ -33,7 +33,8 @@ class GmshSession {
 std::string first_line(std::ifstream& in) {
   std::string line;
   while (std::getline(in, line)) {
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t'))
+      line.pop_back();
     if (!line.empty()) return line;
   }
   return {};

@@ -21,9 +21,9 @@ inline constexpr int hex20 = 17;
 
 // The elements of one Gmsh type in a physical group.
 struct GmshElements {
-  int type = 0;                    // Gmsh element type number
-  std::string name;                // Gmsh's name of the type, e.g. "Hexahedron 20"
-  int dimension = 0;               // 0 to 3
+  int type = 0;       // Gmsh element type number
+  std::string name;   // Gmsh's name of the type, e.g. "Hexahedron 20"
+  int dimension = 0;  // 0 to 3
   int nodes_per_element = 0;
   std::vector<std::size_t> tags;   // element tags
   std::vector<std::size_t> nodes;  // nodes_per_element node tags per element, Gmsh order
@@ -37,11 +37,11 @@ struct GmshGroup {
 };
 
 struct GmshMesh {
-  std::string file;                      // the path it was read from
-  std::vector<std::size_t> node_tags;    // every node of the file
-  std::vector<double> coordinates;       // x, y, z of each node of node_tags, m
-  std::vector<GmshGroup> volumes;        // physical groups of dimension 3
-  std::vector<GmshGroup> surfaces;       // physical groups of dimension 2
+  std::string file;                    // the path it was read from
+  std::vector<std::size_t> node_tags;  // every node of the file
+  std::vector<double> coordinates;     // x, y, z of each node of node_tags, m
+  std::vector<GmshGroup> volumes;      // physical groups of dimension 3
+  std::vector<GmshGroup> surfaces;     // physical groups of dimension 2
 };
 
 // Reads `file` through the Gmsh library. A missing or unreadable file, one that is not a

@@ -157,14 +157,16 @@ std::string face_name(const Deck& deck, const FaceRef& face) {
   const std::string part =
       known_part ? deck.parts[static_cast<std::size_t>(face.part)].name : "part#" + std::to_string(face.part);
   if (face.side == PartFace::physical && known_part)
-    return part + "." + deck.parts[static_cast<std::size_t>(face.part)].mesh.surfaces.at(std::size_t(face.surface));
+    return part + "." +
+           deck.parts[static_cast<std::size_t>(face.part)].mesh.surfaces.at(std::size_t(face.surface));
   return part + "." + name(face.side);
 }
 
 std::vector<std::string> side_names(const PartOptions& part) {
   std::vector<std::string> names;
   for (const PartFace side : faces_of(part)) names.emplace_back(name(side));
-  if (part.geometry == Geometry::mesh) names.insert(names.end(), part.mesh.surfaces.begin(), part.mesh.surfaces.end());
+  if (part.geometry == Geometry::mesh)
+    names.insert(names.end(), part.mesh.surfaces.begin(), part.mesh.surfaces.end());
   return names;
 }
 

@@ -118,7 +118,21 @@ struct PartOptions {
 // The named faces of a part: a box's six sides; a cylinder's curved side (surface) and its
 // flat ends (start, end); a ball's surface; the flat face a `keep` cut leaves (cut_x ...);
 // a mesh part's whole boundary (surface) and its physical surfaces (physical).
-enum class PartFace { xmin, xmax, ymin, ymax, zmin, zmax, surface, start, end, cut_x, cut_y, cut_z, physical };
+enum class PartFace {
+  xmin,
+  xmax,
+  ymin,
+  ymax,
+  zmin,
+  zmax,
+  surface,
+  start,
+  end,
+  cut_x,
+  cut_y,
+  cut_z,
+  physical
+};
 
 // A named face `<part>.<side>`.
 struct FaceRef {

@@ -81,7 +81,8 @@ std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const st
       }
     std::sort(faces.begin(), faces.end());
     for (std::size_t i = 0; i + 1 < faces.size(); ++i)
-      if (faces[i].first == faces[i + 1].first && (i + 2 == faces.size() || faces[i + 2].first != faces[i].first) &&
+      if (faces[i].first == faces[i + 1].first &&
+          (i + 2 == faces.size() || faces[i + 2].first != faces[i].first) &&
           (i == 0 || faces[i - 1].first != faces[i].first)) {
         neighbour[faces[i].second] = faces[i + 1].second;
         neighbour[faces[i + 1].second] = faces[i].second;
@@ -147,7 +148,8 @@ std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const st
     // Back to the chain's first element: its face toward the seed is its exit.
     std::size_t first = seed;
     int first_exit = exit;
-    walk(seed, opposite_face[exit], walks++ % count, [&](std::size_t e, int entry) { first = e, first_exit = entry; });
+    walk(seed, opposite_face[exit], walks++ % count,
+         [&](std::size_t e, int entry) { first = e, first_exit = entry; });
     // Forward, each element turned to continue the previous one's row.
     chains.push_back(result.size());
     std::size_t e = first;
@@ -166,7 +168,8 @@ std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const st
           if (!fits) continue;
           // Of the four turns about xi, the one with eta nearest y and zeta nearest z.
           auto edge = [&](int from, int to) {
-            const Point a = at(old[std::size_t(r[std::size_t(from)])]), b = at(old[std::size_t(r[std::size_t(to)])]);
+            const Point a = at(old[std::size_t(r[std::size_t(from)])]),
+                        b = at(old[std::size_t(r[std::size_t(to)])]);
             return unit(Point{b[0] - a[0], b[1] - a[1], b[2] - a[2]});
           };
           const double alignment = edge(0, 3)[1] + edge(0, 4)[2];
@@ -184,7 +187,8 @@ std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const st
       }
       if (turn == nullptr) break;  // no rotation continues the row: it ends here
       Brick turned{};
-      for (int v = 0; v < nodes_per_element; ++v) turned[std::size_t(v)] = old[std::size_t((*turn)[std::size_t(v)])];
+      for (int v = 0; v < nodes_per_element; ++v)
+        turned[std::size_t(v)] = old[std::size_t((*turn)[std::size_t(v)])];
       result.push_back(turned);
       placed[e] = 1;
       start = false;
@@ -230,7 +234,8 @@ void in_geometric_order(std::vector<BoundarySegment>& boundary, const NodalVecto
   }
   std::vector<std::size_t> order(boundary.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return centroid[a] < centroid[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return centroid[a] < centroid[b]; });
   std::vector<BoundarySegment> sorted;
   sorted.reserve(boundary.size());
   for (const std::size_t b : order) sorted.push_back(boundary[b]);
@@ -272,7 +277,8 @@ std::uint64_t hilbert_index(const std::array<double, 3>& unit_point) {
 }
 
 void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_index,
-                       const input::GmshMesh& file, const SourceLocation& where, const std::string& key_path) {
+                       const input::GmshMesh& file, const SourceLocation& where,
+                       const std::string& key_path) {
   auto fail = [&](const std::string& message) { throw InputError(where, key_path, message); };
   const std::string in_file = " of '" + file.file + "'";
   const input::GmshGroup* volume = nullptr;
@@ -377,8 +383,9 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
                                            edge[0][2] * (edge[1][0] * edge[2][1] - edge[1][1] * edge[2][0]));
         if (!(det > 0.0))
           fail(element_text + " is " + (det < 0.0 ? "inverted" : "degenerate") +
-               ": the Jacobian at its corner node " + std::to_string(file.node_tags[nodes[std::size_t(corner)]]) +
-               " is " + (det < 0.0 ? "negative" : "zero") +
+               ": the Jacobian at its corner node " +
+               std::to_string(file.node_tags[nodes[std::size_t(corner)]]) + " is " +
+               (det < 0.0 ? "negative" : "zero") +
                " (Gmsh's hexahedron numbers its bottom corners counter-clockwise seen from the top)");
       }
       elements.push_back(nodes);
@@ -414,7 +421,8 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
     }
     std::vector<std::size_t> seeds(elements.size());
     std::iota(seeds.begin(), seeds.end(), std::size_t(0));
-    std::stable_sort(seeds.begin(), seeds.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+    std::stable_sort(seeds.begin(), seeds.end(),
+                     [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
     ordered = elements_in_rows(elements, seeds, nodes_per_element, file_point, chains);
   }
 
@@ -465,15 +473,18 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
 
   // The boundary, whole (surface) and by physical surface.
   std::array<std::uint32_t, 4> non_manifold{};
-  std::vector<BoundarySegment> boundary = boundary_segments(numbered, nodes_per_element, mesh.x_ref, &non_manifold);
+  std::vector<BoundarySegment> boundary =
+      boundary_segments(numbered, nodes_per_element, mesh.x_ref, &non_manifold);
   in_geometric_order(boundary, mesh.x_ref);
   if (non_manifold != std::array<std::uint32_t, 4>{}) {
     std::vector<std::uint32_t> file_index_of(part.node_count);
     for (std::size_t i = 0; i < file_nodes; ++i)
-      if (part_node[i] != no_node) file_index_of[part_node[i] - part.first_node] = static_cast<std::uint32_t>(i);
+      if (part_node[i] != no_node)
+        file_index_of[part_node[i] - part.first_node] = static_cast<std::uint32_t>(i);
     std::string corners;
     for (const std::uint32_t node : non_manifold)
-      corners += (corners.empty() ? "" : ", ") + std::to_string(file.node_tags[file_index_of[node - part.first_node]]);
+      corners += (corners.empty() ? "" : ", ") +
+                 std::to_string(file.node_tags[file_index_of[node - part.first_node]]);
     fail(volume_text + " has a face (corner nodes " + corners +
          ") shared by more than two elements: elements overlap or the mesh is not a manifold");
   }

@@ -24,7 +24,7 @@ namespace exdyn::mesh {
 // gmsh_hex20_node[v]: the Gmsh node of VTK node v of a 20-node hexahedron. The corners
 // agree; Gmsh orders the edges 0-1, 0-3, 0-4, 1-2, 1-5, 2-3, 2-6, 3-7, 4-5, 4-7, 5-6, 6-7,
 // VTK 0-1, 1-2, 2-3, 3-0, 4-5, 5-6, 6-7, 7-4, 0-4, 1-5, 2-6, 3-7.
-inline constexpr std::array<int, 20> gmsh_hex20_node{0, 1,  2,  3, 4,  5,  6,  7,  8,  11,
+inline constexpr std::array<int, 20> gmsh_hex20_node{0,  1, 2,  3,  4,  5,  6,  7,  8,  11,
                                                      13, 9, 16, 18, 19, 17, 10, 12, 14, 15};
 
 // Appends the physical volume options.mesh.volume of `file` to the mesh as part

@@ -270,7 +270,8 @@ Mesh build_mesh(const input::Deck& deck) {
     if (deck.parts[p].geometry == input::Geometry::mesh) {
       const std::string& path = deck.parts[p].mesh.path;
       auto file = files.find(path);
-      if (file == files.end()) file = files.emplace(path, input::read_gmsh(path, where, key_path + ".file")).first;
+      if (file == files.end())
+        file = files.emplace(path, input::read_gmsh(path, where, key_path + ".file")).first;
       add_imported_part(mesh, deck.parts[p], static_cast<int>(p), file->second, where, key_path);
       continue;
     }

@@ -113,9 +113,9 @@ inline constexpr int brick_faces[6][8] = {{0, 3, 2, 1, 11, 10, 9, 8},   {4, 5, 6
 
 // A face of a brick that no other brick of its part shares.
 struct BoundarySegment {
-  FaceSegment segment;                  // outward, 4 or 8 nodes
+  FaceSegment segment;                   // outward, 4 or 8 nodes
   std::array<std::uint32_t, 4> corners;  // the corner node ids, ascending (a key to match faces by)
-  double normal_length = 0.0;           // centroid of this face to the opposite face's, m
+  double normal_length = 0.0;            // centroid of this face to the opposite face's, m
 };
 
 // The boundary faces of bricks of `nodes_per_element` (8 or 20) nodes each, in order of

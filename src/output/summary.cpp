@@ -102,6 +102,8 @@ Json to_json(const RunSummary& s) {
   mpi["bytes_per_step"] = number(s.mpi.bytes_per_step);
   mpi["contact_nodes"] = s.mpi.contact_nodes;
   mpi["exchange_seconds"] = number(s.mpi.exchange_seconds);
+  mpi["partition"] = s.mpi.partition;
+  mpi["edge_cut"] = s.mpi.edge_cut;
   j["mpi"] = std::move(mpi);
   Json guards;  // ours, after the spec's keys
   guards["inversion_passes"] = s.guard_checks.inversion_passes;

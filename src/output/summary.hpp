@@ -72,11 +72,13 @@ struct GuardSummary {
 // Many ranks (docs/parallel.md): what one step's exchanges cost, over all ranks;
 // an addition to the spec's mpi.ranks.
 struct MpiSummary {
-  long shared_nodes = 0;          // nodes held by more than one rank (counted once per holder)
-  long messages_per_step = 0;     // force messages of one step, all ranks
-  double bytes_per_step = 0.0;    // their bytes
-  long contact_nodes = 0;         // contact nodes gathered to every rank each step
-  double exchange_seconds = 0.0;  // the longest time a rank waited in the exchanges, s
+  long shared_nodes = 0;                // nodes held by more than one rank (counted once per holder)
+  long messages_per_step = 0;           // force messages of one step, all ranks
+  double bytes_per_step = 0.0;          // their bytes
+  long contact_nodes = 0;               // contact nodes gathered to every rank each step
+  double exchange_seconds = 0.0;        // the longest time a rank waited in the exchanges, s
+  std::string partition = "bisection";  // how the chunks were dealt (exdyn run --partition)
+  long edge_cut = 0;                    // shared nodes summed over pairs of chunks on different ranks
 };
 
 struct RunSummary {

@@ -127,8 +127,8 @@ struct WholeModel {
   }
 };
 
-WholeModel whole_model(const Model& global, const mpi::Communicator& comm) {
-  WholeModel w{global, comm.rank, partition_chunks(global, comm.size), {}, {}, {}, {}};
+WholeModel whole_model(const Model& global, const mpi::Communicator& comm, Partitioning partitioning) {
+  WholeModel w{global, comm.rank, partition_chunks(global, comm.size, partitioning), {}, {}, {}, {}};
   w.colour.resize(global.blocks.size());
   for (std::size_t b = 0; b < global.blocks.size(); ++b) {
     const element::ElementBlock& block = global.blocks[b];
@@ -318,10 +318,13 @@ void plan_output_rows(const WholeModel& w, Decomposition& d) {
 }  // namespace
 
 LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
-                  const NodalVectors& global_initial_velocity, const mpi::Communicator& comm) {
-  WholeModel w = whole_model(global, comm);
+                  const NodalVectors& global_initial_velocity, const mpi::Communicator& comm,
+                  Partitioning partitioning) {
+  WholeModel w = whole_model(global, comm, partitioning);
   LocalRun run;
   Decomposition& d = run.decomposition;
+  d.partitioning = partitioning;
+  d.edge_cut = partition_figures(global, w.chunk_rank).edge_cut;
   d.comm = comm;
   d.global_nodes = global.mesh.node_count();
   d.global_elements = global.mesh.element_count();

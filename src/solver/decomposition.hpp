@@ -31,18 +31,34 @@
 #include "input/options.hpp"
 #include "solver/contact_setup.hpp"
 #include "solver/model.hpp"
+#include "solver/partitioning.hpp"
 
 namespace exdyn::solver {
 
 // The rank of each chunk of each block of the (whole) model, blocks one after the
-// other: recursive coordinate bisection of the chunk centroids. Each cut goes across
+// other. bisection: recursive coordinate bisection of the chunk centroids. Each cut goes across
 // the longest side of the box of its chunks and is placed so that the two sides get
 // elements in proportion to their ranks; the chunks are taken block by block (in the
 // order of the blocks' means along that side) and, within a block, along the block's
 // own longest side, so a cut runs between parts or straight across one. Ties are
 // broken by chunk number: every rank computes the same partition. Throws InputError
 // when there are more ranks than chunks.
-std::vector<int> partition_chunks(const Model& model, int ranks);
+// metis: the graph whose vertices are the chunks, weighted by their elements, and whose
+// edges join chunks that share nodes, weighted by the nodes they share, cut by
+// METIS_PartGraphKway (recursive for 2 ranks) into parts of equal weight within 3 %,
+// with the fewest shared nodes METIS finds; its seed is fixed, so every rank computes
+// the same partition. Throws InputError when a part would be empty.
+std::vector<int> partition_chunks(const Model& model, int ranks,
+                                  Partitioning partitioning = Partitioning::bisection);
+
+// The figures of a partition (docs/parallel.md, "Partitions"): the chunk graph's edge
+// cut (the shared nodes summed over the pairs of chunks on different ranks) and the
+// nodes used by more than one rank.
+struct PartitionFigures {
+  long edge_cut = 0;
+  long shared_nodes = 0;
+};
+PartitionFigures partition_figures(const Model& model, const std::vector<int>& chunk_rank);
 
 // The rows of one dataset (nodes or elements) this rank writes, and how the values
 // of its owned items travel there: rank r writes rows [N r / P, N (r + 1) / P).
@@ -76,6 +92,8 @@ struct Decomposition {
   };
   std::vector<std::vector<ColourStep>> steps;  // [block][k]
   std::size_t shared_nodes = 0;                // nodes held by more than one rank
+  Partitioning partitioning = Partitioning::bisection;
+  long edge_cut = 0;  // of the whole partition (partition_figures), the same on every rank
 
   // The contact gather: this rank's owned contact nodes, and where every rank's
   // arrive (local ids, rank after rank).
@@ -104,7 +122,8 @@ std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mes
 // Cuts the global model (built by every rank) into this rank's part, which also holds
 // every node of `contact_nodes`: a block per global block with chunks here.
 LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
-                  const NodalVectors& global_initial_velocity, const mpi::Communicator& comm);
+                  const NodalVectors& global_initial_velocity, const mpi::Communicator& comm,
+                  Partitioning partitioning = Partitioning::bisection);
 
 // The contact pairs with this rank's node ids (every contact node is held).
 ContactModel localize_contact(const ContactModel& global, const Decomposition& d);

@@ -1,5 +1,7 @@
 // The partition of the chunks over the ranks: recursive coordinate bisection of the
-// chunk centroids (decomposition.hpp, docs/parallel.md).
+// chunk centroids, or METIS on the graph of chunks (decomposition.hpp, docs/parallel.md).
+#include <metis.h>
+
 #include <algorithm>
 #include <array>
 #include <limits>
@@ -12,7 +14,122 @@
 
 namespace exdyn::solver {
 
-std::vector<int> partition_chunks(const Model& model, int ranks) {
+namespace {
+
+// The chunks, block after block: each chunk's nodes (global ids, ascending, once).
+std::vector<std::vector<std::uint32_t>> chunk_nodes(const Model& model) {
+  std::vector<std::vector<std::uint32_t>> result;
+  for (const element::ElementBlock& block : model.blocks)
+    for (std::size_t c = 0; c + 1 < block.chunk_begin.size(); ++c) {
+      const auto n = std::size_t(block.nodes_per_element);
+      std::vector<std::uint32_t> nodes(block.connectivity + n * block.chunk_begin[c],
+                                       block.connectivity + n * block.chunk_begin[c + 1]);
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      result.push_back(std::move(nodes));
+    }
+  return result;
+}
+
+// The chunk graph: for each chunk, its neighbours (chunks sharing a node, ascending) and
+// the nodes shared with each.
+struct ChunkGraph {
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> neighbours;  // (chunk, shared nodes)
+};
+
+ChunkGraph chunk_graph(const std::vector<std::vector<std::uint32_t>>& nodes_of, std::size_t node_count) {
+  // The chunks at each node, then the pairs they make.
+  std::vector<std::uint32_t> start(node_count + 1, 0);
+  for (const auto& nodes : nodes_of)
+    for (const std::uint32_t n : nodes) ++start[n + 1];
+  for (std::size_t n = 0; n < node_count; ++n) start[n + 1] += start[n];
+  std::vector<std::uint32_t> at_node(start[node_count]);
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::uint32_t c = 0; c < nodes_of.size(); ++c)
+    for (const std::uint32_t n : nodes_of[c]) at_node[fill[n]++] = c;
+  ChunkGraph graph;
+  graph.neighbours.resize(nodes_of.size());
+  std::vector<std::uint32_t> count(nodes_of.size(), 0);
+  for (std::uint32_t c = 0; c < nodes_of.size(); ++c) {
+    std::vector<std::uint32_t> touched;
+    for (const std::uint32_t n : nodes_of[c])
+      for (std::uint32_t k = start[n]; k < start[n + 1]; ++k) {
+        const std::uint32_t other = at_node[k];
+        if (other == c) continue;
+        if (count[other]++ == 0) touched.push_back(other);
+      }
+    std::sort(touched.begin(), touched.end());
+    for (const std::uint32_t other : touched) {
+      graph.neighbours[c].emplace_back(other, count[other]);
+      count[other] = 0;
+    }
+  }
+  return graph;
+}
+
+std::vector<int> metis_partition(const std::vector<std::vector<std::uint32_t>>& nodes_of,
+                                 const std::vector<double>& weight, std::size_t node_count, int ranks) {
+  const ChunkGraph graph = chunk_graph(nodes_of, node_count);
+  std::vector<idx_t> xadj{0}, adjncy, adjwgt, vwgt;
+  for (std::size_t c = 0; c < nodes_of.size(); ++c) {
+    for (const auto& [other, shared] : graph.neighbours[c]) {
+      adjncy.push_back(idx_t(other));
+      adjwgt.push_back(idx_t(shared));
+    }
+    xadj.push_back(idx_t(adjncy.size()));
+    vwgt.push_back(idx_t(weight[c]));
+  }
+  idx_t vertices = idx_t(nodes_of.size()), constraints = 1, parts = ranks, objective = 0;
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = 1;  // the same partition on every rank and every run
+  options[METIS_OPTION_NUMBERING] = 0;
+  options[METIS_OPTION_CONTIG] = 0;
+  std::vector<idx_t> part(nodes_of.size(), 0);
+  real_t imbalance = 1.03f;
+  const int status =
+      ranks == 2
+          ? METIS_PartGraphRecursive(&vertices, &constraints, xadj.data(), adjncy.data(), vwgt.data(),
+                                     nullptr, adjwgt.data(), &parts, nullptr, &imbalance, options, &objective,
+                                     part.data())
+          : METIS_PartGraphKway(&vertices, &constraints, xadj.data(), adjncy.data(), vwgt.data(), nullptr,
+                                adjwgt.data(), &parts, nullptr, &imbalance, options, &objective, part.data());
+  if (status != METIS_OK)
+    throw InputError("METIS could not partition " + std::to_string(nodes_of.size()) + " chunks over " +
+                     std::to_string(ranks) + " ranks (status " + std::to_string(status) +
+                     "); use --partition bisection");
+  std::vector<int> rank_of(part.begin(), part.end());
+  std::vector<int> chunks_on(std::size_t(ranks), 0);
+  for (const int r : rank_of) ++chunks_on[std::size_t(r)];
+  for (int r = 0; r < ranks; ++r)
+    if (chunks_on[std::size_t(r)] == 0)
+      throw InputError("METIS left rank " + std::to_string(r) + " of " + std::to_string(ranks) +
+                       " without a chunk of the " + std::to_string(nodes_of.size()) +
+                       "; run on fewer ranks or use --partition bisection");
+  return rank_of;
+}
+
+}  // namespace
+
+PartitionFigures partition_figures(const Model& model, const std::vector<int>& chunk_rank) {
+  const std::vector<std::vector<std::uint32_t>> nodes_of = chunk_nodes(model);
+  const ChunkGraph graph = chunk_graph(nodes_of, model.mesh.node_count());
+  PartitionFigures figures;
+  for (std::size_t c = 0; c < nodes_of.size(); ++c)
+    for (const auto& [other, shared] : graph.neighbours[c])
+      if (other > c && chunk_rank[c] != chunk_rank[other]) figures.edge_cut += long(shared);
+  std::vector<int> rank_at(model.mesh.node_count(), -1);
+  std::vector<char> shared(model.mesh.node_count(), 0);
+  for (std::size_t c = 0; c < nodes_of.size(); ++c)
+    for (const std::uint32_t n : nodes_of[c]) {
+      if (rank_at[n] >= 0 && rank_at[n] != chunk_rank[c]) shared[n] = 1;
+      rank_at[n] = chunk_rank[c];
+    }
+  for (const char s : shared) figures.shared_nodes += s;
+  return figures;
+}
+
+std::vector<int> partition_chunks(const Model& model, int ranks, Partitioning partitioning) {
   // The chunks, block after block: centroid (mean of their elements' corner nodes, m)
   // and weight (elements).
   std::vector<std::array<double, 3>> centroid;
@@ -42,6 +159,10 @@ std::vector<int> partition_chunks(const Model& model, int ranks) {
                      " chunks of at most " + std::to_string(element::element_chunk) +
                      ": every rank needs a chunk (docs/parallel.md); run on at most " +
                      std::to_string(chunks) + " ranks");
+  if (partitioning == Partitioning::metis) {
+    if (ranks == 1) return std::vector<int>(chunks, 0);
+    return metis_partition(chunk_nodes(model), weight, mesh.node_count(), ranks);
+  }
   std::vector<std::uint32_t> order(chunks);
   std::iota(order.begin(), order.end(), 0u);
   std::vector<int> rank_of(chunks, 0);

@@ -114,7 +114,8 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   const mpi::Communicator& comm = controls.comm;
   model_ = build_model(deck);
   NodalVectors initial_v = initial_velocity(deck, model_);
-  if (comm.distributed()) local_ = localize(model_, contact_face_nodes(deck, model_.mesh), initial_v, comm);
+  if (comm.distributed())
+    local_ = localize(model_, contact_face_nodes(deck, model_.mesh), initial_v, comm, controls.partitioning);
   critical_dt_ = critical_time_step(model_);
   clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, model_);
   contact_ = build_contact(deck, model_, clock_->next(), critical_dt_);

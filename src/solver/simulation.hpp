@@ -9,6 +9,7 @@
 #include "common/mpi.hpp"
 #include "input/options.hpp"
 #include "output/summary.hpp"
+#include "solver/partitioning.hpp"
 
 namespace exdyn::solver {
 
@@ -27,6 +28,8 @@ struct RunControls {
   // The ranks of the run (docs/parallel.md); default one process without MPI. Every
   // rank calls run_simulation with the same deck and controls.
   mpi::Communicator comm;
+  // How the chunks are dealt to the ranks (decomposition.hpp).
+  Partitioning partitioning = Partitioning::bisection;
   // Set to a signal number (SIGINT, SIGTERM) by the caller's signal handler: the run
   // finishes its step, writes it, and stops with a RunFailure. May be null.
   const volatile std::sig_atomic_t* stop_signal = nullptr;

@@ -250,6 +250,8 @@ void summarise_ranks(const Decomposition& d, output::MpiSummary& out) {
     out.exchange_seconds = std::max(out.exchange_seconds, all[4 * r + 3]);
   }
   out.contact_nodes = long(d.contact_received.size());
+  out.partition = d.partitioning == Partitioning::metis ? "metis" : "bisection";
+  out.edge_cut = d.edge_cut;
 }
 
 }  // namespace exdyn::solver

@@ -44,7 +44,8 @@ std::array<double, 3> point(const Mesh& mesh, std::uint32_t node) {
 // (y1 - y0) x (y3 - y0) of a segment: its outward normal times twice an area.
 std::array<double, 3> segment_normal(const Mesh& mesh, const FaceSegment& s) {
   const auto a = point(mesh, s.nodes[0]), b = point(mesh, s.nodes[1]), d = point(mesh, s.nodes[3]);
-  const std::array<double, 3> u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+  const std::array<double, 3> u{b[0] - a[0], b[1] - a[1], b[2] - a[2]},
+      v{d[0] - a[0], d[1] - a[1], d[2] - a[2]};
   return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
 }
 
@@ -65,7 +66,8 @@ TEST(GmshNodeOrder, TheTableMapsEveryVtkEdgeToTheGmshEdgeOfTheSameCorners) {
     for (int c = 0; c < 8; ++c) {
       int distance = 0;
       for (int k = 0; k < 3; ++k)
-        distance += std::abs(brick_offsets[std::size_t(v)][std::size_t(k)] - brick_offsets[std::size_t(c)][std::size_t(k)]);
+        distance += std::abs(brick_offsets[std::size_t(v)][std::size_t(k)] -
+                             brick_offsets[std::size_t(c)][std::size_t(k)]);
       if (distance == 1) corners.insert(c);
     }
     EXPECT_EQ(corners, (std::set<int>{gmsh_edges[g - 8][0], gmsh_edges[g - 8][1]})) << "VTK node " << v;
@@ -88,7 +90,8 @@ TEST(GmshNodeOrder, EveryMidEdgeNodeOfAGmshHex20MeshIsTheMiddleOfItsVtkEdge) {
       for (int c = 0; c < 8; ++c) {
         int distance = 0;
         for (int k = 0; k < 3; ++k)
-          distance += std::abs(brick_offsets[std::size_t(v)][std::size_t(k)] - brick_offsets[std::size_t(c)][std::size_t(k)]);
+          distance += std::abs(brick_offsets[std::size_t(v)][std::size_t(k)] -
+                               brick_offsets[std::size_t(c)][std::size_t(k)]);
         if (distance != 1) continue;
         ++found;
         for (int k = 0; k < 3; ++k) middle[std::size_t(k)] += 0.5 * point(mesh, nodes[c])[std::size_t(k)];
@@ -142,8 +145,10 @@ TEST(ImportedFaces, TwoVolumesThatShareNodesInTheFileShareNoneAsParts) {
 materials:
   steel: {model: linear_elastic, density: 7800, youngs_modulus: 2.1e11, poissons_ratio: 0.3}
 parts:
-  - {name: a, mesh: {file: )" + meshes + R"(plate_impact_hex8.msh, volume: plate_a}, material: steel}
-  - {name: b, mesh: {file: )" + meshes + R"(plate_impact_hex8.msh, volume: plate_b}, material: steel}
+  - {name: a, mesh: {file: )" + meshes +
+                                R"(plate_impact_hex8.msh, volume: plate_a}, material: steel}
+  - {name: b, mesh: {file: )" + meshes +
+                                R"(plate_impact_hex8.msh, volume: plate_b}, material: steel}
 time: {end_time: 1.0e-9}
 )";
   const Mesh mesh = build_mesh(input::parse_deck(deck_text, "two.yaml"));
@@ -172,7 +177,8 @@ TEST(HilbertOrder, ConsecutiveCellsOfTheCurveAreFaceNeighbours) {
   for (std::size_t c = 1; c < cells.size(); ++c) {
     EXPECT_NE(cells[c].first, cells[c - 1].first);
     int distance = 0;
-    for (int k = 0; k < 3; ++k) distance += std::abs(cells[c].second[std::size_t(k)] - cells[c - 1].second[std::size_t(k)]);
+    for (int k = 0; k < 3; ++k)
+      distance += std::abs(cells[c].second[std::size_t(k)] - cells[c - 1].second[std::size_t(k)]);
     EXPECT_EQ(distance, 1) << "cells " << c - 1 << " and " << c;
   }
 }
@@ -195,7 +201,8 @@ TEST(HilbertOrder, ReorderingAShuffledMeshPutsItsElementsInRows) {
   input::GmshElements shuffled = hexes;
   for (std::size_t e = 0; e < count; ++e) {
     shuffled.tags[e] = hexes.tags[order[e]];
-    std::copy_n(hexes.nodes.begin() + std::ptrdiff_t(8 * order[e]), 8, shuffled.nodes.begin() + std::ptrdiff_t(8 * e));
+    std::copy_n(hexes.nodes.begin() + std::ptrdiff_t(8 * order[e]), 8,
+                shuffled.nodes.begin() + std::ptrdiff_t(8 * e));
   }
   hexes = shuffled;
   // The share of consecutive elements that continue a row.
@@ -212,8 +219,8 @@ TEST(HilbertOrder, ReorderingAShuffledMeshPutsItsElementsInRows) {
   const Mesh ordered = import(file, mesh_part("tube", input::Formulation::hex8, {}, true));
   EXPECT_EQ(kept.element_count(), ordered.element_count());
   EXPECT_EQ(kept.node_count(), ordered.node_count());
-  std::printf("elements continuing a row: Gmsh's order %.3f, shuffled %.3f, reordered %.3f\n", in_rows(file_order),
-              in_rows(kept), in_rows(ordered));
+  std::printf("elements continuing a row: Gmsh's order %.3f, shuffled %.3f, reordered %.3f\n",
+              in_rows(file_order), in_rows(kept), in_rows(ordered));
   EXPECT_LT(in_rows(kept), 0.01);
   EXPECT_GT(in_rows(ordered), 0.9);
   // The same points, and every element keeps its positive orientation (import checks it).
@@ -241,7 +248,8 @@ TEST(HilbertOrder, TurnedHex20ElementsStayRightHandedAndKeepTheirMidEdgeNodes) {
       for (int c = 0; c < 8; ++c) {
         int distance = 0;
         for (int k = 0; k < 3; ++k)
-          distance += std::abs(brick_offsets[std::size_t(v)][std::size_t(k)] - brick_offsets[std::size_t(c)][std::size_t(k)]);
+          distance += std::abs(brick_offsets[std::size_t(v)][std::size_t(k)] -
+                               brick_offsets[std::size_t(c)][std::size_t(k)]);
         if (distance == 1)
           for (int k = 0; k < 3; ++k) middle[std::size_t(k)] += 0.5 * point(mesh, nodes[c])[std::size_t(k)];
       }
@@ -277,7 +285,8 @@ input::GmshMesh cube() {
   return file;
 }
 
-std::string import_error(const input::GmshMesh& file, input::Formulation formulation = input::Formulation::hex8) {
+std::string import_error(const input::GmshMesh& file,
+                         input::Formulation formulation = input::Formulation::hex8) {
   try {
     import(file, mesh_part("v", formulation));
   } catch (const InputError& error) {
@@ -320,13 +329,16 @@ TEST(ImportErrors, EachWrongMeshIsNamedWithTheFileAndWhatIsWrong) {
       {with([](auto& f) { f.volumes[0].elements.clear(); }), "has no elements"},
       {with([](auto& f) { f.volumes[0].elements[0].nodes[6] = 42; }),
        "element 7 of the physical volume 'v' of 'cube.msh' names node 42, which the file does not have"},
-      {with([](auto& f) { f.volumes[0].elements[0].nodes[6] = 1; }), "element 7 of the physical volume 'v' of "
-                                                                        "'cube.msh' is degenerate: node 1 is two"},
+      {with([](auto& f) { f.volumes[0].elements[0].nodes[6] = 1; }),
+       "element 7 of the physical volume 'v' of "
+       "'cube.msh' is degenerate: node 1 is two"},
       {with([](auto& f) { std::swap(f.volumes[0].elements[0].nodes[1], f.volumes[0].elements[0].nodes[3]); }),
        "element 7 of the physical volume 'v' of 'cube.msh' is inverted: the Jacobian at its corner node 1 is "
        "negative"},
-      {with([](auto& f) { f.coordinates[3 * 6 + 2] = 0.0, f.coordinates[3 * 5 + 2] = 0.0,
-                          f.coordinates[3 * 4 + 2] = 0.0, f.coordinates[3 * 7 + 2] = 0.0; }),
+      {with([](auto& f) {
+         f.coordinates[3 * 6 + 2] = 0.0, f.coordinates[3 * 5 + 2] = 0.0, f.coordinates[3 * 4 + 2] = 0.0,
+                               f.coordinates[3 * 7 + 2] = 0.0;
+       }),
        "is degenerate: the Jacobian at its corner node 1 is zero"},
       {with([](auto& f) { f.coordinates[4] = std::nan(""); }), "at a coordinate that is not a finite number"},
       {with([](auto& f) { f.volumes[0].elements[0].nodes.pop_back(); }), "1 element with 7 node tags"},
@@ -347,8 +359,9 @@ TEST(ImportErrors, EachWrongMeshIsNamedWithTheFileAndWhatIsWrong) {
     EXPECT_NE(message.find(expected), std::string::npos) << "expected '" << expected << "' in: " << message;
     EXPECT_NE(message.find("deck.yaml"), std::string::npos) << message;
   }
-  EXPECT_NE(import_error(cube(), input::Formulation::hex20).find("has 8-node hexahedra, but the part's formulation "
-                                                                 "hex20 takes 20-node ones"),
+  EXPECT_NE(import_error(cube(), input::Formulation::hex20)
+                .find("has 8-node hexahedra, but the part's formulation "
+                      "hex20 takes 20-node ones"),
             std::string::npos);
 }
 
@@ -361,10 +374,12 @@ TEST(ImportErrors, AFileThatIsNotAGmshMeshOrIsMissingIsNamed) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(read_error("/no/such/file.msh").find("cannot read the mesh file '/no/such/file.msh'"), std::string::npos);
+  EXPECT_NE(read_error("/no/such/file.msh").find("cannot read the mesh file '/no/such/file.msh'"),
+            std::string::npos);
   const std::string deck = std::string(EXDYN_SOURCE_DIR) + "/input/plate_impact.yaml";
   const std::string not_a_mesh = read_error(deck);
-  EXPECT_NE(not_a_mesh.find("is not a Gmsh mesh: its first line is '# The seed paper"), std::string::npos) << not_a_mesh;
+  EXPECT_NE(not_a_mesh.find("is not a Gmsh mesh: its first line is '# The seed paper"), std::string::npos)
+      << not_a_mesh;
   EXPECT_NE(not_a_mesh.find("deck.yaml:3:5: parts[0].mesh.file"), std::string::npos) << not_a_mesh;
 }
 

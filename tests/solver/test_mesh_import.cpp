@@ -80,7 +80,8 @@ double worst_field_difference(const DeckRun& a, const DeckRun& b, double size) {
   const auto times = read_dataset(a.h5(), "/time").values;
   for (double t : times) {
     const long step = std::lround(t / a.summary.dt);
-    for (const std::string field : {"displacement", "velocity", "stress", "von_mises", "contact_force", "gap"}) {
+    for (const std::string field :
+         {"displacement", "velocity", "stress", "von_mises", "contact_force", "gap"}) {
       const auto va = a.at(step, field), vb = b.at(step, field);
       const bool nodal = va.size() % nodes_a.size() == 0 && va.size() / nodes_a.size() <= 3 &&
                          field != "stress" && field != "von_mises";
@@ -106,8 +107,9 @@ double worst_field_difference(const DeckRun& a, const DeckRun& b, double size) {
 // quadrature slave points 1.0e-10.
 TEST(MeshImport, GmshPlatesGiveTheBuiltInPlateImpactFields) {
   const std::vector<exdyn::input::Override> quadrature{{"contact[0].slave_points", "quadrature"}};
-  for (const auto& [built_in, imported] : {std::pair{"plate_impact.yaml", "plate_impact_gmsh.yaml"},
-                                           std::pair{"plate_impact_hex20.yaml", "plate_impact_hex20_gmsh.yaml"}}) {
+  for (const auto& [built_in, imported] :
+       {std::pair{"plate_impact.yaml", "plate_impact_gmsh.yaml"},
+        std::pair{"plate_impact_hex20.yaml", "plate_impact_hex20_gmsh.yaml"}}) {
     const DeckRun a(built_in, quadrature), b(imported, quadrature);
     EXPECT_EQ(a.summary.steps, b.summary.steps);
     const double worst = worst_field_difference(a, b, 5e-3);
@@ -125,7 +127,8 @@ TEST(MeshImport, GmshPlatesGiveTheBuiltInPlateImpactFields) {
 TEST(MeshImport, GmshPlatesWithSlaveNodesDifferOnlyByTheNodeOnNodeTies) {
   const DeckRun a("plate_impact.yaml"), b("plate_impact_gmsh.yaml");
   const double worst = worst_field_difference(a, b, 5e-3);
-  std::printf("plate_impact.yaml vs plate_impact_gmsh.yaml (slave nodes): worst field difference %.3e\n", worst);
+  std::printf("plate_impact.yaml vs plate_impact_gmsh.yaml (slave nodes): worst field difference %.3e\n",
+              worst);
   EXPECT_LE(worst, 1e-5);
 }
 
@@ -149,9 +152,11 @@ std::pair<double, double> hertz_peak_and_duration(const DeckRun& run) {
 // within 1 %. Measured: -0.49 % and +0.22 %; the deck sizes (16 x 4, 12 x 12 x 10):
 // -0.02 % and +0.09 % (docs/verification.md).
 TEST(MeshImport, GmshBallGivesTheBuiltInHertzForceAndContactTime) {
-  const DeckRun built_in("hertz_ball.yaml", {{"parts[0].elements", "[8, 2]"}, {"parts[1].elements", "[6, 6, 5]"}});
-  const DeckRun imported("hertz_ball_gmsh.yaml", {{"parts[0].mesh.file", "meshes/hertz_ball_coarse_hex20.msh"},
-                                                  {"parts[1].elements", "[6, 6, 5]"}});
+  const DeckRun built_in("hertz_ball.yaml",
+                         {{"parts[0].elements", "[8, 2]"}, {"parts[1].elements", "[6, 6, 5]"}});
+  const DeckRun imported(
+      "hertz_ball_gmsh.yaml",
+      {{"parts[0].mesh.file", "meshes/hertz_ball_coarse_hex20.msh"}, {"parts[1].elements", "[6, 6, 5]"}});
   const auto [peak_a, time_a] = hertz_peak_and_duration(built_in);
   const auto [peak_b, time_b] = hertz_peak_and_duration(imported);
   std::printf("Hertz: built-in F_max %.1f N, %.3f us; Gmsh %.1f N (%+.2f %%), %.3f us (%+.2f %%)\n", peak_a,
@@ -210,10 +215,11 @@ TEST(MeshImport, HollowTubeOnARigidWallFollowsWaveTheoryAndKeepsMomentum) {
     }
   }
   const double initial = -mass * v0;
-  std::printf("Tube: transit %.3f us (L/c_p %.3f, L/c %.3f), contact %.3f us (2L/c_p %.3f, 2L/c %.3f), "
-              "momentum out/in %.4f, impulse vs change %.2e\n",
-              1e6 * (crossing - first), 1e6 * L / c_plate, 1e6 * L / c_bar, 1e6 * (last - first),
-              2e6 * L / c_plate, 2e6 * L / c_bar, momentum / initial, (momentum - initial - impulse) / impulse);
+  std::printf(
+      "Tube: transit %.3f us (L/c_p %.3f, L/c %.3f), contact %.3f us (2L/c_p %.3f, 2L/c %.3f), "
+      "momentum out/in %.4f, impulse vs change %.2e\n",
+      1e6 * (crossing - first), 1e6 * L / c_plate, 1e6 * L / c_bar, 1e6 * (last - first), 2e6 * L / c_plate,
+      2e6 * L / c_bar, momentum / initial, (momentum - initial - impulse) / impulse);
   EXPECT_GE(crossing - first, 0.99 * L / c_plate);
   EXPECT_LE(crossing - first, 1.01 * L / c_bar);
   EXPECT_GE(last - first, 0.99 * 2 * L / c_plate);
