@@ -2,7 +2,7 @@
 # Fuzzes the input readers with libFuzzer (tests/fuzz/, docs/stability.md):
 #   1. installs what is missing (clang 14, libFuzzer) and builds build/fuzz with clang,
 #      ASan and UBSan;
-#   2. replays every file of tests/fuzz/regressions/{deck,cases}/ (past findings);
+#   2. replays every file of tests/fuzz/regressions/{deck,cases,mesh}/ (past findings);
 #   3. fuzzes each target for SECONDS (default 60) from a seed corpus copied to a
 #      temporary directory: the decks of input/ and tests/input/, the cases of
 #      tests/contact/, tests/fuzz/seeds/ and the regressions.
@@ -18,12 +18,12 @@ jobs="${EXDYN_JOBS:-$(nproc)}"
 build="$root/build/fuzz"
 
 scripts/install_deps.sh --fuzz
-# Only the readers' library and the two targets are built (the rest is configured, not compiled).
+# Only the readers' and the mesh libraries and the three targets are built (the rest is configured, not compiled).
 # Debug with -O1: assertions on, every sanitizer check, fast enough to fuzz. Warnings are not
 # errors: the project's warning set is GCC's (-Wno-restrict), and -Werror is the GCC build's job.
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-g -O1" \
   -DEXDYN_BUILD_FUZZ=ON -DEXDYN_BUILD_TESTS=OFF -DEXDYN_BUILD_BENCHMARKS=OFF -DEXDYN_WERROR=OFF >/dev/null
-cmake --build "$build" -j "$jobs" --target fuzz_deck fuzz_cases
+cmake --build "$build" -j "$jobs" --target fuzz_deck fuzz_cases fuzz_mesh
 
 # Stack traces of findings with file and line.
 if [ -z "${ASAN_SYMBOLIZER_PATH:-}" ] && [ -x /usr/lib/llvm-14/bin/llvm-symbolizer ]; then
@@ -89,6 +89,7 @@ fuzz() {
 
 fuzz deck 8192 input tests/input/decks tests/input/bad_decks tests/fuzz/seeds/deck tests/fuzz/regressions/deck
 fuzz cases 4096 tests/contact/cases tests/contact/bad_cases tests/fuzz/seeds/cases tests/fuzz/regressions/cases
+fuzz mesh 256 tests/fuzz/seeds/mesh tests/fuzz/regressions/mesh
 
 if [ "$status" -ne 0 ]; then
   echo "fuzz.sh: FAILED (logs in $build/logs/)"

@@ -338,6 +338,7 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
   // Elements in VTK order (file node indices), each checked.
   const int nodes_per_element = quadratic ? 20 : 8;
   std::vector<Brick> elements;
+  std::vector<std::size_t> element_tags;  // Gmsh's, for messages
   for (const input::GmshElements& block : volume->elements) {
     if (block.type != wanted) continue;
     if (block.nodes.size() != std::size_t(nodes_per_element) * block.tags.size())
@@ -389,7 +390,26 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
                " (Gmsh's hexahedron numbers its bottom corners counter-clockwise seen from the top)");
       }
       elements.push_back(nodes);
+      element_tags.push_back(block.tags[e]);
     }
+  }
+
+  // Two elements on the same nodes overlap (a mesh merged twice): each face of one
+  // would be shared with the other and the body would have no boundary.
+  {
+    std::vector<std::pair<Brick, std::size_t>> sorted;
+    sorted.reserve(elements.size());
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+      Brick key = elements[e];
+      std::sort(key.begin(), key.begin() + nodes_per_element);
+      sorted.emplace_back(key, e);
+    }
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i + 1 < sorted.size(); ++i)
+      if (sorted[i].first == sorted[i + 1].first)
+        fail("elements " + std::to_string(element_tags[sorted[i].second]) + " and " +
+             std::to_string(element_tags[sorted[i + 1].second]) + " of " + volume_text +
+             " have the same nodes: they overlap (is the mesh in the file twice?)");
   }
 
   // Element order: in rows seeded along a Hilbert curve through the centroids (in the
