@@ -115,6 +115,50 @@ TEST(Cli, BadDeckExitsTwoNamesTheKeyAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// A mesh part: every kind of bad mesh exits 2, names the file and what is wrong, and
+// writes nothing; a good one checks, and its echo checks to the same text.
+TEST(Cli, MeshPartsOfBadMeshesExitTwoNamingTheFileAndWriteNothing) {
+  exdyn::testing::TempDir directory;
+  const std::string meshes = std::string(EXDYN_SOURCE_DIR) + "/tests/mesh/meshes/";
+  int decks = 0;
+  auto deck_on = [&](const std::string& file, const std::string& volume, const std::string& extra = "") {
+    const std::string name = directory.file("mesh_" + std::to_string(++decks) + ".yaml");
+    std::ofstream(name)
+        << "name: cube\nmaterials:\n  steel: {model: linear_elastic, density: 7800, youngs_modulus: 2.1e11, "
+           "poissons_ratio: 0.3}\nparts:\n  - name: cube\n    mesh: {file: "
+        << file << ", volume: " << volume << "}\n    material: steel\n"
+        << extra << "time:\n  end_time: 1.0e-6\n";
+    return name;
+  };
+  const std::string out = directory.file("out");
+  const std::pair<std::string, std::string> cases[] = {
+      {deck_on(meshes + "cube_tets.msh", "cube"),
+       "cube_tets.msh' has 48 tetrahedra ('Tetrahedron 4', Gmsh type 4)"},
+      {deck_on(meshes + "cube_hex27.msh", "cube"),
+       "cube_hex27.msh' has 8 27-node hexahedra ('Hexahedron 27', Gmsh type 12)"},
+      {deck_on(meshes + "cube_tets.msh", "cube",
+               "boundary_conditions:\n  - {faces: [cube.bottom], fix: [x]}\n"),
+       "cube_tets.msh' has 48 tetrahedra"},
+      {deck_on(std::string(EXDYN_SOURCE_DIR) + "/input/meshes/plate_impact_hex8.msh", "plate_a",
+               "boundary_conditions:\n  - {faces: [cube.right], fix: [x]}\n"),
+       "boundary_conditions[0].faces[0]: the face 'cube.right': the physical surface 'right' of '"},
+  };
+  for (const auto& [file, expected] : cases) {
+    const auto result = exdyn("run " + file + " --output " + out);
+    EXPECT_EQ(result.status, 2) << result.output;
+    EXPECT_NE(result.output.find(expected), std::string::npos) << result.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  const auto good = exdyn("check " + deck("tube_impact.yaml"));
+  ASSERT_EQ(good.status, 0) << good.output;
+  EXPECT_NE(good.output.find("mesh: {file: "), std::string::npos) << good.output;
+  std::ofstream(directory.file("echo.yaml")) << good.output;
+  const auto second = exdyn("check " + directory.file("echo.yaml"));
+  ASSERT_EQ(second.status, 0) << second.output;
+  auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
+  EXPECT_EQ(body(second.output), body(good.output));
+}
+
 TEST(Cli, RunWritesTheThreeFilesAndOneSummaryLineWhenNotATerminal) {
   exdyn::testing::TempDir directory;
   const auto result = exdyn("run " + deck("wave_bar.yaml") + " --output " + directory.path().string());

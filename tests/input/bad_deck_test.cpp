@@ -26,6 +26,14 @@ void PrintTo(const BadDeck& deck, std::ostream* out) { *out << deck.file; }
 
 // Line numbers count the comment on line 1 of each file.
 const BadDeck bad_decks[] = {
+    {"mesh_missing_file.yaml", "parts[0].mesh.file", 7,
+     "no_such_mesh.msh': it does not exist or is not readable"},
+    {"mesh_not_a_mesh.yaml", "parts[0].mesh.file", 7, "mesh_not_a_mesh.yaml' is not a Gmsh mesh"},
+    {"mesh_unknown_volume.yaml", "parts[0].mesh.volume", 7,
+     "tube_hex8.msh' has no physical volume 'tubes'; did you mean 'tube'?"},
+    {"mesh_unknown_surface.yaml", "boundary_conditions[0].faces[1]", 10,
+     "unknown side 'outside' of the mesh part 'tube' in face 'tube.outside'; did you mean 'tube.outer'?"},
+    {"mesh_with_elements.yaml", "parts[0].elements", 8, "elements does not apply to a mesh part"},
     {"wrong_type_density.yaml", "materials.steel.density", 4, "expected a number > 0, got heavy"},
     {"missing_time.yaml", "time", 2, "missing required key 'time'"},
     {"unknown_key_typo.yaml", "materials.steel.densty", 4, "unknown key 'densty'; did you mean 'density'?"},

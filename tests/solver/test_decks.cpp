@@ -40,7 +40,8 @@ struct DeckRun : exdyn::testing::DeckRun {
 // spinning_block.yaml, plastic_wave.yaml, taylor_bar.yaml, taylor_wall.yaml, taylor_rods.yaml:
 // test_large_deformation.cpp (the
 // full Taylor meshes: scripts/taylor_study.py); sliding_block.yaml, oblique_impact.yaml,
-// block_on_rail.yaml: test_friction.cpp.
+// block_on_rail.yaml: test_friction.cpp; plate_impact_gmsh.yaml, plate_impact_hex20_gmsh.yaml,
+// hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp.
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "wave_bar.yaml",
                                           "shear_wave.yaml",
@@ -62,7 +63,11 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "sliding_block.yaml",
                                           "oblique_impact.yaml",
                                           "block_on_rail.yaml",
-                                          "taylor_wall.yaml"};
+                                          "taylor_wall.yaml",
+                                          "plate_impact_gmsh.yaml",
+                                          "plate_impact_hex20_gmsh.yaml",
+                                          "hertz_ball_gmsh.yaml",
+                                          "tube_impact.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;
