@@ -105,7 +105,9 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                             {"messages_per_step", 0},
                             {"bytes_per_step", 0.0},
                             {"contact_nodes", 0},
-                            {"exchange_seconds", 0.0}}));
+                            {"exchange_seconds", 0.0},
+                            {"partition", "bisection"},
+                            {"edge_cut", 0}}));
   for (const char* integer : {"projections", "max_iterations", "not_converged", "saddle_points"}) {
     EXPECT_TRUE(j["contact"][integer].is_number_integer()) << integer;
   }
