@@ -90,7 +90,8 @@ std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const st
   }
   const std::vector<std::array<int, 20>> rotations = brick_rotations();
   std::vector<char> placed(count, 0);
-  std::vector<std::size_t> stamp(count, count);  // the walk that last passed an element
+  // The walk that last passed each element (walks are numbered from 0 up, never reused).
+  std::vector<std::size_t> stamp(count, ~std::size_t{0});
   // Steps from e out through face f (then on through the opposite of each entry face)
   // over elements not placed; calls visit(element, entry face) for each.
   auto walk = [&](std::size_t e, int f, std::size_t walk_id, auto visit) {
@@ -134,7 +135,7 @@ std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const st
     double along_x = -1.0;
     for (const int f : {3, 4, 1}) {
       std::size_t length = 1;
-      const std::size_t id = walks++ % count;
+      const std::size_t id = walks++;
       walk(seed, f, id, [&](std::size_t, int) { ++length; });
       walk(seed, opposite_face[f], id, [&](std::size_t, int) { ++length; });
       const Point d = unit(outward(elements[seed], f));
@@ -148,7 +149,7 @@ std::vector<Brick> elements_in_rows(const std::vector<Brick>& elements, const st
     // Back to the chain's first element: its face toward the seed is its exit.
     std::size_t first = seed;
     int first_exit = exit;
-    walk(seed, opposite_face[exit], walks++ % count,
+    walk(seed, opposite_face[exit], walks++,
          [&](std::size_t e, int entry) { first = e, first_exit = entry; });
     // Forward, each element turned to continue the previous one's row.
     chains.push_back(result.size());

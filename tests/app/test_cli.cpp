@@ -22,6 +22,16 @@ exdyn::testing::CommandResult exdyn(const std::string& arguments) {
 
 std::string deck(const std::string& name) { return std::string(EXDYN_SOURCE_DIR) + "/input/" + name; }
 
+// `check`'s echo is a deck that checks to the same text (after the first line, which names the file).
+void expect_echo_checks_to_itself(const exdyn::testing::CommandResult& first,
+                                  const exdyn::testing::TempDir& directory) {
+  std::ofstream(directory.file("echo.yaml")) << first.output;
+  const auto second = exdyn("check " + directory.file("echo.yaml"));
+  ASSERT_EQ(second.status, 0) << second.output;
+  auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
+  EXPECT_EQ(body(second.output), body(first.output));
+}
+
 TEST(Cli, VersionAndHelpExitZero) {
   const auto version = exdyn("--version");
   EXPECT_EQ(version.status, 0);
@@ -54,12 +64,7 @@ TEST(Cli, CheckOutputIsAValidDeckThatChecksToTheSameText) {
   exdyn::testing::TempDir directory;
   const auto first = exdyn("check " + deck("plate_impact_reference.yaml"));
   ASSERT_EQ(first.status, 0) << first.output;
-  std::ofstream(directory.file("echo.yaml")) << first.output;
-  const auto second = exdyn("check " + directory.file("echo.yaml"));
-  ASSERT_EQ(second.status, 0) << second.output;
-  // The first line is a comment naming the source file; the rest must agree.
-  auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
-  EXPECT_EQ(body(second.output), body(first.output));
+  expect_echo_checks_to_itself(first, directory);
 }
 
 // Slave nodes on 8-node segments: `check` and `run` say what it does to the answer.
@@ -98,11 +103,7 @@ TEST(Cli, CheckReportsTheMeshOfAMappedPartAndEchoesItsKeys) {
       << first.output;
   EXPECT_NE(first.output.find("# part ball: 64 elements"), std::string::npos) << first.output;
   EXPECT_NE(first.output.find("smallest scaled Jacobian 0.57735"), std::string::npos) << first.output;
-  std::ofstream(directory.file("echo.yaml")) << first.output;
-  const auto second = exdyn("check " + directory.file("echo.yaml"));
-  ASSERT_EQ(second.status, 0) << second.output;
-  auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
-  EXPECT_EQ(body(second.output), body(first.output));
+  expect_echo_checks_to_itself(first, directory);
 }
 
 TEST(Cli, BadDeckExitsTwoNamesTheKeyAndWritesNothing) {
@@ -152,11 +153,7 @@ TEST(Cli, MeshPartsOfBadMeshesExitTwoNamingTheFileAndWriteNothing) {
   const auto good = exdyn("check " + deck("tube_impact.yaml"));
   ASSERT_EQ(good.status, 0) << good.output;
   EXPECT_NE(good.output.find("mesh: {file: "), std::string::npos) << good.output;
-  std::ofstream(directory.file("echo.yaml")) << good.output;
-  const auto second = exdyn("check " + directory.file("echo.yaml"));
-  ASSERT_EQ(second.status, 0) << second.output;
-  auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
-  EXPECT_EQ(body(second.output), body(good.output));
+  expect_echo_checks_to_itself(good, directory);
 }
 
 TEST(Cli, RunWritesTheThreeFilesAndOneSummaryLineWhenNotATerminal) {
