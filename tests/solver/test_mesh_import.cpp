@@ -122,7 +122,7 @@ TEST(MeshImport, GmshPlatesGiveTheBuiltInPlateImpactFields) {
 // master node, on the edge between two master segments. Near the free corner, where the
 // face bends, the last bits decide which segment takes the node or whether it falls
 // between them to the edge rule, and the force turns by the bend's angle: the 1e-12
-// start grows to 5e-9 at step 12 and 2.2e-6 of the velocity by step 64, then stays
+// start grows to 5.5e-9 at step 12 and 2.7e-6 of the velocity by step 64, then stays
 // (docs/verification.md, "Mesh import"). The bound says it stays at that level.
 TEST(MeshImport, GmshPlatesWithSlaveNodesDifferOnlyByTheNodeOnNodeTies) {
   const DeckRun a("plate_impact.yaml"), b("plate_impact_gmsh.yaml");
