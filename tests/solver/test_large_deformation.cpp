@@ -254,16 +254,13 @@ TEST(TaylorImpact, CollapsingStepStopsTheRunNamingTheElement) {
 
 // --- the two Taylor rods through contact (input/taylor_rods.yaml)
 
-// The centre nodes of the two impact faces lie on both symmetry planes; as the foot
-// crushes, each passes behind the other's surface where no segment's projection lands
-// (the dead zone at the symmetry plane) and, before the fold contact, ran through it.
-// With the fold contact and the penalty following the step, every method completes,
-// and each rod's length and foot radius are the one-rod run's on a rigid frictionless
-// wall (taylor_wall.yaml, the same mesh: the plane between the rods is that wall)
-// within 0.5 %.
+// The two rods through contact (slave quadrature points, two passes): every method
+// completes, each rod's length and foot radius are the one-rod run's on a rigid
+// frictionless wall (taylor_wall.yaml, the same mesh: the plane between the rods is
+// that wall) within 0.5 %, and the rods are mirror images of each other.
 class TaylorRods : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(TaylorRods, EveryMethodCompletesAndGivesTheOneRodResultOnARigidWall) {
+TEST_P(TaylorRods, EachRodIsTheOneRodRunOnARigidWallAndTheTwoAreMirrorImages) {
   const DeckRun run("taylor_rods.yaml", {{"contact[0].local_search.method", GetParam()}});
   ASSERT_EQ(run.summary.status, "completed");
   const exdyn::solver::Model model = exdyn::solver::build_model(run.deck);
@@ -285,30 +282,34 @@ TEST_P(TaylorRods, EveryMethodCompletesAndGivesTheOneRodResultOnARigidWall) {
   EXPECT_NEAR(top, wall.length, 0.005 * wall.length);
   EXPECT_NEAR(-bottom, wall.length, 0.005 * wall.length);
   EXPECT_NEAR(radius, wall.radius, 0.005 * wall.radius);
-  if (std::string(GetParam()) != "robust") return;
-  // The two passes are the same geometry under the half turn about the line x = y,
-  // z = 0, and with robust the rods stay images under it to within 1e-9 of the length
-  // (measured 8e-17 m in the Release build, 1.9e-12 m in the sanitizer build, whose
-  // arithmetic differs; bfgs 8e-8 m). rod_a's nodes come first, rod_b's node (y, x, -z)
-  // matches rod_a's (x, y, z), and u_b = (u_y, u_x, -u_z) of it.
+  // The rods are mirror images through z = 0: rod_a's nodes come first, rod_b's node
+  // (x, y, -z) matches rod_a's (x, y, z) and u_b = (u_x, u_y, -u_z) of it. The two
+  // passes are also the same geometry under the half turn about the line x = y, z = 0:
+  // rod_b's node (y, x, -z) with u_b = (u_y, u_x, -u_z). With slave quadrature points
+  // both hold to round-off (measured 6e-17 and 5e-17 m with robust, 6e-17 m with bfgs);
+  // slave nodes pressed onto the facets' vertices amplify the passes' last bits and
+  // lose the mirror past 50 us (docs/verification.md, "Two rods through contact").
   const std::size_t half = model.mesh.node_count() / 2;
   std::map<std::array<long long, 3>, std::size_t> rod_b;
-  auto key = [&](std::size_t i, bool turned) {
-    const double x = model.mesh.x_ref.x[i], y = model.mesh.x_ref.y[i], z = model.mesh.x_ref.z[i];
-    const auto nm = [](double c) { return std::llround(c * 1e9); };  // to the nanometre
-    return turned ? std::array<long long, 3>{nm(y), nm(x), nm(-z)}
-                  : std::array<long long, 3>{nm(x), nm(y), nm(z)};
-  };
-  for (std::size_t i = half; i < model.mesh.node_count(); ++i) rod_b[key(i, false)] = i;
-  double worst = 0.0;
+  const auto nm = [](double c) { return std::llround(c * 1e9); };  // to the nanometre
+  for (std::size_t i = half; i < model.mesh.node_count(); ++i)
+    rod_b[{nm(model.mesh.x_ref.x[i]), nm(model.mesh.x_ref.y[i]), nm(model.mesh.x_ref.z[i])}] = i;
+  double mirror = 0.0, turned = 0.0;  // m
   for (std::size_t i = 0; i < half; ++i) {
-    const auto match = rod_b.find(key(i, true));
-    ASSERT_NE(match, rod_b.end());
-    const std::size_t j = match->second;
-    worst = std::max({worst, std::abs(u[3 * i] - u[3 * j + 1]), std::abs(u[3 * i + 1] - u[3 * j]),
-                      std::abs(u[3 * i + 2] + u[3 * j + 2])});
+    const double x = model.mesh.x_ref.x[i], y = model.mesh.x_ref.y[i], z = model.mesh.x_ref.z[i];
+    const auto image = rod_b.find({nm(x), nm(y), nm(-z)});
+    const auto turn = rod_b.find({nm(y), nm(x), nm(-z)});
+    ASSERT_NE(image, rod_b.end());
+    ASSERT_NE(turn, rod_b.end());
+    const std::size_t j = image->second, k = turn->second;
+    mirror = std::max({mirror, std::abs(u[3 * i] - u[3 * j]), std::abs(u[3 * i + 1] - u[3 * j + 1]),
+                       std::abs(u[3 * i + 2] + u[3 * j + 2])});
+    turned = std::max({turned, std::abs(u[3 * i] - u[3 * k + 1]), std::abs(u[3 * i + 1] - u[3 * k]),
+                       std::abs(u[3 * i + 2] + u[3 * k + 2])});
   }
-  EXPECT_LE(worst, 1e-9 * wall.length);
+  std::printf("%s: mirror through z = 0 %.2e m, half turn %.2e m\n", GetParam(), mirror, turned);
+  EXPECT_LE(mirror, 1e-9 * wall.length);
+  EXPECT_LE(turned, 1e-9 * wall.length);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, TaylorRods, ::testing::Values("robust", "bfgs"));
