@@ -1,10 +1,12 @@
 #!/usr/bin/python3
-"""Many ranks (issue 14, docs/parallel.md), through `mpirun -n N exdyn run`:
+"""Many ranks (docs/parallel.md), through `mpirun -n N exdyn run`:
 
 - equal fields: the plate contact (hex8, nodes), a hex20 contact deck (quadrature points
-  on 8-node segments) and a curved deck (the Hertz ball, hex20) on 1, 2 and 3 ranks (and
-  3 ranks x 2 threads) give every field of every step, and the mesh, bit for bit as one
-  process; the history (sums over the ranks) to 1e-12; the summary says mpi.ranks and
+  on 8-node segments), a curved deck (the Hertz ball, hex20), friction on a curved rail,
+  the two Taylor rods (finite strain, plasticity, contact at folds) and a rigid wall with
+  friction on 1, 2 and 3 ranks (and 3 ranks x 2 threads) give every field of every step,
+  and the mesh, bit for bit as one process (the contact distributed: each rank its own
+  slave points); the history (sums over the ranks) to 1e-12; the summary says mpi.ranks and
   the same contact figures;
 - two passes on two mirror-image cylinders stay mirror images to 1e-12 on 2 and 3 ranks;
 - the guards stop every rank with the message of one rank: an unstable run and an
@@ -119,7 +121,13 @@ def test_equal_fields(exdyn, work, quick):
              ("contact_patch_hex20", ["time.end_time=3.0e-7"] if quick else []),
              ("hertz_ball", ["time.end_time=3.0e-6" if quick else "time.end_time=1.2e-5", "output.every=100"]),
              # friction with anchors, gravity, curved 8-node master segments
-             ("block_on_rail", ["time.end_time=3.0e-5", "output.every=200"])]
+             ("block_on_rail", ["time.end_time=3.0e-5", "output.every=200"]),
+             # finite strain, plasticity, Gauss points sliding over distorting segments, the
+             # contact at folds, the step following the deformation (2,592 bricks a rod)
+             ("taylor_rods", ["parts[0].elements=[8, 4, 54]", "parts[1].elements=[8, 4, 54]",
+                              "time.end_time=" + ("3.0e-6" if quick else "1.2e-5"), "output.every=500"]),
+             # a rigid wall with friction, every point slipping
+             ("oblique_impact", ["parts[0].elements=[80, 1, 40]", "time.end_time=3.0e-6", "output.every=100"])]
     for deck, sets in cases:
         reference = os.path.join(work, f"{deck}_1")
         code, text = run(exdyn, deck, reference, 0, sets=sets)

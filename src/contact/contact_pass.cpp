@@ -20,9 +20,11 @@ Segment current_segment(const SegmentNodes& ids, const NodalVectors& x_ref, cons
   return segment;
 }
 
-// The largest distance (m) any node of the pass has moved since the last build.
+}  // namespace
+
 double largest_motion_since_build(const ContactSurfaces& surfaces, const ContactPassState& state,
                                   const NodalVectors& x_ref, const NodalVectors& u) {
+  if (!state.built) return std::numeric_limits<double>::infinity();
   double largest_squared = 0.0;  // a max: the same on any number of threads
   const auto count = static_cast<std::ptrdiff_t>(surfaces.moving_nodes.size());
 #pragma omp parallel for schedule(static) reduction(max : largest_squared) if (count >= 4096)
@@ -35,6 +37,8 @@ double largest_motion_since_build(const ContactSurfaces& surfaces, const Contact
   }
   return std::sqrt(largest_squared);
 }
+
+namespace {
 
 // Global search: new candidates from the bucket grid; a pair that was a
 // candidate before keeps its point from the last step (both lists are sorted).
@@ -151,14 +155,15 @@ void add_friction(const ContactSurfaces& surfaces, const ContactPassSettings& se
 void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
                       ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u,
                       const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,
-                      std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds) {
+                      std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds,
+                      RecordSink* records) {
   const std::size_t n_points = surfaces.point_count();
   {
     ScopedTimer timer(seconds.global_search);
     update_slave_points(surfaces, x_ref, u, state.slave_points);
     // A pair within search_distance now was within search_distance + margin at the
     // build as long as no node has moved more than margin / 2 since.
-    if (!state.built || largest_motion_since_build(surfaces, state, x_ref, u) > 0.5 * settings.margin)
+    if (largest_motion_since_build(surfaces, state, x_ref, u) > 0.5 * settings.margin)
       rebuild_candidates(surfaces, settings, state, x_ref, u);
   }
 
@@ -174,12 +179,8 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     const auto candidates = static_cast<std::ptrdiff_t>(state.candidates.size());
     state.results.resize(state.candidates.size());
     state.edge_contacts.resize(state.candidates.size());
-    std::pair<std::size_t, std::size_t> mine{0, state.candidates.size()};  // many processes: a share
-    if (settings.share) mine = settings.share.range(state.candidates.size());
-    const auto first = static_cast<std::ptrdiff_t>(mine.first),
-               last = static_cast<std::ptrdiff_t>(mine.second);
-#pragma omp parallel for schedule(dynamic, 64) if (last - first >= 512)
-    for (std::ptrdiff_t k = first; k < last; ++k) {
+#pragma omp parallel for schedule(dynamic, 64) if (candidates >= 512)
+    for (std::ptrdiff_t k = 0; k < candidates; ++k) {
       const auto c = static_cast<std::size_t>(k);
       const CandidatePair pair = state.candidates[c];
       const Segment segment = current_segment(surfaces.segments[pair.segment], x_ref, u);
@@ -193,7 +194,6 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         start = state.previous_xi[c];
       state.results[c] = settings.project(segment, point, start, settings.projection);
     }
-    if (settings.share) settings.share.complete(state.results);
     // The choice: per slave point, its candidates in order (ties to the first), so the
     // same on any number of threads; the statistics are integer sums and a max.
     state.contacts.assign(n_points, ContactPassState::Contact{});
@@ -339,6 +339,10 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       if (contact.segment < 0) continue;
       const SlaveSide slave = slave_side(surfaces, p);
       for (int i = 0; i < slave.count; ++i) {
+        if (records != nullptr) {
+          records->gap(p, i, slave.nodes[std::size_t(i)], contact.gap);
+          continue;
+        }
         double& g = gap[slave.nodes[std::size_t(i)]];
         g = std::min(g, contact.gap);
       }
@@ -355,12 +359,20 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       }
       state.slave_normal_force = state.slave_normal_force + F_n;
       statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
-      add_to_slave(slave, F, force);
-      for (int i = 0; i < node_count(master.type); ++i) {
-        const std::uint32_t node = master.nodes[std::size_t(i)];
-        force.x[node] -= N[std::size_t(i)] * F.x;
-        force.y[node] -= N[std::size_t(i)] * F.y;
-        force.z[node] -= N[std::size_t(i)] * F.z;
+      if (records != nullptr) {  // f -= N F is f += -(N F), bit for bit
+        add_to_slave(slave, F, p, *records);
+        for (int i = 0; i < node_count(master.type); ++i) {
+          const double w = N[std::size_t(i)];
+          records->add(p, 8 + i, master.nodes[std::size_t(i)], -(w * F.x), -(w * F.y), -(w * F.z));
+        }
+      } else {
+        add_to_slave(slave, F, force);
+        for (int i = 0; i < node_count(master.type); ++i) {
+          const std::uint32_t node = master.nodes[std::size_t(i)];
+          force.x[node] -= N[std::size_t(i)] * F.x;
+          force.y[node] -= N[std::size_t(i)] * F.y;
+          force.z[node] -= N[std::size_t(i)] * F.z;
+        }
       }
       state.slave_force = state.slave_force + F;
       state.max_penetration = std::max(state.max_penetration, -contact.gap);

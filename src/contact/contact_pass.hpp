@@ -14,7 +14,6 @@
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <utility>
 #include <vector>
 
@@ -54,17 +53,6 @@ struct ContactSurfaces {
   std::size_t point_count() const { return quadrature ? quadrature_points.size() : slave_nodes.size(); }
 };
 
-// Many processes (docs/parallel.md): every process runs the whole pass on the same
-// data, but each projects only its share of the candidates, range(n) = [first, last)
-// of the n, and complete(results) fills in the others' results from the processes
-// that computed them. The results, and so everything after, are the same bits as one
-// process's. Empty (the default): this process projects every candidate.
-struct ProjectionShare {
-  std::function<std::pair<std::size_t, std::size_t>(std::size_t)> range;
-  std::function<void(std::vector<ProjectionResult>&)> complete;
-  explicit operator bool() const { return static_cast<bool>(range); }
-};
-
 struct ContactPassSettings {
   ProjectFn project = nullptr;  // chosen once from the deck's method
   ProjectionSettings projection;
@@ -90,7 +78,6 @@ struct ContactPassSettings {
   double margin = 0.0;           // extra capture: rebuild once a node has moved margin / 2, m
   double cell_size = 0.0;        // bucket cell edge, m (<= 0: automatic)
   FrictionLaw friction;          // not enabled: frictionless
-  ProjectionShare share;         // many processes: the candidates this one projects
 };
 
 // What the pass keeps from step to step.
@@ -150,14 +137,51 @@ struct ContactPhaseSeconds {
   double forces = 0.0;
 };
 
+// Many processes (docs/parallel.md, "Contact across ranks"): a pass's forces and gaps
+// as records instead of additions, so that the owner of each node adds them in the
+// order of one process. key = pass << 48 | point << 8 | slot orders them as one process
+// adds them: pass after pass, slave point after slave point (`point`: the point's
+// index in the whole surface), the slave side's nodes (slot i) before the master
+// segment's (slot 8 + i).
+struct ForceRecord {
+  std::uint64_t key = 0;
+  std::uint32_t node = 0;  // the pass's node id (the caller renumbers)
+  std::uint32_t kind = 0;  // force: value is added; gap: value[0] is a gap, kept if smaller
+  double value[3] = {0.0, 0.0, 0.0};
+  static constexpr std::uint32_t force = 0, gap = 1;
+};
+
+struct RecordSink {
+  std::uint64_t pass = 0;
+  const std::vector<std::uint32_t>* point_keys = nullptr;  // each slave point's index in the whole surface
+  std::vector<ForceRecord> records;
+
+  std::uint64_t key(std::size_t p, int slot) const {
+    return pass << 48 | std::uint64_t((*point_keys)[p]) << 8 | std::uint64_t(slot);
+  }
+  void add(std::size_t p, int slot, std::uint32_t node, double x, double y, double z) {
+    records.push_back({key(p, slot), node, ForceRecord::force, {x, y, z}});
+  }
+  void gap(std::size_t p, int slot, std::uint32_t node, double g) {
+    records.push_back({key(p, slot), node, ForceRecord::gap, {g, 0.0, 0.0}});
+  }
+};
+
+// The largest distance (m) a node of the pass has moved since its last candidate
+// search (infinite before the first): the search is redone beyond margin / 2.
+double largest_motion_since_build(const ContactSurfaces& surfaces, const ContactPassState& state,
+                                  const NodalVectors& x_ref, const NodalVectors& u);
+
 // Runs one pass at the current configuration x = x_ref + u with the velocities v
 // (m/s, the latest half-step velocities). Adds the contact forces to `force` (N),
 // writes the gap of each slave node to gap[node] where it is smaller than what is
 // there (callers start from +infinity and zero what stays so); with quadrature
 // points, a node's gap is the smallest of the points of the segments it belongs to.
+// With `records`, the forces and gaps go there instead of to `force` and `gap`.
 void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
                       ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u,
                       const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,
-                      std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds);
+                      std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds,
+                      RecordSink* records = nullptr);
 
 }  // namespace exdyn::contact

@@ -13,7 +13,7 @@ void run_wall_pass(const ContactSurfaces& surfaces, const WallPlane& wall,
                    const ContactPassSettings& settings, WallState& state, const NodalVectors& x_ref,
                    const NodalVectors& u, const NodalVectors& v, const std::vector<double>& mass, double time,
                    NodalVectors& force, std::vector<double>& gap, ContactStatistics& statistics,
-                   ContactPhaseSeconds& seconds) {
+                   ContactPhaseSeconds& seconds, RecordSink* records) {
   ScopedTimer timer(seconds.forces);
   const std::size_t n_points = surfaces.point_count();
   update_slave_points(surfaces, x_ref, u, state.slave_points);
@@ -85,12 +85,19 @@ void run_wall_pass(const ContactSurfaces& surfaces, const WallPlane& wall,
     const double d =
         dot(Vec3{state.slave_points.x[p], state.slave_points.y[p], state.slave_points.z[p]} - plane_point, n);
     for (int i = 0; i < side.count; ++i) {
+      if (records != nullptr) {
+        records->gap(p, i, side.nodes[std::size_t(i)], d);
+        continue;
+      }
       double& g = gap[side.nodes[std::size_t(i)]];
       g = std::min(g, d);
     }
     if (!(d < 0.0)) continue;
     const Vec3 F = state.point_force[p];
-    add_to_slave(side, F, force);
+    if (records != nullptr)
+      add_to_slave(side, F, p, *records);
+    else
+      add_to_slave(side, F, force);
     const Vec3 F_n = dot(F, n) * n;
     state.force = state.force + F;
     state.normal_force = state.normal_force + F_n;

@@ -47,11 +47,11 @@ struct WallState {
 // at time t (s), added to `force` (N); each slave node's gap to the wall written to
 // gap[node] where smaller. `surfaces` holds the slave side only (no segments);
 // `settings` the penalty rule (pass_count 2: the image pair's two passes), damping and
-// friction.
+// friction. With `records`, the forces and gaps go there (contact_pass.hpp).
 void run_wall_pass(const ContactSurfaces& surfaces, const WallPlane& wall,
                    const ContactPassSettings& settings, WallState& state, const NodalVectors& x_ref,
                    const NodalVectors& u, const NodalVectors& v, const std::vector<double>& mass, double time,
                    NodalVectors& force, std::vector<double>& gap, ContactStatistics& statistics,
-                   ContactPhaseSeconds& seconds);
+                   ContactPhaseSeconds& seconds, RecordSink* records = nullptr);
 
 }  // namespace exdyn::contact

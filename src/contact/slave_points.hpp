@@ -90,4 +90,12 @@ inline void add_to_slave(const SlaveSide& side, Vec3 F, NodalVectors& force) {
   }
 }
 
+// The same as records of slave point p (slots 0 .. count - 1).
+inline void add_to_slave(const SlaveSide& side, Vec3 F, std::size_t p, RecordSink& records) {
+  for (int i = 0; i < side.count; ++i) {
+    const double w = side.weights[std::size_t(i)];
+    records.add(p, i, side.nodes[std::size_t(i)], w * F.x, w * F.y, w * F.z);
+  }
+}
+
 }  // namespace exdyn::contact

@@ -75,10 +75,20 @@ struct MpiSummary {
   long shared_nodes = 0;                // nodes held by more than one rank (counted once per holder)
   long messages_per_step = 0;           // force messages of one step, all ranks
   double bytes_per_step = 0.0;          // their bytes
-  long contact_nodes = 0;               // contact nodes gathered to every rank each step
+  long contact_nodes = 0;               // ghost contact nodes, all ranks (the largest of each rank's)
   double exchange_seconds = 0.0;        // the longest time a rank waited in the exchanges, s
   std::string partition = "bisection";  // how the chunks were dealt (exdyn run --partition)
   long edge_cut = 0;                    // shared nodes summed over pairs of chunks on different ranks
+  // Each rank's figures (mpi.per_rank, one entry per rank): its peak resident memory,
+  // its share of the contact (solver::ContactShareFigures) and its force messages.
+  struct Rank {
+    double peak_resident_mb = 0.0;
+    double contact_points = 0.0, contact_segments = 0.0, ghost_segments = 0.0, ghost_nodes = 0.0;
+    double contact_messages_per_step = 0.0, contact_bytes_per_step = 0.0;
+    double force_messages_per_step = 0.0, force_bytes_per_step = 0.0;
+    double wait_seconds = 0.0;
+  };
+  std::vector<Rank> per_rank;
 };
 
 struct RunSummary {

@@ -445,15 +445,16 @@ double ContactPair::max_penetration() const {
   return deepest;
 }
 
-std::string ContactModel::contact_of(std::uint32_t node) const {
+std::string ContactModel::deepest_contact() const {
+  std::string name = "contact ?";
+  double deepest = -1.0;
   for (const auto& pair : pairs)
-    for (const auto& pass : pair.passes)
-      if (std::binary_search(pass.slave_nodes.begin(), pass.slave_nodes.end(), node))
-        return "contact pair " + pair.name;
+    if (pair.statistics.max_penetration_over_h > deepest)
+      deepest = pair.statistics.max_penetration_over_h, name = "contact pair " + pair.name;
   for (const auto& wall : walls)
-    if (std::binary_search(wall.surfaces.slave_nodes.begin(), wall.surfaces.slave_nodes.end(), node))
-      return "rigid wall " + wall.name;
-  return "contact ?";
+    if (wall.statistics.max_penetration_over_h > deepest)
+      deepest = wall.statistics.max_penetration_over_h, name = "rigid wall " + wall.name;
+  return name;
 }
 
 }  // namespace exdyn::solver

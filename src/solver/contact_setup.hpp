@@ -52,9 +52,9 @@ struct ContactModel {
   std::vector<std::uint32_t> nodes;  // every node of every contact surface and wall, unique
 
   bool empty() const { return pairs.empty() && walls.empty(); }
-  // "contact pair NAME" or "rigid wall NAME": the first with `node` as a slave node
-  // of one of its passes; for messages.
-  std::string contact_of(std::uint32_t node) const;
+  // "contact pair NAME" or "rigid wall NAME": the first with the deepest penetration
+  // (statistics.max_penetration_over_h); for messages.
+  std::string deepest_contact() const;
   // Dissipated by friction since the start, all pairs and walls, J.
   double friction_work() const;
 };

@@ -73,28 +73,6 @@ std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mes
   return nodes;
 }
 
-ContactModel localize_contact(const ContactModel& global, const Decomposition& d) {
-  // The local numbering keeps the global order: sorted lists stay sorted.
-  auto renumber = [&](std::uint32_t& node) {
-    const auto at = std::lower_bound(d.global_node.begin(), d.global_node.end(), node);
-    EXDYN_ASSERT(at != d.global_node.end() && *at == node);
-    node = static_cast<std::uint32_t>(at - d.global_node.begin());
-  };
-  ContactModel contact = global;
-  for (std::uint32_t& node : contact.nodes) renumber(node);
-  auto renumber_surfaces = [&](contact::ContactSurfaces& s) {
-    for (std::uint32_t& node : s.slave_nodes) renumber(node);
-    for (std::uint32_t& node : s.moving_nodes) renumber(node);
-    for (auto* segments : {&s.slave_segments, &s.segments})
-      for (contact::SegmentNodes& segment : *segments)
-        for (int k = 0; k < contact::node_count(segment.type); ++k) renumber(segment.nodes[std::size_t(k)]);
-  };
-  for (ContactPair& pair : contact.pairs)
-    for (contact::ContactSurfaces& s : pair.passes) renumber_surfaces(s);
-  for (RigidWall& wall : contact.walls) renumber_surfaces(wall.surfaces);
-  return contact;
-}
-
 namespace {
 
 // What every rank knows of the whole model: the rank and colour of every chunk, each
@@ -278,26 +256,6 @@ void cut_blocks(const WholeModel& w, Model& m, Decomposition& d) {
   d.steps = std::move(steps);
 }
 
-// The contact gather: this rank's owned contact nodes, and every rank's, rank after rank.
-void plan_contact_gather(const WholeModel& w, const std::vector<std::uint32_t>& contact_nodes,
-                         Decomposition& d) {
-  const auto ranks = std::size_t(d.comm.size);
-  d.contact_counts.assign(ranks, 0);
-  for (const std::uint32_t g : contact_nodes) ++d.contact_counts[std::size_t(w.owner[g])];
-  d.contact_displacements.assign(ranks, 0);
-  for (std::size_t r = 1; r < ranks; ++r)
-    d.contact_displacements[r] = d.contact_displacements[r - 1] + d.contact_counts[r - 1];
-  d.contact_received.resize(contact_nodes.size());
-  std::vector<int> next = d.contact_displacements;
-  for (const std::uint32_t g : contact_nodes) {
-    const auto local = static_cast<std::uint32_t>(w.local_of[g]);
-    d.contact_received[std::size_t(next[std::size_t(w.owner[g])]++)] = local;
-    if (w.owner[g] == w.me) d.contact_sent.push_back(local);
-  }
-  d.contact_out.resize(6 * d.contact_sent.size());
-  d.contact_in.resize(6 * d.contact_received.size());
-}
-
 // The rows of the output datasets this rank writes, and where its owned values go.
 void plan_output_rows(const WholeModel& w, Decomposition& d) {
   std::vector<int> element_rank(w.model.mesh.element_count(), 0);
@@ -328,24 +286,32 @@ LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact
   d.comm = comm;
   d.global_nodes = global.mesh.node_count();
   d.global_elements = global.mesh.element_count();
-  // Local nodes: this rank's chunks' nodes and every contact node, in global order.
-  std::vector<std::uint8_t> held = w.mine;
-  for (const std::uint32_t node : contact_nodes) held[node] = 1;
+  // Local nodes: this rank's chunks' nodes, in global order.
   w.local_of.assign(d.global_nodes, -1);
   for (std::size_t g = 0; g < d.global_nodes; ++g)
-    if (held[g] != 0) {
+    if (w.mine[g] != 0) {
       w.local_of[g] = static_cast<std::int64_t>(d.global_node.size());
       d.global_node.push_back(static_cast<std::uint32_t>(g));
     }
+  // The ranks holding each contact node (the contact's owners and ghosts: distributed_contact.hpp).
+  std::vector<std::int64_t> contact_index(d.global_nodes, -1);
+  for (std::size_t k = 0; k < contact_nodes.size(); ++k) contact_index[contact_nodes[k]] = std::int64_t(k);
+  run.contact_holders.resize(contact_nodes.size());
+  w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int) {
+    w.for_each_node(b, c, [&](std::uint32_t node) {
+      if (contact_index[node] < 0) return;
+      std::vector<int>& holders = run.contact_holders[std::size_t(contact_index[node])];
+      if (std::find(holders.begin(), holders.end(), rank) == holders.end()) holders.push_back(rank);
+    });
+  });
+  for (std::vector<int>& holders : run.contact_holders) std::sort(holders.begin(), holders.end());
   plan_force_exchange(w, d);
   Model& m = run.model;
   cut_blocks(w, m, d);
-  plan_contact_gather(w, contact_nodes, d);
   plan_output_rows(w, d);
 
-  // Masses: the global ones (the same bits as one rank); a contact ghost, which no
-  // chunk of this rank moves, gets 1/m = 0 (its u and v come from the gather), and
-  // only owned nodes count in the energies.
+  // Masses: the global ones (the same bits as one rank); only owned nodes count in
+  // the energies.
   const std::size_t local_nodes = d.global_node.size();
   m.mass.resize(local_nodes);
   m.inverse_mass.resize(local_nodes);
@@ -354,7 +320,7 @@ LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact
   for (std::size_t i = 0; i < local_nodes; ++i) {
     const std::uint32_t g = d.global_node[i];
     m.mass[i] = global.mass[g];
-    m.inverse_mass[i] = w.mine[g] != 0 ? global.inverse_mass[g] : 0.0;
+    m.inverse_mass[i] = global.inverse_mass[g];
     m.counted_mass[i] = d.owned[i] != 0 ? global.mass[g] : 0.0;
     for (int c = 0; c < 3; ++c)
       run.initial_velocity.component(c)[i] = global_initial_velocity.component(c)[g];
@@ -417,51 +383,6 @@ element::ElementEnergies add_forces_across_ranks(const Model& model, Decompositi
     total += e;
   }
   return total;
-}
-
-void gather_contact_nodes(Decomposition& d, NodalVectors& u, NodalVectors& v) {
-  if (!d.comm.distributed() || d.contact_received.empty()) return;
-  for (std::size_t k = 0; k < d.contact_sent.size(); ++k)
-    for (int c = 0; c < 3; ++c) {
-      d.contact_out[6 * k + std::size_t(c)] = u.component(c)[d.contact_sent[k]];
-      d.contact_out[6 * k + 3 + std::size_t(c)] = v.component(c)[d.contact_sent[k]];
-    }
-  std::vector<int> counts(d.contact_counts), displacements(d.contact_displacements);
-  for (int& n : counts) n *= 6;
-  for (int& n : displacements) n *= 6;
-  mpi::check(
-      MPI_Allgatherv(d.contact_out.data(), static_cast<int>(d.contact_out.size()), MPI_DOUBLE,
-                     d.contact_in.data(), counts.data(), displacements.data(), MPI_DOUBLE, d.comm.comm),
-      "MPI_Allgatherv of the contact nodes");
-  for (std::size_t k = 0; k < d.contact_received.size(); ++k)
-    for (int c = 0; c < 3; ++c) {
-      u.component(c)[d.contact_received[k]] = d.contact_in[6 * k + std::size_t(c)];
-      v.component(c)[d.contact_received[k]] = d.contact_in[6 * k + 3 + std::size_t(c)];
-    }
-}
-
-contact::ProjectionShare share_projections(Decomposition& d) {
-  contact::ProjectionShare share;
-  auto range = [&d](std::size_t n, int rank) {
-    return std::pair{n * std::size_t(rank) / std::size_t(d.comm.size),
-                     n * std::size_t(rank + 1) / std::size_t(d.comm.size)};
-  };
-  share.range = [range, &d](std::size_t n) { return range(n, d.comm.rank); };
-  share.complete = [range, &d](std::vector<contact::ProjectionResult>& results) {
-    const ScopedTimer timer(d.exchange_seconds);
-    static_assert(std::is_trivially_copyable_v<contact::ProjectionResult>);  // sent as bytes
-    constexpr std::size_t bytes = sizeof(contact::ProjectionResult);
-    std::vector<int> counts(std::size_t(d.comm.size)), displacements(std::size_t(d.comm.size));
-    for (int r = 0; r < d.comm.size; ++r) {
-      const auto [first, last] = range(results.size(), r);
-      counts[std::size_t(r)] = static_cast<int>(bytes * (last - first));
-      displacements[std::size_t(r)] = static_cast<int>(bytes * first);
-    }
-    mpi::check(MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, results.data(), counts.data(),
-                              displacements.data(), MPI_BYTE, d.comm.comm),
-               "MPI_Allgatherv of the projections");
-  };
-  return share;
 }
 
 namespace {

@@ -17,10 +17,8 @@
 // the same bits. While a rank waits for a colour's running sums it computes that
 // colour's chunks that need none (the interior work).
 //
-// Contact works on the gathered surfaces: every rank also holds every contact node
-// (a contact ghost when no chunk of its own touches it), the owners send the
-// positions and velocities of their contact nodes to all ranks each step, and every
-// rank runs the whole contact pass on them, as one rank would.
+// Contact is distributed too (distributed_contact.hpp): each rank searches its own
+// slave points against the master segments near them.
 #pragma once
 
 #include <cstdint>
@@ -29,7 +27,7 @@
 #include "common/mpi.hpp"
 #include "common/nodal_vectors.hpp"
 #include "input/options.hpp"
-#include "solver/contact_setup.hpp"
+#include "solver/distributed_contact.hpp"
 #include "solver/model.hpp"
 #include "solver/partitioning.hpp"
 
@@ -95,18 +93,14 @@ struct Decomposition {
   Partitioning partitioning = Partitioning::bisection;
   long edge_cut = 0;  // of the whole partition (partition_figures), the same on every rank
 
-  // The contact gather: this rank's owned contact nodes, and where every rank's
-  // arrive (local ids, rank after rank).
-  std::vector<std::uint32_t> contact_sent;
-  std::vector<int> contact_counts, contact_displacements;  // nodes per rank
-  std::vector<std::uint32_t> contact_received;
-
   RowExchange node_rows, element_rows;
 
-  // Buffers and requests of the exchanges in flight.
-  std::vector<double> contact_out, contact_in;
+  // The contact's shares and exchanges (distributed_contact.hpp).
+  DistributedContact contact;
+
+  // Requests of the exchanges in flight.
   std::vector<MPI_Request> receives, sends;
-  double exchange_seconds = 0.0;  // waited for the force messages and the contact gather, s
+  double exchange_seconds = 0.0;  // waited for the force messages and the contact's, s
 };
 
 // The part of a run one rank holds: its model (local numbering) and initial velocities.
@@ -114,19 +108,20 @@ struct LocalRun {
   Model model;
   NodalVectors initial_velocity;
   Decomposition decomposition;
+  // The ranks whose chunks hold each node of `contact_nodes` (ascending; the first is
+  // its owner), for the contact's distribution (distributed_contact.hpp).
+  std::vector<std::vector<int>> contact_holders;
 };
 
 // Every node of the faces of the deck's contact pairs (global ids, ascending).
 std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mesh::Mesh& mesh);
 
-// Cuts the global model (built by every rank) into this rank's part, which also holds
-// every node of `contact_nodes`: a block per global block with chunks here.
+// Cuts the global model (built by every rank) into this rank's part: a block per
+// global block with chunks here, and the nodes of those chunks; and finds the holders
+// of each of `contact_nodes` (global ids, ascending).
 LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
                   const NodalVectors& global_initial_velocity, const mpi::Communicator& comm,
                   Partitioning partitioning = Partitioning::bisection);
-
-// The contact pairs with this rank's node ids (every contact node is held).
-ContactModel localize_contact(const ContactModel& global, const Decomposition& d);
 
 // The global id of local node `node` (itself on one rank).
 inline std::uint32_t global_node_id(const Decomposition& d, std::uint32_t node) {
@@ -140,14 +135,6 @@ inline std::uint32_t global_element_id(const Decomposition& d, std::uint32_t ele
 // along (the header); returns the rank's element energies. Every rank calls it.
 element::ElementEnergies add_forces_across_ranks(const Model& model, Decomposition& d, const NodalVectors& u,
                                                  NodalVectors& f_int, double* stress);
-
-// The local search of the contact passes shared out: each rank projects a contiguous
-// share of the candidates and the results are gathered to all (contact::ProjectionShare).
-contact::ProjectionShare share_projections(Decomposition& d);
-
-// The contact gather: u and v of every contact node from its owner (after the
-// position update).
-void gather_contact_nodes(Decomposition& d, NodalVectors& u, NodalVectors& v);
 
 // The rows this rank writes of a nodal vector field / of a field of k values per
 // element (stress: 6) or per node (k = 1, `nodal`), from the owners.

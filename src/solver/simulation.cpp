@@ -114,8 +114,9 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   const mpi::Communicator& comm = controls.comm;
   model_ = build_model(deck);
   NodalVectors initial_v = initial_velocity(deck, model_);
-  if (comm.distributed())
-    local_ = localize(model_, contact_face_nodes(deck, model_.mesh), initial_v, comm, controls.partitioning);
+  const std::vector<std::uint32_t> contact_nodes =
+      comm.distributed() ? contact_face_nodes(deck, model_.mesh) : std::vector<std::uint32_t>{};
+  if (comm.distributed()) local_ = localize(model_, contact_nodes, initial_v, comm, controls.partitioning);
   critical_dt_ = critical_time_step(model_);
   clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, model_);
   contact_ = build_contact(deck, model_, clock_->next(), critical_dt_);
@@ -150,8 +151,9 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   // From here on this rank's part only.
   d_.comm = comm;
   if (comm.distributed()) {
-    contact_ = localize_contact(contact_, d_);
-    for (ContactPair& pair : contact_.pairs) pair.settings.share = share_projections(d_);
+    d_.contact = distribute_contact(contact_, comm, d_.global_node, local_.model, contact_nodes,
+                                    local_.contact_holders);
+    local_.contact_holders = {};
     model_ = std::move(local_.model);
     initial_v = std::move(local_.initial_velocity);
   }
@@ -259,7 +261,7 @@ void TimeLoop::compute_forces() {
   energy_.plastic = element_energy.plastic;
   if (!state_.load_force.empty()) add_load_work(model_, state_, clock_->previous());
   if (!contact_.empty()) {
-    if (!side_by_side_) compute_contact_forces(model_, contact_, state_, clock_->previous());
+    if (!side_by_side_) compute_contact_forces(model_, contact_, d_, state_, clock_->previous());
     contact_statistics_ = total_statistics(contact_);
     energy_.contact = state_.contact_energy;
     energy_.friction = contact_.friction_work();
@@ -331,8 +333,9 @@ void TimeLoop::check_guards() {
     char detail[200];
     std::snprintf(detail, sizeof detail, " penetrates by %.3g h (guards.max_penetration = %.3g h)",
                   contact_statistics_.max_penetration_over_h, deck_.guards.max_penetration);
-    stop_run(contact_.contact_of(contact_statistics_.deepest_node) + ": slave node " +
-             std::to_string(global_node_id(d_, contact_statistics_.deepest_node)) + detail + when());
+    // (the statistics name nodes by their global ids, on any number of ranks)
+    stop_run(contact_.deepest_contact() + ": slave node " + std::to_string(contact_statistics_.deepest_node) +
+             detail + when());
   }
   if (moved_since_check_ >= safety_radius_) check_inversion();
   moved_since_check_ += clock_->next() * largest_speed_;  // u^{n+1} - u^n = dt v^{n+1/2}
@@ -418,7 +421,6 @@ void TimeLoop::report_progress() {
 void TimeLoop::update_positions() {
   ScopedTimer timer(summary_.phase_seconds.time_integration);
   solver::update_positions(state_, clock_->next(), nodal_update_);  // u^{n+1}
-  gather_contact_nodes(d_, state_.displacement, state_.velocity);   // many ranks
   clock_->advance(state_.step);
 }
 

@@ -93,11 +93,14 @@ void run_contact_passes(const Model& model, ContactModel& contact, State& state)
   }
 }
 
-void finish_contact_forces(ContactModel& contact, State& state, double dt) {
+// On many ranks (d) the power of the owned nodes, summed over the ranks with the
+// contact's figures (reduce_contact_figures).
+void finish_contact_forces(ContactModel& contact, State& state, double dt, Decomposition* d) {
   double power = 0.0;  // (f_c^{n-1} + f_c^n).v^{n-1/2}, W x 2
   const bool loads = !state.load_force.empty();
   for (std::uint32_t node : contact.nodes) {
     if (state.gap[node] == std::numeric_limits<double>::infinity()) state.gap[node] = 0.0;  // no candidate
+    if (d != nullptr && d->owned[node] == 0) continue;
     if (!loads) {
       power += (state.previous_contact_force.x[node] + state.contact_force.x[node]) * state.velocity.x[node] +
                (state.previous_contact_force.y[node] + state.contact_force.y[node]) * state.velocity.y[node] +
@@ -109,6 +112,7 @@ void finish_contact_forces(ContactModel& contact, State& state, double dt) {
                 2.0 * state.load_force.component(c)[node]) *
                state.velocity.component(c)[node];
   }
+  if (d != nullptr) power = reduce_contact_figures(contact, d->contact, power);
   state.contact_energy -= 0.5 * dt * power;
   // A moving wall puts work in, W = integral F.V dt (F its force on the bodies): that is
   // external work, and the contact energy is the work against the wall's force in its
@@ -123,10 +127,17 @@ void finish_contact_forces(ContactModel& contact, State& state, double dt) {
 
 }  // namespace
 
-void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt) {
+void compute_contact_forces(const Model& model, ContactModel& contact, Decomposition& d, State& state,
+                            double dt) {
   begin_contact_forces(contact, state);
-  run_contact_passes(model, contact, state);
-  finish_contact_forces(contact, state, dt);
+  if (d.comm.distributed()) {
+    run_distributed_contact(contact, d.contact, model, d.global_node, state.displacement, state.velocity,
+                            state.time, state.contact_force, state.gap);
+    finish_contact_forces(contact, state, dt, &d);
+  } else {
+    run_contact_passes(model, contact, state);
+    finish_contact_forces(contact, state, dt, nullptr);
+  }
 }
 
 // W += dt sum m_i g_i.v_i^{n-1/2} over the counted (on many ranks: owned) nodes, in
@@ -183,7 +194,7 @@ element::ElementEnergies compute_forces_side_by_side(const Model& model, Contact
 #pragma omp task shared(model, contact, state)
     run_contact_passes(model, contact, state);
   }  // the barrier: every task is done
-  finish_contact_forces(contact, state, dt);
+  finish_contact_forces(contact, state, dt, nullptr);
   internal_force_computed(state, with_stress);
   element::ElementEnergies total;
   for (const element::ElementEnergies& e : block_energies) total += e;

@@ -77,8 +77,9 @@ element::ElementEnergies compute_internal_forces(const Model& model, Decompositi
 // state.stress and state.internal_force at u^n (computed again unless this step's are there).
 void forces_of_this_step(const Model& model, Decomposition& d, State& state);
 // The contact forces of every pair at x^n with v^{n-1/2}, and the contact work over
-// the last step dt = t^n - t^{n-1}.
-void compute_contact_forces(const Model& model, ContactModel& contact, State& state, double dt);
+// the last step dt = t^n - t^{n-1} (on many ranks: distributed_contact.hpp).
+void compute_contact_forces(const Model& model, ContactModel& contact, Decomposition& d, State& state,
+                            double dt);
 // The work of the loads over the last step dt, added to state.external_work (before
 // the velocity update: v^{n-1/2}).
 void add_load_work(const Model& model, State& state, double dt);

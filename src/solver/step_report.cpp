@@ -1,6 +1,8 @@
 // What the time loop reports (step_report.hpp).
 #include "solver/step_report.hpp"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -238,18 +240,40 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
 
 // The exchanges' figures of all ranks (summary mpi: sums, and the longest wait).
 void summarise_ranks(const Decomposition& d, output::MpiSummary& out) {
-  if (!d.comm.distributed()) return;
-  const HaloFigures h = halo_figures(d);
-  const double mine[4] = {double(h.shared_nodes), double(h.messages_sent), double(h.bytes_sent),
-                          d.exchange_seconds};
-  const std::vector<double> all = mpi::all_gather(d.comm, mine, 4);
-  for (std::size_t r = 0; r < all.size() / 4; ++r) {
-    out.shared_nodes += long(all[4 * r]);
-    out.messages_per_step += long(all[4 * r + 1]);
-    out.bytes_per_step += all[4 * r + 2];
-    out.exchange_seconds = std::max(out.exchange_seconds, all[4 * r + 3]);
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double peak_mb = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss: kB on Linux
+  if (!d.comm.distributed()) {
+    output::MpiSummary::Rank one;
+    one.peak_resident_mb = peak_mb;
+    out.per_rank = {one};
+    return;
   }
-  out.contact_nodes = long(d.contact_received.size());
+  const HaloFigures h = halo_figures(d);
+  const ContactShareFigures c = contact_share_figures(d.contact);
+  constexpr int n = 12;
+  const double mine[n] = {double(h.shared_nodes),
+                          double(h.messages_sent),
+                          double(h.bytes_sent),
+                          d.exchange_seconds + c.wait_seconds,
+                          peak_mb,
+                          c.points,
+                          c.segments,
+                          c.ghost_segments,
+                          c.ghost_nodes,
+                          c.messages_per_step,
+                          c.bytes_per_step,
+                          c.wait_seconds};
+  const std::vector<double> all = mpi::all_gather(d.comm, mine, n);
+  for (std::size_t r = 0; r < all.size() / n; ++r) {
+    const double* f = all.data() + n * r;
+    out.shared_nodes += long(f[0]);
+    out.messages_per_step += long(f[1]);
+    out.bytes_per_step += f[2];
+    out.exchange_seconds = std::max(out.exchange_seconds, f[3]);
+    out.contact_nodes += long(f[8]);
+    out.per_rank.push_back({f[4], f[5], f[6], f[7], f[8], f[9], f[10], f[1], f[2], f[3]});
+  }
   out.partition = d.partitioning == Partitioning::metis ? "metis" : "bisection";
   out.edge_cut = d.edge_cut;
 }

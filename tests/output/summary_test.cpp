@@ -107,7 +107,18 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                             {"contact_nodes", 0},
                             {"exchange_seconds", 0.0},
                             {"partition", "bisection"},
-                            {"edge_cut", 0}}));
+                            {"edge_cut", 0},
+                            {"per_rank",
+                             {{"peak_resident_mb", Json::array()},
+                              {"contact_points", Json::array()},
+                              {"contact_segments", Json::array()},
+                              {"ghost_segments", Json::array()},
+                              {"ghost_nodes", Json::array()},
+                              {"contact_messages_per_step", Json::array()},
+                              {"contact_bytes_per_step", Json::array()},
+                              {"force_messages_per_step", Json::array()},
+                              {"force_bytes_per_step", Json::array()},
+                              {"wait_seconds", Json::array()}}}}));
   for (const char* integer : {"projections", "max_iterations", "not_converged", "saddle_points"}) {
     EXPECT_TRUE(j["contact"][integer].is_number_integer()) << integer;
   }

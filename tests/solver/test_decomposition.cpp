@@ -15,6 +15,7 @@
 #include "input/deck_reader.hpp"
 #include "solver/contact_setup.hpp"
 #include "solver/decomposition.hpp"
+#include "solver/distributed_contact.hpp"
 #include "solver/model.hpp"
 
 namespace {
@@ -97,8 +98,18 @@ TEST(Localize, ElementsOnceNodesOwnedOnceMassesTheGlobalBits) {
         EXPECT_EQ(run.model.mesh.x_ref.z[i], model.mesh.x_ref.z[g]);
         EXPECT_EQ(run.model.counted_mass[i], d.owned[i] ? model.mass[g] : 0.0);
       }
-      for (const std::uint32_t g : contact)  // every contact node is held
-        EXPECT_TRUE(std::binary_search(d.global_node.begin(), d.global_node.end(), g));
+      // Only the nodes of its chunks: the contact is distributed (distributed_contact.hpp).
+      std::set<std::uint32_t> chunk_nodes;
+      for (const auto& block : run.model.blocks)
+        for (std::size_t k = 0; k < std::size_t(block.nodes_per_element) * block.count; ++k)
+          chunk_nodes.insert(d.global_node[block.connectivity[k]]);
+      EXPECT_EQ(chunk_nodes.size(), d.global_node.size());
+      // Each contact node's holders: the ranks holding it.
+      for (std::size_t k = 0; k < contact.size(); ++k) {
+        const bool held = std::binary_search(d.global_node.begin(), d.global_node.end(), contact[k]);
+        const auto& h = run.contact_holders[k];
+        EXPECT_EQ(held, std::binary_search(h.begin(), h.end(), int(&run - runs.data())));
+      }
       std::size_t elements = 0;
       for (const auto& block : run.model.blocks) elements += block.count;
       EXPECT_EQ(elements, d.global_element.size());
@@ -136,6 +147,59 @@ TEST(Localize, EverySentRunningSumIsReceivedAtTheNextColourStep) {
     }
     EXPECT_GT(messages, 0u) << ranks << " ranks share nodes";
     EXPECT_EQ(sent, received) << ranks << " ranks";
+  }
+}
+
+// The contact's shares (distributed_contact.hpp): every slave point and every master
+// segment of every pass belongs to exactly one rank, which holds all its nodes; a rank
+// holds a part of the surface, not all of it.
+TEST(DistributeContact, EveryPointAndSegmentBelongsToOneRankThatHoldsItsNodes) {
+  for (const char* file :
+       {"plate_impact.yaml", "contact_patch_hex20.yaml", "hertz_ball.yaml", "tube_impact.yaml"}) {
+    const input::Deck deck = deck_of(file);
+    const solver::Model model = solver::build_model(deck);
+    const std::vector<std::uint32_t> contact = solver::contact_face_nodes(deck, model.mesh);
+    const double dt = solver::critical_time_step(model);
+    const solver::ContactModel whole = solver::build_contact(deck, model, 0.5 * dt, dt);
+    std::size_t chunks = 0;
+    for (const auto& block : model.blocks) chunks += block.chunk_begin.size() - 1;
+    for (int ranks : {2, 3, 5}) {
+      if (std::size_t(ranks) > chunks) continue;
+      const std::vector<solver::LocalRun> runs = parts_of(model, deck, ranks);
+      std::vector<std::vector<int>> points, segments;  // per pass, per whole-pass item: its ranks
+      for (const auto& pair : whole.pairs)
+        for (const auto& pass : pair.passes) {
+          points.emplace_back(pass.point_count(), 0);
+          segments.emplace_back(pass.segments.size(), 0);
+        }
+      for (const auto& wall : whole.walls) {
+        points.emplace_back(wall.surfaces.point_count(), 0);
+        segments.emplace_back();
+      }
+      for (int r = 0; r < ranks; ++r) {
+        const solver::LocalRun& run = runs[std::size_t(r)];
+        solver::ContactModel mine = whole;
+        mpi::Communicator comm;
+        comm.rank = r;
+        comm.size = ranks;
+        const solver::DistributedContact dc = solver::distribute_contact(
+            mine, comm, run.decomposition.global_node, run.model, contact, run.contact_holders);
+        ASSERT_EQ(dc.passes.size(), points.size());
+        for (std::size_t k = 0; k < dc.passes.size(); ++k) {
+          const solver::PassShare& share = dc.passes[k];
+          for (const std::uint32_t p : share.point_keys) ++points[k][p];
+          for (const std::uint32_t s : share.segment_ids) ++segments[k][s];
+          for (const std::uint32_t g : share.store.global)  // the own points' and segments' nodes
+            EXPECT_TRUE(std::binary_search(run.decomposition.global_node.begin(),
+                                           run.decomposition.global_node.end(), g))
+                << file;
+        }
+      }
+      for (const auto& pass : points)
+        for (const int n : pass) ASSERT_EQ(n, 1) << file << ", " << ranks << " ranks";
+      for (const auto& pass : segments)
+        for (const int n : pass) ASSERT_EQ(n, 1) << file << ", " << ranks << " ranks";
+    }
   }
 }
 
