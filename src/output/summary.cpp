@@ -111,6 +111,7 @@ Json to_json(const RunSummary& s) {
     per_rank[key] = std::move(values);
   };
   column("peak_resident_mb", &MpiSummary::Rank::peak_resident_mb);
+  column("contact_nodes", &MpiSummary::Rank::contact_nodes);
   column("contact_points", &MpiSummary::Rank::contact_points);
   column("contact_segments", &MpiSummary::Rank::contact_segments);
   column("ghost_segments", &MpiSummary::Rank::ghost_segments);
@@ -120,6 +121,8 @@ Json to_json(const RunSummary& s) {
   column("force_messages_per_step", &MpiSummary::Rank::force_messages_per_step);
   column("force_bytes_per_step", &MpiSummary::Rank::force_bytes_per_step);
   column("wait_seconds", &MpiSummary::Rank::wait_seconds);
+  column("element_seconds", &MpiSummary::Rank::element_seconds);
+  column("contact_seconds", &MpiSummary::Rank::contact_seconds);
   mpi["per_rank"] = std::move(per_rank);
   j["mpi"] = std::move(mpi);
   Json guards;  // ours, after the spec's keys

@@ -83,10 +83,13 @@ struct MpiSummary {
   // its share of the contact (solver::ContactShareFigures) and its force messages.
   struct Rank {
     double peak_resident_mb = 0.0;
+    double contact_nodes = 0.0;  // the contact nodes of its chunks
     double contact_points = 0.0, contact_segments = 0.0, ghost_segments = 0.0, ghost_nodes = 0.0;
     double contact_messages_per_step = 0.0, contact_bytes_per_step = 0.0;
     double force_messages_per_step = 0.0, force_bytes_per_step = 0.0;
-    double wait_seconds = 0.0;
+    double wait_seconds = 0.0;     // waiting in the force and contact exchanges, s
+    double element_seconds = 0.0;  // computing element forces (waits excluded), s
+    double contact_seconds = 0.0;  // in its contact passes (searches, projections, forces), s
   };
   std::vector<Rank> per_rank;
 };

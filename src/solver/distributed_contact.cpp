@@ -19,7 +19,8 @@ namespace exdyn::solver {
 namespace {
 
 // Tags of the contact's point-to-point messages, apart from the force exchange's.
-constexpr int ghost_tag = 1 << 20, total_tag = (1 << 20) - 1;
+// (Within the 32767 every MPI allows; the force exchange's count from 1, a few per block.)
+constexpr int record_tag = 30000, total_tag = 30001, ghost_tag = 30002;  // + the pass
 
 template <class T>
 std::size_t index_in(const std::vector<T>& sorted, T value) {
@@ -445,7 +446,8 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
   share.ghost_receives.clear();
   for (std::size_t r = 0; r < ranks; ++r) {
     if (nodes_in[r].empty()) continue;
-    NodeLink link{int(r), ghost_tag + int(share.index), {}, std::vector<double>(6 * nodes_in[r].size())};
+    NodeLink link{
+        int(r), ghost_tag + int(share.index % 2048), {}, std::vector<double>(6 * nodes_in[r].size())};
     for (const NodePayload& n : nodes_in[r]) {
       const std::size_t i = store_index(s, n.global);
       EXDYN_ASSERT(i < size && s.local[i] < 0);
@@ -463,7 +465,8 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
   share.ghost_sends.clear();
   for (std::size_t r = 0; r < ranks; ++r) {
     if (nodes_out[r].empty()) continue;
-    NodeLink link{int(r), ghost_tag + int(share.index), {}, std::vector<double>(6 * nodes_out[r].size())};
+    NodeLink link{
+        int(r), ghost_tag + int(share.index % 2048), {}, std::vector<double>(6 * nodes_out[r].size())};
     for (const NodePayload& n : nodes_out[r])
       link.nodes.push_back(std::uint32_t(index_in(global_node, n.global)));
     share.ghost_sends.push_back(std::move(link));
@@ -501,14 +504,66 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
   share.ghost_nodes = ghost_nodes;
 }
 
+// The ranks this rank sends force records to (the owners its stores name) and those
+// that send it theirs: after a candidate search (the stores change), agreed with one
+// MPI_Alltoall of a flag a rank.
+void plan_record_peers(DistributedContact& dc) {
+  const auto ranks = std::size_t(dc.comm.size);
+  std::vector<int> to(ranks, 0), from(ranks, 0);
+  for (const PassShare& share : dc.passes)
+    for (const int owner : share.store.owner) to[std::size_t(owner)] = 1;
+  to[std::size_t(dc.comm.rank)] = 0;
+  {
+    const ScopedTimer timer(dc.wait_seconds);
+    mpi::check(MPI_Alltoall(to.data(), 1, MPI_INT, from.data(), 1, MPI_INT, dc.comm.comm),
+               "MPI_Alltoall of the contact's peers");
+  }
+  dc.record_sends.clear();
+  dc.record_receives.clear();
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (to[r] != 0) dc.record_sends.push_back(int(r));
+    if (from[r] != 0) dc.record_receives.push_back(int(r));
+  }
+}
+
 // The records of every pass to the owners of their nodes, each owner adding its
 // nodes' records in the order of one process (by node, then key); then the totals of
 // the shared contact nodes from their owners to the other holders.
 void add_records(DistributedContact& dc, std::vector<std::vector<contact::ForceRecord>>& out,
                  const std::vector<std::uint32_t>& global_node, NodalVectors& force,
                  std::vector<double>& gap) {
-  std::vector<contact::ForceRecord> in;
-  for (const auto& from : all_to_all(dc, out)) in.insert(in.end(), from.begin(), from.end());
+  // To the owners this rank's stores name (record_peers: empty messages too, so that
+  // each receiver knows how many to expect), from those that name this rank.
+  std::vector<contact::ForceRecord> in = std::move(out[std::size_t(dc.comm.rank)]);
+  std::vector<MPI_Request> requests;
+  requests.reserve(dc.record_sends.size());
+  for (const int rank : dc.record_sends) {
+    const std::vector<contact::ForceRecord>& records = out[std::size_t(rank)];
+    requests.emplace_back();
+    mpi::check(MPI_Isend(records.data(), int(sizeof(contact::ForceRecord) * records.size()), MPI_BYTE, rank,
+                         record_tag, dc.comm.comm, &requests.back()),
+               "MPI_Isend of contact forces");
+    dc.messages_sent += 1;
+    dc.bytes_sent += double(sizeof(contact::ForceRecord) * records.size());
+  }
+  for (std::size_t r = 0; r < out.size(); ++r)  // every record's owner is a peer
+    EXDYN_ASSERT(out[r].empty() || int(r) == dc.comm.rank ||
+                 std::binary_search(dc.record_sends.begin(), dc.record_sends.end(), int(r)));
+  {
+    const ScopedTimer timer(dc.wait_seconds);
+    for (const int rank : dc.record_receives) {
+      MPI_Status status;
+      mpi::check(MPI_Probe(rank, record_tag, dc.comm.comm, &status), "MPI_Probe of contact forces");
+      int bytes = 0;
+      mpi::check(MPI_Get_count(&status, MPI_BYTE, &bytes), "MPI_Get_count of contact forces");
+      const std::size_t at = in.size();
+      in.resize(at + std::size_t(bytes) / sizeof(contact::ForceRecord));
+      mpi::check(MPI_Recv(in.data() + at, bytes, MPI_BYTE, rank, record_tag, dc.comm.comm, MPI_STATUS_IGNORE),
+                 "MPI_Recv of contact forces");
+    }
+    mpi::check(MPI_Waitall(int(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+               "MPI_Waitall of contact forces");
+  }
   std::sort(in.begin(), in.end(), [](const contact::ForceRecord& a, const contact::ForceRecord& b) {
     return a.node < b.node || (a.node == b.node && a.key < b.key);
   });
@@ -615,12 +670,15 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
     if (s.max_penetration_over_h > before) s.deepest_node = share.store.global[s.deepest_node];
   };
   std::size_t k = 0, statistics = 0;
+  bool searched = dc.steps == 1;  // the first step: the walls' stores too
   for (ContactPair& pair : contact.pairs) {
     for (std::size_t p = 0; p < pair.passes.size(); ++p, ++k) {
       PassShare& share = dc.passes[k];
       contact::ContactPassState& state = pair.states[p];
-      if (motion[k] > 0.5 * pair.settings.margin)
+      if (motion[k] > 0.5 * pair.settings.margin) {
         search_again(dc, share, pair.settings, state, global_node, model.mesh.x_ref, model.mass, u, v);
+        searched = true;
+      }
       pair.passes[p] = share.view;
       contact::RecordSink sink;
       sink.pass = share.index;
@@ -651,6 +709,7 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
     share.local_friction_work = wall.state.friction_work;
     send_records(share, sink);
   }
+  if (searched) plan_record_peers(dc);
   add_records(dc, out, global_node, force, gap);
   ContactShareFigures now;
   for (const PassShare& share : dc.passes) {

@@ -90,6 +90,8 @@ struct DistributedContact {
   std::vector<std::vector<int>> holders;
   // Totals of shared contact nodes: from their owner to the other holders (local ids).
   std::vector<NodeLink> total_sends, total_receives;
+  // The ranks this rank sends force records to, and receives them from (ascending).
+  std::vector<int> record_sends, record_receives;
   // Traffic of this rank: bytes and messages it sent in the contact's exchanges, over
   // the steps; the largest share.
   double bytes_sent = 0.0, messages_sent = 0.0;

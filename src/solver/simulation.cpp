@@ -219,7 +219,7 @@ void TimeLoop::run() {
     update_positions();  // u^{n+1}, t^{n+1}
   }
   writer_->flush();
-  summarise_ranks(d_, summary_.mpi);
+  summarise_ranks(d_, contact_, summary_.phase_seconds, summary_.mpi);
   const double loop_seconds = loop_watch_.seconds();
   summary_.steps = state_.step;
   summary_.element_cycles_per_second =

@@ -238,32 +238,51 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
   return total;
 }
 
-// The exchanges' figures of all ranks (summary mpi: sums, and the longest wait).
-void summarise_ranks(const Decomposition& d, output::MpiSummary& out) {
+// The exchanges' figures of all ranks (summary mpi: sums, and the longest wait) and
+// each rank's.
+void summarise_ranks(const Decomposition& d, const ContactModel& contact, const output::PhaseSeconds& phases,
+                     output::MpiSummary& out) {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double peak_mb = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss: kB on Linux
+  double contact_seconds = 0.0;                             // this rank's passes
+  for (const ContactPair& pair : contact.pairs)
+    contact_seconds += pair.seconds.global_search + pair.seconds.local_search + pair.seconds.forces;
+  for (const RigidWall& wall : contact.walls)
+    contact_seconds += wall.seconds.global_search + wall.seconds.local_search + wall.seconds.forces;
   if (!d.comm.distributed()) {
     output::MpiSummary::Rank one;
     one.peak_resident_mb = peak_mb;
+    one.element_seconds = phases.element_forces;
+    one.contact_seconds = contact_seconds;
+    one.contact_nodes = double(contact.nodes.size());
+    for (const ContactPair& pair : contact.pairs)
+      for (const contact::ContactSurfaces& pass : pair.passes) {
+        one.contact_points += double(pass.point_count());
+        one.contact_segments += double(pass.segments.size());
+      }
+    for (const RigidWall& wall : contact.walls) one.contact_points += double(wall.surfaces.point_count());
     out.per_rank = {one};
     return;
   }
   const HaloFigures h = halo_figures(d);
   const ContactShareFigures c = contact_share_figures(d.contact);
-  constexpr int n = 12;
+  constexpr int n = 15;
   const double mine[n] = {double(h.shared_nodes),
                           double(h.messages_sent),
                           double(h.bytes_sent),
                           d.exchange_seconds + c.wait_seconds,
                           peak_mb,
+                          double(contact.nodes.size()),
                           c.points,
                           c.segments,
                           c.ghost_segments,
                           c.ghost_nodes,
                           c.messages_per_step,
                           c.bytes_per_step,
-                          c.wait_seconds};
+                          c.wait_seconds,
+                          phases.element_forces - d.exchange_seconds,  // the force waits are inside it
+                          contact_seconds};
   const std::vector<double> all = mpi::all_gather(d.comm, mine, n);
   for (std::size_t r = 0; r < all.size() / n; ++r) {
     const double* f = all.data() + n * r;
@@ -271,8 +290,9 @@ void summarise_ranks(const Decomposition& d, output::MpiSummary& out) {
     out.messages_per_step += long(f[1]);
     out.bytes_per_step += f[2];
     out.exchange_seconds = std::max(out.exchange_seconds, f[3]);
-    out.contact_nodes += long(f[8]);
-    out.per_rank.push_back({f[4], f[5], f[6], f[7], f[8], f[9], f[10], f[1], f[2], f[3]});
+    out.contact_nodes += long(f[9]);
+    out.per_rank.push_back(
+        {f[4], f[5], f[6], f[7], f[8], f[9], f[10], f[11], f[1], f[2], f[3], f[13], f[14]});
   }
   out.partition = d.partitioning == Partitioning::metis ? "metis" : "bisection";
   out.edge_cut = d.edge_cut;

@@ -48,6 +48,9 @@ void summarise_contact(const ContactModel& contact, const contact::ContactStatis
 // The nodal update's sums, the element energies and the stop signal over the ranks.
 NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update, Energies& energy,
                               const volatile std::sig_atomic_t* stop_signal, int& stop_requested);
-void summarise_ranks(const Decomposition& d, output::MpiSummary& out);
+// The exchanges' figures over the ranks and each rank's (mpi.per_rank; one process:
+// its memory and contact).
+void summarise_ranks(const Decomposition& d, const ContactModel& contact, const output::PhaseSeconds& phases,
+                     output::MpiSummary& out);
 
 }  // namespace exdyn::solver

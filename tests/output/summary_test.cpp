@@ -110,6 +110,7 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                             {"edge_cut", 0},
                             {"per_rank",
                              {{"peak_resident_mb", Json::array()},
+                              {"contact_nodes", Json::array()},
                               {"contact_points", Json::array()},
                               {"contact_segments", Json::array()},
                               {"ghost_segments", Json::array()},
@@ -118,7 +119,9 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                               {"contact_bytes_per_step", Json::array()},
                               {"force_messages_per_step", Json::array()},
                               {"force_bytes_per_step", Json::array()},
-                              {"wait_seconds", Json::array()}}}}));
+                              {"wait_seconds", Json::array()},
+                              {"element_seconds", Json::array()},
+                              {"contact_seconds", Json::array()}}}}));
   for (const char* integer : {"projections", "max_iterations", "not_converged", "saddle_points"}) {
     EXPECT_TRUE(j["contact"][integer].is_number_integer()) << integer;
   }
