@@ -154,23 +154,27 @@ def test_equal_fields(exdyn, work, quick):
 
 
 def test_partitions(exdyn, work):
-    """Imported meshes dealt by METIS: every field of N ranks is one rank's, bit for bit."""
+    """Imported meshes dealt by METIS, and chunks weighed by their measured work: every
+    field of N ranks is one rank's, bit for bit."""
     for deck, sets in [("plate_impact_gmsh", ["output.every=112"]),
                        ("hertz_ball_gmsh", ["time.end_time=3.0e-6", "output.every=100"])]:
         reference = os.path.join(work, f"{deck}_partition_1")
         code, text = run(exdyn, deck, reference, 0, sets=sets)
         if not check(f"{deck}: one process runs", code == 0, text[-400:]):
             continue
-        for ranks in (2, 3):
-            out = os.path.join(work, f"{deck}_metis_{ranks}")
-            code, text = run(exdyn, deck, out, ranks, 1, sets, options=["--partition", "metis"])
-            if not check(f"{deck}: {ranks} ranks with --partition metis run", code == 0, text[-600:]):
+        for ranks, options, key, value in [(2, ["--partition", "metis"], "partition", "metis"),
+                                           (3, ["--partition", "metis"], "partition", "metis"),
+                                           (3, ["--weigh", "work"], "weigh", "work")]:
+            name = " ".join(options)
+            out = os.path.join(work, f"{deck}_{value}_{ranks}")
+            code, text = run(exdyn, deck, out, ranks, 1, sets, options=options)
+            if not check(f"{deck}: {ranks} ranks with {name} run", code == 0, text[-600:]):
                 continue
             same, history, detail = compare(os.path.join(reference, deck + ".h5"), os.path.join(out, deck + ".h5"))
-            check(f"{deck}: {ranks} ranks, METIS: every field of every step bit for bit", same, detail)
-            check(f"{deck}: {ranks} ranks, METIS: the history to 1e-12 ({history:.1e})", history <= 1e-12)
+            check(f"{deck}: {ranks} ranks, {name}: every field of every step bit for bit", same, detail)
+            check(f"{deck}: {ranks} ranks, {name}: the history to 1e-12 ({history:.1e})", history <= 1e-12)
             s = summary(out, deck)
-            check(f"{deck}: {ranks} ranks: the summary names the partition", s["mpi"]["partition"] == "metis")
+            check(f"{deck}: {ranks} ranks: the summary says {key} {value}", s["mpi"][key] == value)
 
 
 def test_mirror(exdyn, work, quick):

@@ -91,6 +91,7 @@ struct RunArguments {
   int threads = 0;
   std::string isa;  // empty: EXDYN_ISA, else the best this CPU runs
   std::string partition = "bisection";
+  std::string weigh = "elements";
   bool quiet = false;
 };
 
@@ -108,6 +109,7 @@ int run_command(const RunArguments& arguments, const exdyn::mpi::Communicator& c
   controls.comm = comm;
   controls.partitioning = arguments.partition == "metis" ? exdyn::solver::Partitioning::metis
                                                          : exdyn::solver::Partitioning::bisection;
+  controls.weigh_by_work = arguments.weigh == "work";
   controls.stop_signal = &stop_signal;
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);
@@ -173,6 +175,12 @@ int main(int argc, char** argv) {
                   "default) or metis (METIS on the graph of chunks that share nodes); results are the same "
                   "bits either way")
       ->check(CLI::IsMember({"bisection", "metis"}))
+      ->capture_default_str();
+  run->add_option("--weigh", run_arguments.weigh,
+                  "What the partition balances over MPI ranks: elements (the default: element counts, the "
+                  "same partition every run) or work (each chunk's element and contact work, timed at the "
+                  "start); results are the same bits either way")
+      ->check(CLI::IsMember({"work", "elements"}))
       ->capture_default_str();
   run->add_flag("--quiet", run_arguments.quiet, "No progress line and no summary line");
 

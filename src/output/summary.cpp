@@ -104,6 +104,7 @@ Json to_json(const RunSummary& s) {
   mpi["exchange_seconds"] = number(s.mpi.exchange_seconds);
   mpi["partition"] = s.mpi.partition;
   mpi["edge_cut"] = s.mpi.edge_cut;
+  mpi["weigh"] = s.mpi.weigh;
   Json per_rank = Json::object();
   auto column = [&](const char* key, double output::MpiSummary::Rank::*member) {
     Json values = Json::array();

@@ -78,6 +78,7 @@ struct MpiSummary {
   long contact_nodes = 0;               // ghost contact nodes, all ranks (the largest of each rank's)
   double exchange_seconds = 0.0;        // the longest time a rank waited in the exchanges, s
   std::string partition = "bisection";  // how the chunks were dealt (exdyn run --partition)
+  std::string weigh = "elements";       // what the partition balanced (exdyn run --weigh)
   long edge_cut = 0;                    // shared nodes summed over pairs of chunks on different ranks
   // Each rank's figures (mpi.per_rank, one entry per rank): its peak resident memory,
   // its share of the contact (solver::ContactShareFigures) and its force messages.

@@ -105,8 +105,9 @@ struct WholeModel {
   }
 };
 
-WholeModel whole_model(const Model& global, const mpi::Communicator& comm, Partitioning partitioning) {
-  WholeModel w{global, comm.rank, partition_chunks(global, comm.size, partitioning), {}, {}, {}, {}};
+WholeModel whole_model(const Model& global, const mpi::Communicator& comm, Partitioning partitioning,
+                       const std::vector<double>& costs) {
+  WholeModel w{global, comm.rank, partition_chunks(global, comm.size, partitioning, costs), {}, {}, {}, {}};
   w.colour.resize(global.blocks.size());
   for (std::size_t b = 0; b < global.blocks.size(); ++b) {
     const element::ElementBlock& block = global.blocks[b];
@@ -277,11 +278,12 @@ void plan_output_rows(const WholeModel& w, Decomposition& d) {
 
 LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
                   const NodalVectors& global_initial_velocity, const mpi::Communicator& comm,
-                  Partitioning partitioning) {
-  WholeModel w = whole_model(global, comm, partitioning);
+                  Partitioning partitioning, const std::vector<double>& costs) {
+  WholeModel w = whole_model(global, comm, partitioning, costs);
   LocalRun run;
   Decomposition& d = run.decomposition;
   d.partitioning = partitioning;
+  d.weighed_by_work = !costs.empty();
   d.edge_cut = partition_figures(global, w.chunk_rank).edge_cut;
   d.comm = comm;
   d.global_nodes = global.mesh.node_count();

@@ -46,8 +46,11 @@ namespace exdyn::solver {
 // METIS_PartGraphKway (recursive for 2 ranks) into parts of equal weight within 3 %,
 // with the fewest shared nodes METIS finds; its seed is fixed, so every rank computes
 // the same partition. Throws InputError when a part would be empty.
+// costs: each chunk's seconds a step (load_balance.hpp), to weigh the chunks by instead
+// of their elements; empty: by their elements.
 std::vector<int> partition_chunks(const Model& model, int ranks,
-                                  Partitioning partitioning = Partitioning::bisection);
+                                  Partitioning partitioning = Partitioning::bisection,
+                                  const std::vector<double>& costs = {});
 
 // The figures of a partition (docs/parallel.md, "Partitions"): the chunk graph's edge
 // cut (the shared nodes summed over the pairs of chunks on different ranks) and the
@@ -91,7 +94,8 @@ struct Decomposition {
   std::vector<std::vector<ColourStep>> steps;  // [block][k]
   std::size_t shared_nodes = 0;                // nodes held by more than one rank
   Partitioning partitioning = Partitioning::bisection;
-  long edge_cut = 0;  // of the whole partition (partition_figures), the same on every rank
+  bool weighed_by_work = false;  // the chunks weighed by their measured work (load_balance.hpp)
+  long edge_cut = 0;             // of the whole partition (partition_figures), the same on every rank
 
   RowExchange node_rows, element_rows;
 
@@ -121,7 +125,7 @@ std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mes
 // of each of `contact_nodes` (global ids, ascending).
 LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
                   const NodalVectors& global_initial_velocity, const mpi::Communicator& comm,
-                  Partitioning partitioning = Partitioning::bisection);
+                  Partitioning partitioning = Partitioning::bisection, const std::vector<double>& costs = {});
 
 // The global id of local node `node` (itself on one rank).
 inline std::uint32_t global_node_id(const Decomposition& d, std::uint32_t node) {

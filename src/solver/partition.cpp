@@ -129,9 +129,10 @@ PartitionFigures partition_figures(const Model& model, const std::vector<int>& c
   return figures;
 }
 
-std::vector<int> partition_chunks(const Model& model, int ranks, Partitioning partitioning) {
+std::vector<int> partition_chunks(const Model& model, int ranks, Partitioning partitioning,
+                                  const std::vector<double>& costs) {
   // The chunks, block after block: centroid (mean of their elements' corner nodes, m)
-  // and weight (elements).
+  // and weight (elements, or their measured costs).
   std::vector<std::array<double, 3>> centroid;
   std::vector<double> weight;
   std::vector<std::uint32_t> block_of;
@@ -153,6 +154,13 @@ std::vector<int> partition_chunks(const Model& model, int ranks, Partitioning pa
     }
   }
   const std::size_t chunks = centroid.size();
+  if (!costs.empty()) {  // measured seconds, in elements of the mean chunk's cost per element
+    EXDYN_ASSERT(costs.size() == chunks);
+    double total_cost = 0.0, total_elements = 0.0;
+    for (std::size_t c = 0; c < chunks; ++c) total_cost += costs[c], total_elements += weight[c];
+    for (std::size_t c = 0; c < chunks; ++c)
+      weight[c] = total_cost > 0.0 ? std::max(costs[c] * total_elements / total_cost, 1.0) : weight[c];
+  }
   if (ranks < 1 || static_cast<std::size_t>(ranks) > chunks)
     throw InputError(std::to_string(ranks) + " MPI ranks for a mesh of " +
                      std::to_string(mesh.element_count()) + " elements in " + std::to_string(chunks) +

@@ -30,6 +30,7 @@
 #include "output/result_writer.hpp"
 #include "solver/contact_setup.hpp"
 #include "solver/decomposition.hpp"
+#include "solver/load_balance.hpp"
 #include "solver/model.hpp"
 #include "solver/nodal_update.hpp"
 #include "solver/step_clock.hpp"
@@ -104,8 +105,9 @@ class TimeLoop {
   int stop_requested_ = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
 };
 
-// On many ranks every rank builds the whole model, cuts out its part (with every
-// contact node) and keeps only that (decomposition.hpp). The stable step comes from
+// On many ranks every rank builds the whole model, cuts out its part (the chunks
+// weighed by their elements or their measured work: load_balance.hpp) and its share of the contact
+// (distributed_contact.hpp), and keeps only those (decomposition.hpp). The stable step comes from
 // the whole model on every rank: the 20-node rule takes one element per group of
 // equal Jacobians, the group's first in the whole block, so a rank's part could
 // give another last bit (docs/parallel.md).
@@ -114,12 +116,15 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   const mpi::Communicator& comm = controls.comm;
   model_ = build_model(deck);
   NodalVectors initial_v = initial_velocity(deck, model_);
-  const std::vector<std::uint32_t> contact_nodes =
-      comm.distributed() ? contact_face_nodes(deck, model_.mesh) : std::vector<std::uint32_t>{};
-  if (comm.distributed()) local_ = localize(model_, contact_nodes, initial_v, comm, controls.partitioning);
   critical_dt_ = critical_time_step(model_);
   clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, model_);
   contact_ = build_contact(deck, model_, clock_->next(), critical_dt_);
+  const std::vector<std::uint32_t> contact_nodes =
+      comm.distributed() ? contact_face_nodes(deck, model_.mesh) : std::vector<std::uint32_t>{};
+  if (comm.distributed())  // the chunks weighed by their elements or their measured work
+    local_ = localize(model_, contact_nodes, initial_v, comm, controls.partitioning,
+                      controls.weigh_by_work ? chunk_costs(model_, contact_, initial_v, clock_->next(), comm)
+                                             : std::vector<double>{});
   summary.nodes = static_cast<long>(model_.mesh.node_count());
   summary.elements = static_cast<long>(model_.mesh.element_count());
   summary.dt = clock_->next();

@@ -28,8 +28,10 @@ struct RunControls {
   // The ranks of the run (docs/parallel.md); default one process without MPI. Every
   // rank calls run_simulation with the same deck and controls.
   mpi::Communicator comm;
-  // How the chunks are dealt to the ranks (decomposition.hpp).
+  // How the chunks are dealt to the ranks (decomposition.hpp), weighed by their
+  // measured work (load_balance.hpp) or by their elements.
   Partitioning partitioning = Partitioning::bisection;
+  bool weigh_by_work = false;
   // Set to a signal number (SIGINT, SIGTERM) by the caller's signal handler: the run
   // finishes its step, writes it, and stops with a RunFailure. May be null.
   const volatile std::sig_atomic_t* stop_signal = nullptr;

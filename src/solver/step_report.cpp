@@ -295,6 +295,7 @@ void summarise_ranks(const Decomposition& d, const ContactModel& contact, const 
         {f[4], f[5], f[6], f[7], f[8], f[9], f[10], f[11], f[1], f[2], f[3], f[13], f[14]});
   }
   out.partition = d.partitioning == Partitioning::metis ? "metis" : "bisection";
+  out.weigh = d.weighed_by_work ? "work" : "elements";
   out.edge_cut = d.edge_cut;
 }
 

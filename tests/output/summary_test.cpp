@@ -108,6 +108,7 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                             {"exchange_seconds", 0.0},
                             {"partition", "bisection"},
                             {"edge_cut", 0},
+                            {"weigh", "elements"},
                             {"per_rank",
                              {{"peak_resident_mb", Json::array()},
                               {"contact_nodes", Json::array()},

@@ -16,6 +16,7 @@
 #include "solver/contact_setup.hpp"
 #include "solver/decomposition.hpp"
 #include "solver/distributed_contact.hpp"
+#include "solver/load_balance.hpp"
 #include "solver/model.hpp"
 
 namespace {
@@ -64,6 +65,39 @@ TEST(PartitionChunks, EveryRankGetsChunksInProportionAndEveryRankComputesTheSame
       EXPECT_LE(std::abs(e - ideal), 2.0 * element::element_chunk) << ranks << " ranks";
     }
   }
+}
+
+// Weighed by costs (load_balance.hpp), a costly chunk takes a rank's share alone: the
+// plates' first chunk costing as much as all the others, 2 ranks split it from them.
+TEST(PartitionChunks, CostsWeighTheChunks) {
+  const input::Deck deck = deck_of("plate_impact.yaml");
+  const solver::Model model = solver::build_model(deck);
+  std::size_t chunks = 0;
+  for (const auto& block : model.blocks) chunks += block.chunk_begin.size() - 1;
+  std::vector<double> costs(chunks, 1.0);
+  costs[0] = double(chunks - 1);
+  for (const solver::Partitioning partitioning :
+       {solver::Partitioning::bisection, solver::Partitioning::metis}) {
+    const std::vector<int> rank = solver::partition_chunks(model, 2, partitioning, costs);
+    EXPECT_EQ(std::count(rank.begin(), rank.end(), rank[0]), 1);
+  }
+}
+
+// The measured costs on one process: every chunk costs its elements' time and more
+// where it holds slave points.
+TEST(ChunkCosts, ElementsAndSlavePoints) {
+  const input::Deck deck = deck_of("plate_impact.yaml");
+  const solver::Model model = solver::build_model(deck);
+  const double dt = solver::critical_time_step(model);
+  const solver::ContactModel contact = solver::build_contact(deck, model, 0.125 * dt, dt);
+  const std::vector<double> costs = solver::chunk_costs(model, contact, solver::initial_velocity(deck, model),
+                                                        0.125 * dt, mpi::Communicator{});
+  std::size_t chunks = 0;
+  for (const auto& block : model.blocks) chunks += block.chunk_begin.size() - 1;
+  ASSERT_EQ(costs.size(), chunks);
+  for (const double c : costs) EXPECT_GT(c, 0.0);
+  // The chunks at the contact face (plate_a.xmax, plate_b.xmin) hold its slave points.
+  EXPECT_GT(*std::max_element(costs.begin(), costs.end()), *std::min_element(costs.begin(), costs.end()));
 }
 
 TEST(PartitionChunks, MoreRanksThanChunksIsBadInput) {
