@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Scaling on many ranks (issue 14, docs/parallel.md), measured on this machine.
+"""Scaling on many ranks (docs/parallel.md), measured on this machine.
 
 Strong scaling: the plate impact at mesh M (2 x M x M elements, the contact included) on
 ranks x threads = 1x1, 1x2, 2x1 (and, past the cores, 2x2 and 3x1, marked
@@ -79,7 +79,7 @@ def main():
             print(deck, rows[-1], flush=True)
         return batch.table(["ranks x threads", "elements", "steps", "element-cycles/s", "speed-up",
                             "efficiency per core", "exchange wait (s)", "messages/step", "kB/step",
-                            "contact nodes gathered"], rows)
+                            "ghost contact nodes"], rows)
 
     strong = strong_table("plate_impact", [f"parts[0].elements=[{m}, 1, {m}]", f"parts[1].elements=[{m}, 1, {m}]"])
     # One plate (the reference calculation: no contact), which 2 ranks must cut.
@@ -103,7 +103,7 @@ def main():
                      s["mpi"].get("contact_nodes", 0)])
         print(rows[-1], flush=True)
     weak = batch.table(["ranks (1 thread)", "elements", "steps", "element-cycles/s", "per rank",
-                        "efficiency", "exchange wait (s)", "messages/step", "kB/step", "contact nodes gathered"],
+                        "efficiency", "exchange wait (s)", "messages/step", "kB/step", "ghost contact nodes"],
                        rows)
     text = (f"Written by `/usr/bin/python3 scripts/mpi_scaling.py --mesh {m} --repeat {args.repeat}` on "
             f"{CORES} cores (medians of {args.repeat} runs).\n\nStrong scaling, the plate impact at mesh {m}:\n\n"

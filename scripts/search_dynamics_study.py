@@ -10,7 +10,7 @@ One command does it all:
 1. methods: input/hertz_ball.yaml on its coarse mesh (ball [8, 2], block [6, 6, 5],
    hex20, slave quadrature points), input/cylinders.yaml on its coarse mesh
    (n_around 32), and two plastic scenes of large deformation: input/taylor_rods.yaml
-   (the rods' feet mushroom, slave nodes slide outward over distorting segments) and
+   (the rods' feet mushroom, slave Gauss points slide outward over distorting segments) and
    scripts/decks/ball_dent.yaml (a steel ball's nodes slide over the crater it presses
    into a copper plate); each with every method (newton, lsp, steepest_descent, broyden,
    bfgs, dfp, simplex, hybrid, robust) and initial guess (lsp, center, previous):
@@ -65,7 +65,7 @@ SCENES = {
                         "parts[0].initial_velocity=[0, 0, -100]", "parts[1].initial_velocity=[0, 0, 100]",
                         "contact[0].penalty={scale: 0.05}", "time.end_time=1.5e-5",
                         "guards.max_penetration=10.0"]),
-    # Large deformation: the two Taylor rods through contact, their slave nodes sliding
+    # Large deformation: the two Taylor rods through contact, their slave Gauss points sliding
     # outward over expanding, distorting master segments (the last step's shape and
     # plastic strain are compared with the robust run's too).
     "taylor_rods": ("taylor_rods.yaml", "impact", 4.0,
