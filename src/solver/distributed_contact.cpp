@@ -144,13 +144,12 @@ contact::SegmentNodes in_store(contact::SegmentNodes segment, const ContactStore
 }
 
 // This rank's share of one pass of the whole model (`whole`, global node ids).
-PassShare make_share(const contact::ContactSurfaces& whole, std::uint64_t index, bool wall, int me,
+PassShare make_share(const contact::ContactSurfaces& whole, std::uint64_t index, int me,
                      const std::vector<std::uint32_t>& global_node, const Model& local,
                      const std::vector<std::uint32_t>& contact_nodes,
                      const std::vector<std::vector<int>>& holders) {
   PassShare share;
   share.index = index;
-  share.wall = wall;
   share.edges = !whole.edges.empty();
   contact::ContactSurfaces& own = share.own;
   own.quadrature = whole.quadrature;
@@ -615,12 +614,12 @@ DistributedContact distribute_contact(ContactModel& contact, const mpi::Communic
   for (ContactPair& pair : contact.pairs)
     for (contact::ContactSurfaces& surfaces : pair.passes) {
       dc.passes.push_back(
-          make_share(surfaces, index++, false, comm.rank, global_node, local, contact_nodes, holders));
+          make_share(surfaces, index++, comm.rank, global_node, local, contact_nodes, holders));
       surfaces = dc.passes.back().view;
     }
   for (RigidWall& wall : contact.walls) {
     dc.passes.push_back(
-        make_share(wall.surfaces, index++, true, comm.rank, global_node, local, contact_nodes, holders));
+        make_share(wall.surfaces, index++, comm.rank, global_node, local, contact_nodes, holders));
     wall.surfaces = dc.passes.back().view;
   }
   dc.local_statistics.resize(contact.pairs.size() + contact.walls.size());
@@ -677,16 +676,16 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
       contact::ContactPassState& state = pair.states[p];
       if (motion[k] > 0.5 * pair.settings.margin) {
         search_again(dc, share, pair.settings, state, global_node, model.mesh.x_ref, model.mass, u, v);
+        pair.passes[p] = share.view;  // the pair's own copy (the summary's counts)
         searched = true;
       }
-      pair.passes[p] = share.view;
       contact::RecordSink sink;
       sink.pass = share.index;
       sink.point_keys = &share.point_keys;
       state.friction_work = share.local_friction_work;
       contact::ContactStatistics& mine = dc.local_statistics[statistics];
       const double deepest = mine.max_penetration_over_h;
-      contact::run_contact_pass(pair.passes[p], pair.settings, state, share.store.x_ref, share.store.u,
+      contact::run_contact_pass(share.view, pair.settings, state, share.store.x_ref, share.store.u,
                                 share.store.v, share.store.mass, no_force, no_gap, mine, pair.seconds, &sink);
       name_deepest(mine, deepest, share);
       share.local_friction_work = state.friction_work;

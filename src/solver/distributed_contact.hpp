@@ -56,8 +56,7 @@ struct NodeLink {
 // One pass (a pair's, or a rigid wall's) on this rank.
 struct PassShare {
   std::uint64_t index = 0;  // the pass's place in the order of one process
-  bool wall = false;
-  bool edges = false;  // the pass has contact at folds (ContactSurfaces::edges)
+  bool edges = false;       // the pass has contact at folds (ContactSurfaces::edges)
   // This rank's slave points and segments (global node ids).
   contact::ContactSurfaces own;
   std::vector<std::uint32_t> point_keys;   // each own point's index in the whole pass
