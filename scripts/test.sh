@@ -4,7 +4,7 @@
 #   2. ParaView opening the plate reference result (scripts/check_paraview.sh);
 #   3. the suite again in the AddressSanitizer + UBSan Debug build
 #      (skip with EXDYN_SKIP_ASAN=1 for a quick local run);
-#   4. libFuzzer on the deck and cases readers, 60 s each (scripts/fuzz.sh, clang 14).
+#   4. libFuzzer on the deck, cases and mesh readers, 60 s each (scripts/fuzz.sh, clang 14).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
