@@ -313,6 +313,32 @@ def test_errors(exdyn, work):
         check("mpirun that cannot start 4 ranks on this machine: an error, no result",
               proc.returncode != 0 and "slots" in proc.stdout + proc.stderr
               and not os.path.exists(os.path.join(work, "no_start")), (proc.stdout + proc.stderr)[-400:])
+    test_unreachable_host(exdyn, work)
+
+
+def test_unreachable_host(exdyn, work):
+    """A host file naming a machine that cannot be reached (the .invalid domain never
+    resolves, RFC 6761): mpirun's own error and exit code, and nothing on disk that
+    looks like a finished run: no summary that says completed, no .xmf index."""
+    hosts = os.path.join(work, "unreachable_hosts")
+    with open(hosts, "w") as f:
+        f.write("localhost slots=1\nexdyn-unreachable.invalid slots=1\n")
+    out = os.path.join(work, "unreachable")
+    cmd = mpirun(2, oversubscribe=False) + ["--hostfile", hosts, "--mca", "plm_rsh_args",
+                                            "-o BatchMode=yes -o ConnectTimeout=10"]
+    cmd += [exdyn, "run", os.path.join(ROOT, "input", "plate_impact.yaml"), "--quiet", "--output", out]
+    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=environment(2))
+    text = proc.stdout + proc.stderr
+    summary = os.path.join(out, "plate_impact.json")
+    completed = False
+    if os.path.exists(summary):
+        with open(summary) as f:
+            completed = json.load(f).get("status") == "completed"
+    check("a host file naming an unreachable machine: mpirun's error, a non-zero exit",
+          proc.returncode != 0 and "exdyn:" not in text, text[-600:])
+    check("a host file naming an unreachable machine: no result that looks complete",
+          not completed and not os.path.exists(os.path.join(out, "plate_impact.xmf")),
+          str(os.listdir(out)) if os.path.isdir(out) else "no output directory")
 
 
 def main():
