@@ -183,16 +183,18 @@ void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
   create_step_group(errors, file.get(), "/steps", expected_steps);
   create_group(errors, file.get(), "/history");
 
-  // Coordinates: SoA in memory, (N, 3) row-major on disk.
+  // Coordinates: SoA in memory, (N, 3) row-major on disk. On many ranks each writes
+  // the rows it holds (Distribution), of the mesh as of the step fields.
   const NodalVectors& x = *mesh.x_ref;
-  buffer.resize(std::max(buffer.size(), 3 * node_count));
-  for (std::size_t i = 0; i < node_count; ++i) {
+  const std::size_t held_nodes = held_rows(Center::node), held_elements = held_rows(Center::cell);
+  buffer.resize(std::max(buffer.size(), 3 * held_nodes));
+  for (std::size_t i = 0; i < held_nodes; ++i) {
     buffer[3 * i] = x.x[i];
     buffer[3 * i + 1] = x.y[i];
     buffer[3 * i + 2] = x.z[i];
   }
   write_dataset(errors, file.get(), "/mesh/coordinates", {node_count, 3}, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
-                buffer.data());
+                buffer.data(), std::pair<hsize_t, hsize_t>{first_row(Center::node), held_nodes});
 
   // Connectivity: uint32 in memory; int64 on disk, the type every XDMF reader
   // and numpy index with (a uint32 DataItem would need NumberType="UInt").
@@ -200,13 +202,14 @@ void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
   // writes (E, 20) with the rows of 8-node elements padded with -1, and for ParaView
   // /mesh/mixed_topology, XDMF's "Mixed" list: per element its cell type (9
   // Hexahedron, 48 Hexahedron_20) then its nodes (docs/output.md).
+  const std::pair<hsize_t, hsize_t> element_rows{first_row(Center::cell), held_elements};
   {
     const std::vector<std::uint32_t>& connectivity = *mesh.connectivity;
     const std::size_t width = mixed ? 20 : static_cast<std::size_t>(nodes_per_element);
-    std::vector<std::int64_t> connectivity64(element_count * width, -1);
+    std::vector<std::int64_t> connectivity64(held_elements * width, -1);
     std::vector<std::int64_t> mixed_topology;
     std::size_t next = 0;
-    for (std::size_t e = 0; e < element_count; ++e) {
+    for (std::size_t e = 0; e < held_elements; ++e) {
       const std::size_t nodes = mesh.element_nodes == nullptr ? 8 : (*mesh.element_nodes)[e];
       if (mixed) mixed_topology.push_back(nodes == 20 ? 48 : 9);
       for (std::size_t k = 0; k < nodes; ++k) {
@@ -216,22 +219,32 @@ void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
       next += nodes;
     }
     write_dataset(errors, file.get(), "/mesh/connectivity", {element_count, width}, H5T_STD_I64LE,
-                  H5T_NATIVE_INT64, connectivity64.data());
+                  H5T_NATIVE_INT64, connectivity64.data(), element_rows);
     if (mixed) {
-      mixed_topology_size = mixed_topology.size();
-      write_dataset(errors, file.get(), "/mesh/mixed_topology", {mixed_topology.size()}, H5T_STD_I64LE,
-                    H5T_NATIVE_INT64, mixed_topology.data());
+      // On many ranks the list's pieces one after the other in rank (= element) order.
+      auto held = static_cast<unsigned long long>(mixed_topology.size());
+      unsigned long long offset = 0, total = held;
+      if (distribution.comm.distributed()) {
+        mpi::check(MPI_Exscan(&held, &offset, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, distribution.comm.comm),
+                   "MPI_Exscan of the mixed topology");
+        if (distribution.comm.root()) offset = 0;  // MPI_Exscan leaves rank 0's undefined
+        mpi::check(MPI_Allreduce(&held, &total, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, distribution.comm.comm),
+                   "MPI_Allreduce of the mixed topology");
+      }
+      mixed_topology_size = std::size_t(total);
+      write_dataset(errors, file.get(), "/mesh/mixed_topology", {hsize_t(total)}, H5T_STD_I64LE,
+                    H5T_NATIVE_INT64, mixed_topology.data(), std::pair<hsize_t, hsize_t>{offset, held});
     }
   }
 
   // Part index per element; a mesh without parts is one part, index 0.
   if (mesh.element_part != nullptr) {
     write_dataset(errors, file.get(), "/mesh/part", {element_count}, H5T_STD_I32LE, H5T_NATIVE_INT32,
-                  mesh.element_part->data());
+                  mesh.element_part->data(), element_rows);
   } else {
-    const std::vector<std::int32_t> single_part(element_count, 0);
+    const std::vector<std::int32_t> single_part(held_elements, 0);
     write_dataset(errors, file.get(), "/mesh/part", {element_count}, H5T_STD_I32LE, H5T_NATIVE_INT32,
-                  single_part.data());
+                  single_part.data(), element_rows);
   }
 
   create_series(errors, file.get(), "/time");
@@ -462,10 +475,18 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   if (mesh.x_ref == nullptr || mesh.connectivity == nullptr) {
     throw std::invalid_argument("ResultWriter: mesh coordinates and connectivity are required");
   }
-  const std::size_t node_count = mesh.x_ref->size();
-  if (mesh.x_ref->y.size() != node_count || mesh.x_ref->z.size() != node_count) {
+  // On many ranks the mesh is this rank's rows, of a mesh of distribution.nodes nodes
+  // and distribution.elements elements.
+  const bool rows_given = distribution.comm.distributed();
+  const std::size_t held_nodes = mesh.x_ref->size();
+  if (mesh.x_ref->y.size() != held_nodes || mesh.x_ref->z.size() != held_nodes) {
     throw std::invalid_argument("ResultWriter: coordinate components differ in length");
   }
+  if (rows_given && held_nodes != distribution.node_end - distribution.node_begin)
+    throw std::invalid_argument("ResultWriter: " + std::to_string(held_nodes) + " coordinate rows for rows " +
+                                std::to_string(distribution.node_begin) + " to " +
+                                std::to_string(distribution.node_end));
+  const std::size_t node_count = rows_given ? distribution.nodes : held_nodes;
   // Elements of 8 nodes, or of the sizes element_nodes gives (8 or 20).
   std::size_t element_count = mesh.connectivity->size() / 8;
   bool has_8 = true, has_20 = false;
@@ -487,6 +508,18 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   } else if (mesh.connectivity->size() % 8 != 0) {
     throw std::invalid_argument("ResultWriter: connectivity length " +
                                 std::to_string(mesh.connectivity->size()) + " is not a multiple of 8");
+  }
+  if (rows_given) {
+    if (element_count != distribution.element_end - distribution.element_begin)
+      throw std::invalid_argument("ResultWriter: " + std::to_string(element_count) +
+                                  " element rows for rows " + std::to_string(distribution.element_begin) +
+                                  " to " + std::to_string(distribution.element_end));
+    // Whether the whole mesh mixes 8- and 20-node elements.
+    int sizes[2] = {has_8 ? 1 : 0, has_20 ? 1 : 0};
+    mpi::check(MPI_Allreduce(MPI_IN_PLACE, sizes, 2, MPI_INT, MPI_MAX, distribution.comm.comm),
+               "MPI_Allreduce of the element sizes");
+    has_8 = sizes[0] != 0;
+    has_20 = sizes[1] != 0;
   }
   if (mesh.element_part != nullptr && mesh.element_part->size() != element_count) {
     throw std::invalid_argument("ResultWriter: " + std::to_string(mesh.element_part->size()) +
@@ -511,7 +544,7 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   fs::create_directories(directory);
   impl_ = std::make_unique<Impl>(fs::path(directory), name, distribution);
   impl_->node_count = node_count;
-  impl_->element_count = element_count;
+  impl_->element_count = rows_given ? distribution.elements : element_count;
   impl_->expected_steps = static_cast<unsigned>(std::min<std::size_t>(expected_steps, 65535));
   impl_->mixed = has_8 && has_20;
   impl_->nodes_per_element = has_20 ? 20 : 8;

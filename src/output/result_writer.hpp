@@ -24,13 +24,15 @@ struct MeshView {
   const std::vector<std::uint8_t>* element_nodes = nullptr;  // E node counts (8 or 20); null = all 8
 };
 
-// On many ranks (docs/parallel.md): the ranks that write the file together, and the
-// rows of the step fields this one writes (nodes [node_begin, node_end), elements
-// [element_begin, element_end) of the global numbering). The mesh and the history
-// are given whole on every rank and written by the root rank. Default: one process,
-// every row.
+// On many ranks (docs/parallel.md): the ranks that write the file together, the
+// mesh's size, and the rows of the mesh and of the step fields this one writes
+// (nodes [node_begin, node_end), elements [element_begin, element_end) of the
+// global numbering): its MeshView holds those rows only, with global node ids in
+// the connectivity, so no rank needs the whole mesh. The history is given whole on
+// every rank and written by the root rank. Default: one process, every row.
 struct Distribution {
   mpi::Communicator comm;
+  std::size_t nodes = 0, elements = 0;  // of the whole mesh
   std::size_t node_begin = 0, node_end = 0, element_begin = 0, element_end = 0;
 };
 

@@ -207,7 +207,14 @@ void cut_blocks(const WholeModel& w, Model& m, Decomposition& d) {
   for (std::size_t i = 0; i < local_nodes; ++i)
     for (int c = 0; c < 3; ++c)
       m.mesh.x_ref.component(c)[i] = global.mesh.x_ref.component(c)[d.global_node[i]];
-  m.mesh.parts = global.mesh.parts;  // for the node counts of the elements (nodes_of) only
+  // The parts, for the node counts of the elements (nodes_of) only: without their
+  // lattices and faces, which the setup alone reads, from the whole mesh.
+  for (const mesh::PartRange& part : global.mesh.parts) {
+    mesh::PartRange& local = m.mesh.parts.emplace_back();
+    local.order = part.order;
+    local.nodes_per_element = part.nodes_per_element;
+    local.elements = part.elements;
+  }
   std::vector<std::vector<std::uint32_t>> my_chunks(blocks);
   w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int) {
     if (rank == w.me) my_chunks[b].push_back(std::uint32_t(c));
@@ -390,13 +397,16 @@ element::ElementEnergies add_forces_across_ranks(const Model& model, Decompositi
 namespace {
 
 // Sends `per_item` values of each item of x.send_items (pack(item, out)) to the
-// ranks that write their rows; unpack(row, in) places each received item.
-template <class Pack, class Unpack>
+// ranks that write their rows; unpack(row, in) places each received item. T: double
+// or std::uint32_t.
+template <class T = double, class Pack, class Unpack>
 void exchange_rows(const Decomposition& d, const RowExchange& x, int per_item, Pack pack, Unpack unpack) {
-  std::vector<double> out(std::size_t(per_item) * x.send_items.size());
+  static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::uint32_t>);
+  const MPI_Datatype type = std::is_same_v<T, double> ? MPI_DOUBLE : MPI_UINT32_T;
+  std::vector<T> out(std::size_t(per_item) * x.send_items.size());
   for (std::size_t k = 0; k < x.send_items.size(); ++k)
     pack(x.send_items[k], out.data() + std::size_t(per_item) * k);
-  std::vector<double> in(std::size_t(per_item) * x.receive_rows.size());
+  std::vector<T> in(std::size_t(per_item) * x.receive_rows.size());
   auto scaled = [&](const std::vector<int>& v) {
     std::vector<int> s(v);
     for (int& n : s) n *= per_item;
@@ -404,8 +414,8 @@ void exchange_rows(const Decomposition& d, const RowExchange& x, int per_item, P
   };
   const std::vector<int> sc = scaled(x.send_counts), sd = scaled(x.send_displacements),
                          rc = scaled(x.receive_counts), rd = scaled(x.receive_displacements);
-  mpi::check(MPI_Alltoallv(out.data(), sc.data(), sd.data(), MPI_DOUBLE, in.data(), rc.data(), rd.data(),
-                           MPI_DOUBLE, d.comm.comm),
+  mpi::check(MPI_Alltoallv(out.data(), sc.data(), sd.data(), type, in.data(), rc.data(), rd.data(), type,
+                           d.comm.comm),
              "MPI_Alltoallv of the output rows");
   for (std::size_t k = 0; k < x.receive_rows.size(); ++k)
     unpack(x.receive_rows[k], in.data() + std::size_t(per_item) * k);
@@ -433,6 +443,44 @@ void rows_of(Decomposition& d, const double* local, int k, bool nodal, std::vect
   exchange_rows(
       d, x, k, [&](std::uint32_t item, double* out) { std::copy_n(local + n * item, n, out); },
       [&](std::uint32_t row, const double* in) { std::copy_n(in, n, rows.data() + n * row); });
+}
+
+MeshRows mesh_rows(Decomposition& d, const mesh::Mesh& local) {
+  MeshRows rows;
+  rows_of(d, local.x_ref, rows.x_ref);
+  // Per element its node ids (global; past its own nodes ~0), part and node count:
+  // the widest element's nodes + 2 unsigned values.
+  const std::size_t elements = local.element_count();
+  std::vector<std::size_t> first(elements + 1, 0);  // each element's first connectivity entry
+  int widest = 8;
+  for (std::size_t e = 0; e < elements; ++e) {
+    first[e + 1] = first[e] + std::size_t(local.nodes_of(e));
+    widest = std::max(widest, local.nodes_of(e));
+  }
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, &widest, 1, MPI_INT, MPI_MAX, d.comm.comm),
+             "MPI_Allreduce of the element size");
+  const auto width = std::size_t(widest);
+  rows.element_part.resize(d.element_rows.end - d.element_rows.begin);
+  rows.element_nodes.resize(rows.element_part.size());
+  std::vector<std::uint32_t> table(width * rows.element_part.size());
+  exchange_rows<std::uint32_t>(
+      d, d.element_rows, int(width + 2),
+      [&](std::uint32_t e, std::uint32_t* out) {
+        const std::size_t nodes = first[e + 1] - first[e];
+        for (std::size_t k = 0; k < width; ++k)
+          out[k] = k < nodes ? global_node_id(d, local.connectivity[first[e] + k]) : ~0u;
+        out[width] = static_cast<std::uint32_t>(local.element_part[e]);
+        out[width + 1] = static_cast<std::uint32_t>(nodes);
+      },
+      [&](std::uint32_t row, const std::uint32_t* in) {
+        std::copy_n(in, width, table.data() + width * row);
+        rows.element_part[row] = static_cast<std::int32_t>(in[width]);
+        rows.element_nodes[row] = static_cast<std::uint8_t>(in[width + 1]);
+      });
+  for (std::size_t e = 0; e < rows.element_part.size(); ++e)
+    rows.connectivity.insert(rows.connectivity.end(), table.begin() + std::ptrdiff_t(width * e),
+                             table.begin() + std::ptrdiff_t(width * e + rows.element_nodes[e]));
+  return rows;
 }
 
 HaloFigures halo_figures(const Decomposition& d) {

@@ -145,6 +145,17 @@ element::ElementEnergies add_forces_across_ranks(const Model& model, Decompositi
 void rows_of(Decomposition& d, const NodalVectors& local, NodalVectors& rows);
 void rows_of(Decomposition& d, const double* local, int k, bool nodal, std::vector<double>& rows);
 
+// This rank's rows of the mesh (node_rows, element_rows), for the output: the
+// coordinates, and per element its nodes (global ids), part and node count, from the
+// ranks that hold them; no rank gathers the whole mesh.
+struct MeshRows {
+  NodalVectors x_ref;
+  std::vector<std::uint32_t> connectivity;
+  std::vector<std::int32_t> element_part;
+  std::vector<std::uint8_t> element_nodes;
+};
+MeshRows mesh_rows(Decomposition& d, const mesh::Mesh& local);
+
 // Messages and bytes of one step's force exchange on this rank (docs/parallel.md).
 struct HaloFigures {
   std::size_t shared_nodes = 0, messages_sent = 0, bytes_sent = 0;

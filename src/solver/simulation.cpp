@@ -129,30 +129,6 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   summary.elements = static_cast<long>(model_.mesh.element_count());
   summary.dt = clock_->next();
 
-  const std::string directory =
-      controls.output_directory.empty() ? deck.output.directory : controls.output_directory;
-  std::vector<std::uint8_t> element_nodes(model_.mesh.element_count());
-  for (std::size_t e = 0; e < element_nodes.size(); ++e)
-    element_nodes[e] = static_cast<std::uint8_t>(model_.mesh.nodes_of(e));
-  output::HistoryGroups history_groups;
-  for (const auto& pair : contact_.pairs) history_groups.contact_pairs.push_back(pair.name);
-  for (const auto& wall : contact_.walls) history_groups.walls.push_back(wall.name);
-  output::Distribution distribution;
-  if (comm.distributed()) {
-    distribution.comm = comm;
-    distribution.node_begin = d_.node_rows.begin;
-    distribution.node_end = d_.node_rows.end;
-    distribution.element_begin = d_.element_rows.begin;
-    distribution.element_end = d_.element_rows.end;
-  }
-  writer_ = std::make_unique<output::ResultWriter>(
-      directory, deck.name,
-      output::MeshView{&model_.mesh.x_ref, &model_.mesh.connectivity, &model_.mesh.element_part,
-                       &element_nodes},
-      deck.output.fields, history_groups,
-      // steps 0, every, 2 every, ..., the last, and one more a stop may write
-      static_cast<std::size_t>(clock_->planned_steps() / std::max(deck.output.every, 1) + 3), distribution);
-  writer_->write_in_background(deck.output.background);
   // From here on this rank's part only.
   d_.comm = comm;
   if (comm.distributed()) {
@@ -162,6 +138,40 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
     model_ = std::move(local_.model);
     initial_v = std::move(local_.initial_velocity);
   }
+  const std::string directory =
+      controls.output_directory.empty() ? deck.output.directory : controls.output_directory;
+  output::HistoryGroups history_groups;
+  for (const auto& pair : contact_.pairs) history_groups.contact_pairs.push_back(pair.name);
+  for (const auto& wall : contact_.walls) history_groups.walls.push_back(wall.name);
+  // One process writes its mesh; on many ranks each writes its rows of it (mesh_rows),
+  // once the whole model is gone.
+  output::Distribution distribution;
+  MeshRows mesh;
+  if (comm.distributed()) {
+    distribution.comm = comm;
+    distribution.nodes = d_.global_nodes;
+    distribution.elements = d_.global_elements;
+    distribution.node_begin = d_.node_rows.begin;
+    distribution.node_end = d_.node_rows.end;
+    distribution.element_begin = d_.element_rows.begin;
+    distribution.element_end = d_.element_rows.end;
+    mesh = mesh_rows(d_, model_.mesh);
+  } else {
+    mesh.element_nodes.resize(model_.mesh.element_count());
+    for (std::size_t e = 0; e < mesh.element_nodes.size(); ++e)
+      mesh.element_nodes[e] = static_cast<std::uint8_t>(model_.mesh.nodes_of(e));
+  }
+  const bool rows = comm.distributed();
+  writer_ = std::make_unique<output::ResultWriter>(
+      directory, deck.name,
+      output::MeshView{rows ? &mesh.x_ref : &model_.mesh.x_ref,
+                       rows ? &mesh.connectivity : &model_.mesh.connectivity,
+                       rows ? &mesh.element_part : &model_.mesh.element_part, &mesh.element_nodes},
+      deck.output.fields, history_groups,
+      // steps 0, every, 2 every, ..., the last, and one more a stop may write
+      static_cast<std::size_t>(clock_->planned_steps() / std::max(deck.output.every, 1) + 3), distribution);
+  mesh = {};
+  writer_->write_in_background(deck.output.background);
 
   const std::size_t node_count = model_.mesh.node_count();
   state_.displacement.resize(node_count);
