@@ -132,7 +132,15 @@ def test_equal_fields(exdyn, work, quick):
              ("taylor_rods", ["parts[0].elements=[8, 4, 54]", "parts[1].elements=[8, 4, 54]",
                               "time.end_time=" + ("3.0e-6" if quick else "1.2e-5"), "output.every=500"]),
              # a rigid wall with friction, every point slipping
-             ("oblique_impact", ["parts[0].elements=[80, 1, 40]", "time.end_time=3.0e-6", "output.every=100"])]
+             ("oblique_impact", ["parts[0].elements=[80, 1, 40]", "time.end_time=3.0e-6", "output.every=100"]),
+             # set up rank by rank: gravity and friction between two boxes; a spin with
+             # finite strain; plasticity of hex8r
+             ("sliding_block", ["parts[0].elements=[16, 16, 2]", "parts[1].elements=[32, 28, 2]",
+                                "time.end_time=1.0e-5", "output.every=100"]),
+             ("spinning_block", ["parts[0].elements=[16, 16, 8]", "time.end_time=4.0e-5", "output.every=100"]),
+             ("plastic_wave", ["parts[0].elements=[2000, 1, 1]", "output.every=100"])]
+    # Decks of boxes of 8-node elements are set up rank by rank (rank_setup.hpp).
+    by_rank = {"plate_impact", "oblique_impact", "sliding_block", "spinning_block", "plastic_wave"}
     for deck, sets, *label in cases:
         label = label[0] if label else deck
         reference = os.path.join(work, f"{label}_1")
@@ -152,6 +160,9 @@ def test_equal_fields(exdyn, work, quick):
             check(f"{label}: {ranks} ranks: the history to 1e-12 ({history:.1e})", history <= 1e-12)
             s = summary(out, deck)
             check(f"{label}: {ranks} ranks: mpi.ranks = {s['mpi']['ranks']}", s["mpi"]["ranks"] == ranks)
+            setup = "by_rank" if label in by_rank and ranks > 1 else "whole"
+            check(f"{label}: {ranks} ranks: mpi.setup = {s['mpi'].get('setup')} ({setup})",
+                  s["mpi"].get("setup") == setup)
             same_contact = all(s["contact"][k] == one["contact"][k]
                                for k in ("projections", "mean_iterations", "max_iterations", "not_converged",
                                          "saddle_points", "max_penetration_over_h"))

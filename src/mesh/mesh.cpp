@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -115,49 +116,11 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
   part.first_element = static_cast<std::uint32_t>(mesh.element_count());
   part.element_count = static_cast<std::uint32_t>(n[0] * n[1] * n[2]);
   part.first_connectivity = mesh.connectivity.size();
-  for (int axis = 0; axis < 3; ++axis) {
-    part.lattice_size[axis] = order * n[axis] + 1;
-    const double length = options.box_max[axis] - options.box_min[axis];
-    const double grading = options.grading[axis];
-    part.normal_lengths[std::size_t(2 * axis)] =
-        grading == 1.0 ? length / n[axis] : length * graded_fraction(1, n[axis], grading);
-    part.normal_lengths[std::size_t(2 * axis + 1)] =
-        grading == 1.0 ? length / n[axis] : length * (1.0 - graded_fraction(n[axis] - 1, n[axis], grading));
-  }
+  for (int axis = 0; axis < 3; ++axis) part.lattice_size[axis] = order * n[axis] + 1;
+  part.normal_lengths = box_normal_lengths(options);
   const auto& size = part.lattice_size;
   part.lattice.assign(std::size_t(size[0]) * std::size_t(size[1]) * std::size_t(size[2]), no_node);
-
-  // Grid coordinates x_i = min + (max - min) i / n, written so that the last
-  // node lands exactly on max; graded: x_i = min + (max - min) tau_i (graded_fraction).
-  auto coordinate = [&](int axis, int index) {
-    const double lo = options.box_min[axis], hi = options.box_max[axis];
-    if (index == n[axis]) return hi;
-    if (options.grading[axis] != 1.0)
-      return lo + (hi - lo) * graded_fraction(index, n[axis], options.grading[axis]);
-    return lo + (hi - lo) * static_cast<double>(index) / static_cast<double>(n[axis]);
-  };
-  // The corner grid point (i, j, k), with the optional distortion (parts[i].perturbation):
-  // x_c += fraction h_c r_c, with h_c = (max_c - min_c) / n_c the element length along c
-  // (length units) and r a random vector of length at most 1 (perturbation_direction)
-  // over the components along which the node is strictly inside the grid
-  // (0 < ijk[c] < n_c), so every face stays plane and in place. Each node so moves by at
-  // most fraction h: in a plane grid of squares no corner angle can then close before
-  // fraction = 1/(2 sqrt 2) (two neighbours each moved by fraction h turn an edge by at
-  // most that much).
-  const double fraction = options.perturbation_fraction;
-  auto corner_point = [&](const std::array<int, 3>& ijk) {
-    std::array<double, 3> x{coordinate(0, ijk[0]), coordinate(1, ijk[1]), coordinate(2, ijk[2])};
-    if (fraction > 0.0) {
-      const std::array<bool, 3> moves{0 < ijk[0] && ijk[0] < n[0], 0 < ijk[1] && ijk[1] < n[1],
-                                      0 < ijk[2] && ijk[2] < n[2]};
-      if (moves[0] || moves[1] || moves[2]) {
-        const std::array<double, 3> r = perturbation_direction(options, part_index, ijk, moves);
-        for (int c = 0; c < 3; ++c)
-          x[c] += fraction * (options.box_max[c] - options.box_min[c]) / static_cast<double>(n[c]) * r[c];
-      }
-    }
-    return x;
-  };
+  auto corner_point = [&](const std::array<int, 3>& ijk) { return box_point(options, part_index, ijk); };
   std::uint32_t next = part.first_node;  // ids stay below no_node: at most 2^32 - 1 nodes in all
   for (int k = 0; k < size[2]; ++k)
     for (int j = 0; j < size[1]; ++j)
@@ -234,6 +197,53 @@ double graded_fraction(int i, int n, double grading) {
   if (grading == 1.0 || n == 1) return static_cast<double>(i) / static_cast<double>(n);
   const double r = std::pow(grading, 1.0 / static_cast<double>(n - 1));
   return (std::pow(r, i) - 1.0) / (std::pow(r, n) - 1.0);
+}
+
+std::array<double, 6> box_normal_lengths(const input::PartOptions& options) {
+  std::array<double, 6> lengths{};
+  const auto& n = options.elements;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double length = options.box_max[axis] - options.box_min[axis];
+    const double grading = options.grading[axis];
+    lengths[std::size_t(2 * axis)] =
+        grading == 1.0 ? length / n[axis] : length * graded_fraction(1, n[axis], grading);
+    lengths[std::size_t(2 * axis + 1)] =
+        grading == 1.0 ? length / n[axis] : length * (1.0 - graded_fraction(n[axis] - 1, n[axis], grading));
+  }
+  return lengths;
+}
+
+// Grid coordinates x_i = min + (max - min) i / n, written so that the last node lands
+// exactly on max; graded: x_i = min + (max - min) tau_i (graded_fraction). With the
+// optional distortion (parts[i].perturbation): x_c += fraction h_c r_c, with
+// h_c = (max_c - min_c) / n_c the element length along c (length units) and r a random
+// vector of length at most 1 (perturbation_direction) over the components along which
+// the node is strictly inside the grid (0 < ijk[c] < n_c), so every face stays plane
+// and in place. Each node so moves by at most fraction h: in a plane grid of squares
+// no corner angle can then close before fraction = 1/(2 sqrt 2) (two neighbours each
+// moved by fraction h turn an edge by at most that much).
+std::array<double, 3> box_point(const input::PartOptions& options, int part_index,
+                                const std::array<int, 3>& ijk) {
+  const auto& n = options.elements;
+  auto coordinate = [&](int axis, int index) {
+    const double lo = options.box_min[axis], hi = options.box_max[axis];
+    if (index == n[axis]) return hi;
+    if (options.grading[axis] != 1.0)
+      return lo + (hi - lo) * graded_fraction(index, n[axis], options.grading[axis]);
+    return lo + (hi - lo) * static_cast<double>(index) / static_cast<double>(n[axis]);
+  };
+  std::array<double, 3> x{coordinate(0, ijk[0]), coordinate(1, ijk[1]), coordinate(2, ijk[2])};
+  const double fraction = options.perturbation_fraction;
+  if (fraction > 0.0) {
+    const std::array<bool, 3> moves{0 < ijk[0] && ijk[0] < n[0], 0 < ijk[1] && ijk[1] < n[1],
+                                    0 < ijk[2] && ijk[2] < n[2]};
+    if (moves[0] || moves[1] || moves[2]) {
+      const std::array<double, 3> r = perturbation_direction(options, part_index, ijk, moves);
+      for (int c = 0; c < 3; ++c)
+        x[c] += fraction * (options.box_max[c] - options.box_min[c]) / static_cast<double>(n[c]) * r[c];
+    }
+  }
+  return x;
 }
 
 Mesh build_mesh(const input::Deck& deck) {
@@ -378,7 +388,13 @@ Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
     throw std::logic_error("face_of: part " + std::to_string(part_index) + " has no face " +
                            input::name(side));
   }
-  const auto& n = part.elements;
+  return lattice_face(part.elements, part.order, side, part.normal_lengths,
+                      [&](int i, int j, int k) { return part.node_at(i, j, k); });
+}
+
+Face lattice_face(const std::array<int, 3>& n, int order, input::PartFace side,
+                  const std::array<double, 6>& normal_lengths,
+                  const std::function<std::uint32_t(int, int, int)>& node_at_lattice) {
   // The face is the grid plane axis = fixed; (p, q) are its in-plane axes,
   // ordered so that e_p x e_q is the outward normal.
   int axis = 0, p = 0, q = 0, fixed = 0;
@@ -411,17 +427,16 @@ Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
       throw std::logic_error(std::string("face_of: a box part has no face ") + input::name(side));
   }
   // Lattice point (a, b) of the face plane, in lattice units along p and q.
-  const int order = part.order;
   auto node_at = [&](int a, int b) {
     std::array<int, 3> ijk{};
     ijk[axis] = order * fixed;
     ijk[p] = a;
     ijk[q] = b;
-    return part.node_at(ijk[0], ijk[1], ijk[2]);
+    return node_at_lattice(ijk[0], ijk[1], ijk[2]);
   };
   Face face;
   // The element length normal to the face: (max - min) / n, or the graded first or last one.
-  face.normal_length = part.normal_lengths[static_cast<std::size_t>(2 * axis + (fixed == 0 ? 0 : 1))];
+  face.normal_length = normal_lengths[static_cast<std::size_t>(2 * axis + (fixed == 0 ? 0 : 1))];
   for (int b = 0; b <= order * n[q]; ++b)
     for (int a = 0; a <= order * n[p]; ++a)
       if (const std::uint32_t node = node_at(a, b); node != no_node) face.nodes.push_back(node);

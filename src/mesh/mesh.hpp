@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -136,6 +137,19 @@ inline constexpr std::array<std::array<int, 3>, 20> brick_offsets{
     {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 2}, {2, 2, 2},
      {0, 2, 2}, {1, 0, 0}, {2, 1, 0}, {1, 2, 0}, {0, 1, 0}, {1, 0, 2}, {2, 1, 2},
      {1, 2, 2}, {0, 1, 2}, {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}}};
+
+// The box part's pieces as functions of the lattice, for a rank that builds only its
+// own elements (solver/rank_setup.hpp) and must get the bits build_mesh gives:
+// the corner grid point (i, j, k) of part `part_index` (m, with its perturbation),
+// and the element lengths normal to its sides xmin, xmax, ..., zmax (m).
+std::array<double, 3> box_point(const input::PartOptions& options, int part_index,
+                                const std::array<int, 3>& ijk);
+std::array<double, 6> box_normal_lengths(const input::PartOptions& options);
+// A side of a box part of n elements of this order (1 or 2), with node_at(i, j, k) the
+// node at lattice point (i, j, k) (no_node where none is): face_of's box faces.
+Face lattice_face(const std::array<int, 3>& n, int order, input::PartFace side,
+                  const std::array<double, 6>& normal_lengths,
+                  const std::function<std::uint32_t(int, int, int)>& node_at);
 
 // Grid fraction tau_i in [0, 1] of grid point i of n elements whose lengths change
 // geometrically from the first to the last by the ratio `grading` (last / first):

@@ -105,6 +105,7 @@ Json to_json(const RunSummary& s) {
   mpi["partition"] = s.mpi.partition;
   mpi["edge_cut"] = s.mpi.edge_cut;
   mpi["weigh"] = s.mpi.weigh;
+  mpi["setup"] = s.mpi.setup;
   Json per_rank = Json::object();
   auto column = [&](const char* key, double output::MpiSummary::Rank::*member) {
     Json values = Json::array();

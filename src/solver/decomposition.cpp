@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -21,11 +22,11 @@ namespace {
 // Rank r's rows of a dataset of n rows on p ranks: [n r / p, n (r + 1) / p).
 std::size_t first_row(std::size_t n, int r, int p) { return n * std::size_t(r) / std::size_t(p); }
 
-// How the owners' items (owner_of[global], sent in ascending global order) reach
-// the ranks that write their rows. `mine`: this rank's owned items, local ids
-// sorted by global id (global_of).
-RowExchange row_exchange(const mpi::Communicator& comm, std::size_t n, const std::vector<int>& owner_of,
-                         std::vector<std::uint32_t> mine, const std::vector<std::uint32_t>& global_of) {
+}  // namespace
+
+RowExchange row_exchange(const mpi::Communicator& comm, std::size_t n,
+                         const std::function<int(std::size_t)>& owner_of, std::vector<std::uint32_t> mine,
+                         const std::vector<std::uint32_t>& global_of) {
   RowExchange x;
   const int p = comm.size;
   x.begin = first_row(n, comm.rank, p);
@@ -40,7 +41,9 @@ RowExchange row_exchange(const mpi::Communicator& comm, std::size_t n, const std
     ++x.send_counts[std::size_t(destination)];
   }
   x.receive_counts.assign(std::size_t(p), 0);
-  for (std::size_t g = x.begin; g < x.end; ++g) ++x.receive_counts[std::size_t(owner_of[g])];
+  std::vector<int> owner(x.end - x.begin);
+  for (std::size_t g = x.begin; g < x.end; ++g) owner[g - x.begin] = owner_of(g);
+  for (const int r : owner) ++x.receive_counts[std::size_t(r)];
   x.send_displacements.assign(std::size_t(p), 0);
   x.receive_displacements.assign(std::size_t(p), 0);
   for (int r = 1; r < p; ++r) {
@@ -52,11 +55,10 @@ RowExchange row_exchange(const mpi::Communicator& comm, std::size_t n, const std
   x.receive_rows.resize(x.end - x.begin);
   std::vector<int> next = x.receive_displacements;
   for (std::size_t g = x.begin; g < x.end; ++g)
-    x.receive_rows[std::size_t(next[std::size_t(owner_of[g])]++)] = static_cast<std::uint32_t>(g - x.begin);
+    x.receive_rows[std::size_t(next[std::size_t(owner[g - x.begin])]++)] =
+        static_cast<std::uint32_t>(g - x.begin);
   return x;
 }
-
-}  // namespace
 
 std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mesh::Mesh& mesh) {
   std::vector<std::uint32_t> nodes;
@@ -131,7 +133,7 @@ WholeModel whole_model(const Model& global, const mpi::Communicator& comm, Parti
 // additions on one rank), the messages of each block and colour step (d.steps, by
 // global block); and which nodes are shared and owned.
 void plan_force_exchange(const WholeModel& w, Decomposition& d) {
-  const std::size_t local_nodes = d.global_node.size(), blocks = w.model.blocks.size();
+  const std::size_t local_nodes = d.global_node.size();
   std::vector<std::vector<std::pair<int, int>>> chain(local_nodes);
   std::vector<std::uint32_t> block_of(local_nodes, 0);
   w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int colour) {
@@ -142,59 +144,9 @@ void plan_force_exchange(const WholeModel& w, Decomposition& d) {
       if (chain[i].empty() || chain[i].back() != std::pair{colour, rank}) chain[i].emplace_back(colour, rank);
     });
   });
-  d.steps.resize(blocks);
-  int tag = 1;
-  for (std::size_t b = 0; b < blocks; ++b) {
-    d.steps[b].resize(w.model.blocks[b].colours.size() + 1);
-    for (auto& step : d.steps[b]) step.tag = tag++;
-  }
-  // [block][step] -> peer -> nodes
-  std::vector<std::vector<std::map<int, std::vector<std::uint32_t>>>> receive(blocks), send(blocks);
-  for (std::size_t b = 0; b < blocks; ++b) {
-    receive[b].resize(d.steps[b].size());
-    send[b].resize(d.steps[b].size());
-  }
-  const int me = w.me;
-  d.owned.assign(local_nodes, 0);
-  for (std::size_t i = 0; i < local_nodes; ++i) {
-    const std::uint32_t g = d.global_node[i];
-    d.owned[i] = w.mine[g] != 0 && w.owner[g] == me;
-    if (w.mine[g] == 0) continue;
-    auto& links = chain[i];
-    std::sort(links.begin(), links.end());
-    links.erase(std::unique(links.begin(), links.end()), links.end());
-    std::vector<int> holders;
-    for (const auto& link : links) holders.push_back(link.second);
-    std::sort(holders.begin(), holders.end());
-    holders.erase(std::unique(holders.begin(), holders.end()), holders.end());
-    if (holders.size() < 2) continue;
-    ++d.shared_nodes;
-    const std::size_t b = block_of[i];
-    const auto node = static_cast<std::uint32_t>(i);
-    // The running sum passes to the next chunk's rank before its colour ...
-    for (std::size_t j = 1; j < links.size(); ++j) {
-      const auto [colour, rank] = links[j];
-      const int previous = links[j - 1].second;
-      if (rank == previous) continue;
-      if (rank == me) receive[b][std::size_t(colour)][previous].push_back(node);
-      if (previous == me) send[b][std::size_t(colour) - 1][rank].push_back(node);
-    }
-    // ... and the last one's total to every other holder, after the last colour.
-    const std::size_t last_step = d.steps[b].size() - 1;
-    const int last = links.back().second;
-    for (const int rank : holders) {
-      if (rank == last) continue;
-      if (rank == me) receive[b][last_step][last].push_back(node);
-      if (last == me) send[b][last_step - 1][rank].push_back(node);
-    }
-  }
-  for (std::size_t b = 0; b < blocks; ++b)
-    for (std::size_t k = 0; k < d.steps[b].size(); ++k) {
-      for (auto& [rank, nodes] : receive[b][k])
-        d.steps[b][k].receive.push_back({rank, nodes, std::vector<double>(3 * nodes.size())});
-      for (auto& [rank, nodes] : send[b][k])
-        d.steps[b][k].send.push_back({rank, nodes, std::vector<double>(3 * nodes.size())});
-    }
+  std::vector<std::size_t> colours;
+  for (const element::ElementBlock& block : w.model.blocks) colours.push_back(block.colours.size());
+  plan_force_exchange(d, w.me, std::move(chain), block_of, colours);
 }
 
 // This rank's blocks: its chunks of each block (element::slice_block), elements
@@ -233,19 +185,106 @@ void cut_blocks(const WholeModel& w, Model& m, Decomposition& d) {
       }
   }
   std::size_t first_element = 0;
-  std::vector<int> stamp(local_nodes, -1);
-  std::vector<std::vector<Decomposition::ColourStep>> steps;
   for (std::size_t b = 0; b < blocks; ++b) {
+    if (my_chunks[b].empty()) continue;
+    m.blocks.push_back(element::slice_block(global.blocks[b], my_chunks[b],
+                                            m.mesh.connectivity.data() + first_connectivity[b],
+                                            static_cast<std::uint32_t>(first_element)));
+    first_element += m.blocks.back().count;
+  }
+  split_colour_steps(my_chunks, m, d);
+}
+
+// The rows of the output datasets this rank writes, and where its owned values go.
+void plan_output_rows(const WholeModel& w, Decomposition& d) {
+  std::vector<int> element_rank(w.model.mesh.element_count(), 0);
+  w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int) {
+    const element::ElementBlock& block = w.model.blocks[b];
+    for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e)
+      element_rank[block.first_element + e] = rank;
+  });
+  std::vector<std::uint32_t> owned_nodes, local_elements(d.global_element.size());
+  for (std::size_t i = 0; i < d.owned.size(); ++i)
+    if (d.owned[i] != 0) owned_nodes.push_back(static_cast<std::uint32_t>(i));
+  std::iota(local_elements.begin(), local_elements.end(), 0u);
+  d.node_rows = row_exchange(
+      d.comm, d.global_nodes, [&](std::size_t g) { return w.owner[g]; }, std::move(owned_nodes),
+      d.global_node);
+  d.element_rows = row_exchange(
+      d.comm, d.global_elements, [&](std::size_t e) { return element_rank[e]; }, std::move(local_elements),
+      d.global_element);
+}
+
+}  // namespace
+
+void plan_force_exchange(Decomposition& d, int me, std::vector<std::vector<std::pair<int, int>>> chain,
+                         const std::vector<std::uint32_t>& block_of,
+                         const std::vector<std::size_t>& colours) {
+  const std::size_t local_nodes = d.global_node.size(), blocks = colours.size();
+  d.steps.resize(blocks);
+  int tag = 1;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    d.steps[b].resize(colours[b] + 1);
+    for (auto& step : d.steps[b]) step.tag = tag++;
+  }
+  // [block][step] -> peer -> nodes
+  std::vector<std::vector<std::map<int, std::vector<std::uint32_t>>>> receive(blocks), send(blocks);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    receive[b].resize(d.steps[b].size());
+    send[b].resize(d.steps[b].size());
+  }
+  d.owned.assign(local_nodes, 0);
+  for (std::size_t i = 0; i < local_nodes; ++i) {
+    auto& links = chain[i];
+    std::sort(links.begin(), links.end());
+    links.erase(std::unique(links.begin(), links.end()), links.end());
+    std::vector<int> holders;
+    for (const auto& link : links) holders.push_back(link.second);
+    std::sort(holders.begin(), holders.end());
+    holders.erase(std::unique(holders.begin(), holders.end()), holders.end());
+    d.owned[i] = !holders.empty() && holders.front() == me;  // the lowest holder owns it
+    if (holders.size() < 2) continue;
+    ++d.shared_nodes;
+    const std::size_t b = block_of[i];
+    const auto node = static_cast<std::uint32_t>(i);
+    // The running sum passes to the next chunk's rank before its colour ...
+    for (std::size_t j = 1; j < links.size(); ++j) {
+      const auto [colour, rank] = links[j];
+      const int previous = links[j - 1].second;
+      if (rank == previous) continue;
+      if (rank == me) receive[b][std::size_t(colour)][previous].push_back(node);
+      if (previous == me) send[b][std::size_t(colour) - 1][rank].push_back(node);
+    }
+    // ... and the last one's total to every other holder, after the last colour.
+    const std::size_t last_step = d.steps[b].size() - 1;
+    const int last = links.back().second;
+    for (const int rank : holders) {
+      if (rank == last) continue;
+      if (rank == me) receive[b][last_step][last].push_back(node);
+      if (last == me) send[b][last_step - 1][rank].push_back(node);
+    }
+  }
+  for (std::size_t b = 0; b < blocks; ++b)
+    for (std::size_t k = 0; k < d.steps[b].size(); ++k) {
+      for (auto& [rank, nodes] : receive[b][k])
+        d.steps[b][k].receive.push_back({rank, nodes, std::vector<double>(3 * nodes.size())});
+      for (auto& [rank, nodes] : send[b][k])
+        d.steps[b][k].send.push_back({rank, nodes, std::vector<double>(3 * nodes.size())});
+    }
+}
+
+void split_colour_steps(const std::vector<std::vector<std::uint32_t>>& my_chunks, const Model& m,
+                        Decomposition& d) {
+  std::vector<int> stamp(d.global_node.size(), -1);
+  std::vector<std::vector<Decomposition::ColourStep>> steps;
+  std::size_t local = 0;
+  for (std::size_t b = 0; b < my_chunks.size(); ++b) {
     if (my_chunks[b].empty()) {  // a block without chunks here takes no part in the exchange
       EXDYN_ASSERT(std::all_of(d.steps[b].begin(), d.steps[b].end(),
                                [](const auto& s) { return s.receive.empty() && s.send.empty(); }));
       continue;
     }
-    m.blocks.push_back(element::slice_block(global.blocks[b], my_chunks[b],
-                                            m.mesh.connectivity.data() + first_connectivity[b],
-                                            static_cast<std::uint32_t>(first_element)));
-    const element::ElementBlock& block = m.blocks.back();
-    first_element += block.count;
+    const element::ElementBlock& block = m.blocks[local++];
     for (std::size_t k = 0; k + 1 < d.steps[b].size(); ++k) {
       Decomposition::ColourStep& step = d.steps[b][k];
       const int mark = int(1000 * b + k);
@@ -263,25 +302,6 @@ void cut_blocks(const WholeModel& w, Model& m, Decomposition& d) {
   }
   d.steps = std::move(steps);
 }
-
-// The rows of the output datasets this rank writes, and where its owned values go.
-void plan_output_rows(const WholeModel& w, Decomposition& d) {
-  std::vector<int> element_rank(w.model.mesh.element_count(), 0);
-  w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int) {
-    const element::ElementBlock& block = w.model.blocks[b];
-    for (std::uint32_t e = block.chunk_begin[c]; e < block.chunk_begin[c + 1]; ++e)
-      element_rank[block.first_element + e] = rank;
-  });
-  std::vector<std::uint32_t> owned_nodes, local_elements(d.global_element.size());
-  for (std::size_t i = 0; i < d.owned.size(); ++i)
-    if (d.owned[i] != 0) owned_nodes.push_back(static_cast<std::uint32_t>(i));
-  std::iota(local_elements.begin(), local_elements.end(), 0u);
-  d.node_rows = row_exchange(d.comm, d.global_nodes, w.owner, std::move(owned_nodes), d.global_node);
-  d.element_rows =
-      row_exchange(d.comm, d.global_elements, element_rank, std::move(local_elements), d.global_element);
-}
-
-}  // namespace
 
 LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
                   const NodalVectors& global_initial_velocity, const mpi::Communicator& comm,

@@ -21,7 +21,9 @@
 // slave points against the master segments near them.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "common/mpi.hpp"
@@ -51,6 +53,15 @@ namespace exdyn::solver {
 std::vector<int> partition_chunks(const Model& model, int ranks,
                                   Partitioning partitioning = Partitioning::bisection,
                                   const std::vector<double>& costs = {});
+
+// The bisection of partition_chunks on the chunks' centroids (m), weights and blocks
+// (blocks one after the other), for a model that no rank holds whole (rank_setup.hpp).
+// elements: the model's, for the error when there are more ranks than chunks.
+std::vector<int> bisect_chunks(const std::vector<std::array<double, 3>>& centroid,
+                               const std::vector<double>& weight, const std::vector<std::uint32_t>& block_of,
+                               int ranks, std::size_t elements);
+// Throws InputError when `ranks` ranks cannot each get one of `chunks` chunks.
+void check_rank_count(int ranks, std::size_t chunks, std::size_t elements);
 
 // The figures of a partition (docs/parallel.md, "Partitions"): the chunk graph's edge
 // cut (the shared nodes summed over the pairs of chunks on different ranks) and the
@@ -95,6 +106,7 @@ struct Decomposition {
   std::size_t shared_nodes = 0;                // nodes held by more than one rank
   Partitioning partitioning = Partitioning::bisection;
   bool weighed_by_work = false;  // the chunks weighed by their measured work (load_balance.hpp)
+  bool set_up_by_rank = false;   // each rank built only its part (rank_setup.hpp), not the whole model
   long edge_cut = 0;             // of the whole partition (partition_figures), the same on every rank
 
   RowExchange node_rows, element_rows;
@@ -116,6 +128,24 @@ struct LocalRun {
   // its owner), for the contact's distribution (distributed_contact.hpp).
   std::vector<std::vector<int>> contact_holders;
 };
+
+// The pieces of localize that a rank building only its own part (rank_setup.hpp) shares.
+// How the owners' items (owner_of(global id) for this rank's rows) reach the ranks
+// that write their rows. `mine`: this rank's owned items (local ids; sorted here by
+// global id, global_of).
+RowExchange row_exchange(const mpi::Communicator& comm, std::size_t n,
+                         const std::function<int(std::size_t)>& owner_of, std::vector<std::uint32_t> mine,
+                         const std::vector<std::uint32_t>& global_of);
+// d.steps, d.owned and d.shared_nodes from the (colour, rank) of every chunk on each
+// local node (chain, in any order), the global block of each local node, and the
+// colours of each global block.
+void plan_force_exchange(Decomposition& d, int me, std::vector<std::vector<std::pair<int, int>>> chain,
+                         const std::vector<std::uint32_t>& block_of, const std::vector<std::size_t>& colours);
+// Splits each colour's chunks of this rank's blocks (m.blocks: one per global block with
+// chunks here, my_chunks[b] its global chunks) into those that wait for a running sum
+// and those that do not, and keeps d.steps for those blocks only.
+void split_colour_steps(const std::vector<std::vector<std::uint32_t>>& my_chunks, const Model& m,
+                        Decomposition& d);
 
 // Every node of the faces of the deck's contact pairs (global ids, ascending).
 std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mesh::Mesh& mesh);

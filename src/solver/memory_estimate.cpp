@@ -159,11 +159,13 @@ std::optional<std::uint64_t> available_memory(const std::string& meminfo_path) {
   return std::nullopt;
 }
 
-void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> available_bytes) {
+void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> available_bytes,
+                     MachineShare share) {
   const MemoryEstimate estimate = estimate_memory(deck);
   const bool too_many_nodes = estimate.nodes > max_nodes;
   const bool too_many_elements = estimate.elements > max_elements;
-  const bool too_large = available_bytes && estimate.bytes > double(*available_bytes);
+  const double need = estimate.bytes * double(share.ranks_here) / double(share.ranks);  // this machine's
+  const bool too_large = available_bytes && need > double(*available_bytes);
   if (!too_many_nodes && !too_many_elements && !too_large) return;
 
   double nodes_real = 0.0, elements_real = 0.0;
@@ -186,8 +188,13 @@ void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> avail
   if (too_many_nodes || too_many_elements)
     message += ", more than the " + std::to_string(max_nodes) + " nodes and " + std::to_string(max_elements) +
                " elements that the 32-bit indices of the mesh can number";
-  message += "; the run would need about " + format_bytes(estimate.bytes) + " of memory (" +
-             std::to_string(bytes_per_node) + " B per node, " +
+  if (share.ranks > 1)
+    message += "; the " + std::to_string(share.ranks_here) + " of its " + std::to_string(share.ranks) +
+               " ranks on this machine would need about " + format_bytes(need) + " of memory, " +
+               format_bytes(estimate.bytes) + " in all (";
+  else
+    message += "; the run would need about " + format_bytes(estimate.bytes) + " of memory (";
+  message += std::string() + std::to_string(bytes_per_node) + " B per node, " +
              (least == most ? "" : std::to_string(least) + " to ") + std::to_string(most) +
              " B per element) and " +
              (available_bytes ? format_bytes(double(*available_bytes)) + " are available (MemAvailable)"
@@ -195,6 +202,8 @@ void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> avail
   throw InputError(SourceLocation{deck.source_file, 0, 0}, "parts", message);
 }
 
-void check_mesh_size(const input::Deck& deck) { check_mesh_size(deck, available_memory()); }
+void check_mesh_size(const input::Deck& deck, MachineShare share) {
+  check_mesh_size(deck, available_memory(), share);
+}
 
 }  // namespace exdyn::solver

@@ -55,13 +55,21 @@ MemoryEstimate estimate_memory(const input::Deck& deck);
 // read or has no such line.
 std::optional<std::uint64_t> available_memory(const std::string& meminfo_path = "/proc/meminfo");
 
+// The ranks of a run and how many of them share this machine: a run set up rank by
+// rank (solver/rank_setup.hpp) needs about the model's memory times ranks_here / ranks
+// on this machine (each rank its part and a halo of one element).
+struct MachineShare {
+  int ranks = 1, ranks_here = 1;
+};
+
 // Throws InputError naming every part's element counts, the estimate and the
 // memory available when the mesh has more nodes than 32-bit node indices can
-// number (4294967295) or more elements than 2147483647, or when the estimate
-// exceeds `available_bytes` (no memory check when it is empty).
-void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> available_bytes);
+// number (4294967295) or more elements than 2147483647, or when the estimate (this
+// machine's share of it) exceeds `available_bytes` (no memory check when it is empty).
+void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> available_bytes,
+                     MachineShare share = {});
 
 // The same with the machine's MemAvailable (/proc/meminfo): build_model's first step.
-void check_mesh_size(const input::Deck& deck);
+void check_mesh_size(const input::Deck& deck, MachineShare share = {});
 
 }  // namespace exdyn::solver

@@ -161,16 +161,27 @@ std::vector<int> partition_chunks(const Model& model, int ranks, Partitioning pa
     for (std::size_t c = 0; c < chunks; ++c)
       weight[c] = total_cost > 0.0 ? std::max(costs[c] * total_elements / total_cost, 1.0) : weight[c];
   }
-  if (ranks < 1 || static_cast<std::size_t>(ranks) > chunks)
-    throw InputError(std::to_string(ranks) + " MPI ranks for a mesh of " +
-                     std::to_string(mesh.element_count()) + " elements in " + std::to_string(chunks) +
-                     " chunks of at most " + std::to_string(element::element_chunk) +
-                     ": every rank needs a chunk (docs/parallel.md); run on at most " +
-                     std::to_string(chunks) + " ranks");
   if (partitioning == Partitioning::metis) {
+    check_rank_count(ranks, chunks, mesh.element_count());
     if (ranks == 1) return std::vector<int>(chunks, 0);
     return metis_partition(chunk_nodes(model), weight, mesh.node_count(), ranks);
   }
+  return bisect_chunks(centroid, weight, block_of, ranks, mesh.element_count());
+}
+
+void check_rank_count(int ranks, std::size_t chunks, std::size_t elements) {
+  if (ranks < 1 || static_cast<std::size_t>(ranks) > chunks)
+    throw InputError(
+        std::to_string(ranks) + " MPI ranks for a mesh of " + std::to_string(elements) + " elements in " +
+        std::to_string(chunks) + " chunks of at most " + std::to_string(element::element_chunk) +
+        ": every rank needs a chunk (docs/parallel.md); run on at most " + std::to_string(chunks) + " ranks");
+}
+
+std::vector<int> bisect_chunks(const std::vector<std::array<double, 3>>& centroid,
+                               const std::vector<double>& weight, const std::vector<std::uint32_t>& block_of,
+                               int ranks, std::size_t elements) {
+  const std::size_t chunks = centroid.size();
+  check_rank_count(ranks, chunks, elements);
   std::vector<std::uint32_t> order(chunks);
   std::iota(order.begin(), order.end(), 0u);
   std::vector<int> rank_of(chunks, 0);

@@ -33,6 +33,7 @@
 #include "solver/load_balance.hpp"
 #include "solver/model.hpp"
 #include "solver/nodal_update.hpp"
+#include "solver/rank_setup.hpp"
 #include "solver/step_clock.hpp"
 #include "solver/step_passes.hpp"
 #include "solver/step_report.hpp"
@@ -105,28 +106,44 @@ class TimeLoop {
   int stop_requested_ = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
 };
 
-// On many ranks every rank builds the whole model, cuts out its part (the chunks
-// weighed by their elements or their measured work: load_balance.hpp) and its share of the contact
-// (distributed_contact.hpp), and keeps only those (decomposition.hpp). The stable step comes from
-// the whole model on every rank: the 20-node rule takes one element per group of
-// equal Jacobians, the group's first in the whole block, so a rank's part could
-// give another last bit (docs/parallel.md).
+// On many ranks a deck of boxes is set up rank by rank, each building only its part
+// (rank_setup.hpp); any other deck is built whole by every rank, which cuts out its
+// part (the chunks weighed by their elements or their measured work: load_balance.hpp)
+// and its share of the contact (distributed_contact.hpp), and keeps only those
+// (decomposition.hpp). The stable step of a whole model comes from it on every rank:
+// the 20-node rule takes one element per group of equal Jacobians, the group's first
+// in the whole block, so a rank's part could give another last bit (docs/parallel.md).
 TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output::RunSummary& summary)
     : deck_(deck), controls_(controls), summary_(summary) {
   const mpi::Communicator& comm = controls.comm;
-  model_ = build_model(deck);
-  NodalVectors initial_v = initial_velocity(deck, model_);
-  critical_dt_ = critical_time_step(model_);
-  clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, model_);
-  contact_ = build_contact(deck, model_, clock_->next(), critical_dt_);
-  const std::vector<std::uint32_t> contact_nodes =
-      comm.distributed() ? contact_face_nodes(deck, model_.mesh) : std::vector<std::uint32_t>{};
-  if (comm.distributed())  // the chunks weighed by their elements or their measured work
-    local_ = localize(model_, contact_nodes, initial_v, comm, controls.partitioning,
-                      controls.weigh_by_work ? chunk_costs(model_, contact_, initial_v, clock_->next(), comm)
-                                             : std::vector<double>{});
-  summary.nodes = static_cast<long>(model_.mesh.node_count());
-  summary.elements = static_cast<long>(model_.mesh.element_count());
+  NodalVectors initial_v;
+  std::vector<std::uint32_t> contact_nodes;
+  if (comm.distributed() && sets_up_by_rank(deck, controls.partitioning, controls.weigh_by_work)) {
+    RankSetup setup = set_up_rank(deck, comm);
+    critical_dt_ = setup.critical_dt;
+    clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, setup.run.model, &comm);
+    contact_ = build_contact(deck, setup.surfaces, clock_->next(), critical_dt_);
+    globalize_contact(contact_, setup.surface_nodes);
+    contact_nodes = std::move(setup.surface_nodes);
+    local_ = std::move(setup.run);
+    summary.nodes = static_cast<long>(setup.nodes);
+    summary.elements = static_cast<long>(setup.elements);
+  } else {
+    model_ = build_model(deck);
+    initial_v = initial_velocity(deck, model_);
+    critical_dt_ = critical_time_step(model_);
+    clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, model_);
+    contact_ = build_contact(deck, model_, clock_->next(), critical_dt_);
+    if (comm.distributed()) {  // the chunks weighed by their elements or their measured work
+      contact_nodes = contact_face_nodes(deck, model_.mesh);
+      local_ =
+          localize(model_, contact_nodes, initial_v, comm, controls.partitioning,
+                   controls.weigh_by_work ? chunk_costs(model_, contact_, initial_v, clock_->next(), comm)
+                                          : std::vector<double>{});
+    }
+    summary.nodes = static_cast<long>(model_.mesh.node_count());
+    summary.elements = static_cast<long>(model_.mesh.element_count());
+  }
   summary.dt = clock_->next();
 
   // From here on this rank's part only.

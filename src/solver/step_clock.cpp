@@ -10,7 +10,8 @@
 
 namespace exdyn::solver {
 
-StepClock::StepClock(const input::TimeOptions& time, double critical_dt, const Model& model) {
+StepClock::StepClock(const input::TimeOptions& time, double critical_dt, const Model& model,
+                     const mpi::Communicator* spread) {
   const TimeStepping fixed = time_stepping(time, critical_dt);
   end_time_ = time.end_time;
   courant_ = time.courant;
@@ -23,6 +24,13 @@ StepClock::StepClock(const input::TimeOptions& time, double critical_dt, const M
   for (const element::ElementBlock& block : model.blocks)
     if (!block.law.finite)
       fixed_part_ = std::min(fixed_part_, element::critical_time_step(block, model.mesh.x_ref));
+  if (spread != nullptr && spread->distributed()) {  // the whole model's: an exact minimum and "any"
+    double figures[2] = {fixed_part_, follows_ ? -1.0 : 0.0};
+    mpi::check(MPI_Allreduce(MPI_IN_PLACE, figures, 2, MPI_DOUBLE, MPI_MIN, spread->comm),
+               "MPI_Allreduce of the stable step");
+    fixed_part_ = figures[0];
+    follows_ = figures[1] < 0.0;
+  }
 }
 
 bool StepClock::last(long step) const {

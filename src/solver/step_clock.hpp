@@ -19,7 +19,10 @@ namespace exdyn::solver {
 class StepClock {
  public:
   // critical_dt: the reference mesh's stable step without the Courant factor, s.
-  StepClock(const input::TimeOptions& time, double critical_dt, const Model& model);
+  // spread: the ranks over which `model` is spread when each holds only its part of
+  // it (rank_setup.hpp); null when `model` is the whole model.
+  StepClock(const input::TimeOptions& time, double critical_dt, const Model& model,
+            const mpi::Communicator* spread = nullptr);
 
   bool follows_deformation() const { return follows_; }
   double time() const { return time_; }          // t^n, s

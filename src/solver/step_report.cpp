@@ -296,6 +296,7 @@ void summarise_ranks(const Decomposition& d, const ContactModel& contact, const 
   }
   out.partition = d.partitioning == Partitioning::metis ? "metis" : "bisection";
   out.weigh = d.weighed_by_work ? "work" : "elements";
+  out.setup = d.set_up_by_rank ? "by_rank" : "whole";
   out.edge_cut = d.edge_cut;
 }
 

@@ -109,6 +109,7 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                             {"partition", "bisection"},
                             {"edge_cut", 0},
                             {"weigh", "elements"},
+                            {"setup", "whole"},
                             {"per_rank",
                              {{"peak_resident_mb", Json::array()},
                               {"contact_nodes", Json::array()},

@@ -1,0 +1,618 @@
+// A run's setup on many ranks from the parts' lattices (rank_setup.hpp).
+#include "solver/rank_setup.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "common/errors.hpp"
+#include "element/element_family.hpp"
+#include "material/elastic.hpp"
+#include "material/material_law.hpp"
+#include "mesh/mesh.hpp"
+#include "solver/memory_estimate.hpp"
+
+namespace exdyn::solver {
+
+namespace {
+
+constexpr std::uint32_t chunk_size = element::element_chunk;
+
+// A box part of 8-node elements by numbers (mesh.hpp): node (i, j, k) is
+// first_node + i + (nx + 1) (j + (ny + 1) k), element (i, j, k) is i + nx (j + ny k)
+// of the part (first_element + that in the mesh), and the part is block `index`.
+struct BoxPart {
+  int index = 0;
+  const input::PartOptions* options = nullptr;
+  std::array<int, 3> n{};
+  std::uint32_t first_node = 0, node_count = 0, first_element = 0, element_count = 0;
+  std::size_t first_chunk = 0, chunks = 0;  // the block's chunks among all blocks'
+  std::array<std::vector<double>, 3> grid;  // grid coordinates along x, y, z (mesh::box_point), m
+
+  std::uint32_t node(const std::array<int, 3>& ijk) const {
+    return first_node +
+           static_cast<std::uint32_t>(
+               std::size_t(ijk[0]) +
+               std::size_t(n[0] + 1) * (std::size_t(ijk[1]) + std::size_t(n[1] + 1) * std::size_t(ijk[2])));
+  }
+  std::array<int, 3> node_ijk(std::uint32_t g) const {
+    std::size_t r = g - first_node;
+    const int i = int(r % std::size_t(n[0] + 1));
+    r /= std::size_t(n[0] + 1);
+    return {i, int(r % std::size_t(n[1] + 1)), int(r / std::size_t(n[1] + 1))};
+  }
+  std::array<int, 3> element_ijk(std::uint32_t e) const {
+    const auto nx = std::uint32_t(n[0]), ny = std::uint32_t(n[1]);
+    return {int(e % nx), int((e / nx) % ny), int(e / (nx * ny))};
+  }
+  // The corner (i, j, k) + offset of VTK node `local` (mesh::brick_offsets, order 1).
+  static std::array<int, 3> corner(const std::array<int, 3>& ijk, int local) {
+    const auto& d = mesh::brick_offsets[std::size_t(local)];
+    return {ijk[0] + d[0] / 2, ijk[1] + d[1] / 2, ijk[2] + d[2] / 2};
+  }
+  std::array<std::uint32_t, 8> element_nodes(std::uint32_t e) const {
+    const std::array<int, 3> ijk = element_ijk(e);
+    std::array<std::uint32_t, 8> nodes{};
+    for (int k = 0; k < 8; ++k) nodes[std::size_t(k)] = node(corner(ijk, k));
+    return nodes;
+  }
+  std::array<double, 3> point(const std::array<int, 3>& ijk) const {
+    return {grid[0][std::size_t(ijk[0])], grid[1][std::size_t(ijk[1])], grid[2][std::size_t(ijk[2])]};
+  }
+  // The part's elements around node ijk, ascending (at most 8); returns how many.
+  int elements_at(const std::array<int, 3>& ijk, std::array<std::uint32_t, 8>& out) const {
+    int count = 0;
+    for (int k = ijk[2] - 1; k <= ijk[2]; ++k)
+      for (int j = ijk[1] - 1; j <= ijk[1]; ++j)
+        for (int i = ijk[0] - 1; i <= ijk[0]; ++i)
+          if (i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2])
+            out[std::size_t(count++)] = std::uint32_t(i + n[0] * (j + n[1] * k));
+    return count;
+  }
+  // Whether node ijk lies on the side `side` of the part.
+  bool on_side(const std::array<int, 3>& ijk, input::PartFace side) const {
+    switch (side) {
+      case input::PartFace::xmin:
+        return ijk[0] == 0;
+      case input::PartFace::xmax:
+        return ijk[0] == n[0];
+      case input::PartFace::ymin:
+        return ijk[1] == 0;
+      case input::PartFace::ymax:
+        return ijk[1] == n[1];
+      case input::PartFace::zmin:
+        return ijk[2] == 0;
+      case input::PartFace::zmax:
+        return ijk[2] == n[2];
+      default:
+        throw std::logic_error(std::string("a box part has no face ") + input::name(side));
+    }
+  }
+};
+
+// The deck's parts as boxes, with their node, element and chunk ranges.
+struct Lattice {
+  std::vector<BoxPart> parts;
+  std::size_t nodes = 0, elements = 0, chunks = 0;
+
+  explicit Lattice(const input::Deck& deck) {
+    for (std::size_t p = 0; p < deck.parts.size(); ++p) {
+      const input::PartOptions& options = deck.parts[p];
+      BoxPart part;
+      part.index = int(p);
+      part.options = &options;
+      part.n = options.elements;
+      part.first_node = std::uint32_t(nodes);
+      part.node_count =
+          std::uint32_t(std::size_t(part.n[0] + 1) * std::size_t(part.n[1] + 1) * std::size_t(part.n[2] + 1));
+      part.first_element = std::uint32_t(elements);
+      part.element_count =
+          std::uint32_t(std::size_t(part.n[0]) * std::size_t(part.n[1]) * std::size_t(part.n[2]));
+      part.first_chunk = chunks;
+      part.chunks = (part.element_count + chunk_size - 1) / chunk_size;
+      for (int axis = 0; axis < 3; ++axis)
+        for (int i = 0; i <= part.n[std::size_t(axis)]; ++i) {
+          std::array<int, 3> ijk{0, 0, 0};
+          ijk[std::size_t(axis)] = i;
+          part.grid[std::size_t(axis)].push_back(
+              mesh::box_point(options, part.index, ijk)[std::size_t(axis)]);
+        }
+      nodes += part.node_count;
+      elements += part.element_count;
+      chunks += part.chunks;
+      parts.push_back(std::move(part));
+    }
+  }
+  const BoxPart& part_of_node(std::uint32_t g) const {
+    auto it = std::upper_bound(parts.begin(), parts.end(), g,
+                               [](std::uint32_t v, const BoxPart& p) { return v < p.first_node; });
+    return *(it - 1);
+  }
+  const BoxPart& part_of_element(std::size_t e) const {
+    auto it = std::upper_bound(parts.begin(), parts.end(), e,
+                               [](std::size_t v, const BoxPart& p) { return v < p.first_element; });
+    return *(it - 1);
+  }
+};
+
+// What every rank computes of every chunk: its centroid (partition_chunks' rule),
+// its colour (element_block.cpp's greedy colouring) and then its rank.
+struct Chunks {
+  std::vector<std::array<double, 3>> centroid;
+  std::vector<double> weight;
+  std::vector<std::uint32_t> block_of;
+  std::vector<int> colour, rank;
+  std::vector<std::size_t> colours;  // per block
+};
+
+// One pass over every element of every part, a chunk at a time. The colouring is
+// build_schedule's: a chunk takes the lowest colour that no earlier chunk sharing a
+// node has, with 64 colours per bit mask (past them, a new set of 64). Its masks are
+// kept for a window of node ids only: a chunk's nodes lie within [its first element's
+// corner 0, its last element's corner 6], both ascending with the chunk, so no later
+// chunk comes back below the current one's lowest node.
+Chunks walk_chunks(const Lattice& lattice) {
+  Chunks chunks;
+  for (const BoxPart& part : lattice.parts) {
+    auto first_node = [&](std::size_t c) { return part.element_nodes(std::uint32_t(c * chunk_size))[0]; };
+    auto last_node = [&](std::size_t c) {
+      return part.element_nodes(
+          std::uint32_t(std::min<std::size_t>((c + 1) * chunk_size, part.element_count) - 1))[6];
+    };
+    std::size_t span = 1;
+    for (std::size_t c = 0; c < part.chunks; ++c)
+      span = std::max<std::size_t>(span, last_node(c) - first_node(c) + 1);
+    std::size_t window = 1;
+    while (window < span) window *= 2;
+    std::vector<std::uint64_t> masks(window, 0);
+    std::int64_t highest = std::int64_t(part.first_node) - 1;  // nodes above it have no mask yet
+    std::size_t base = 0, colours = 0;
+    for (std::size_t c = 0; c < part.chunks; ++c) {
+      const auto begin = std::uint32_t(c * chunk_size),
+                 end = std::uint32_t(std::min<std::size_t>((c + 1) * chunk_size, part.element_count));
+      std::array<double, 3> sum{};
+      std::uint64_t taken = 0;
+      for (std::uint32_t e = begin; e < end; ++e) {
+        const std::array<int, 3> ijk = part.element_ijk(e);
+        for (int k = 0; k < 8; ++k) {
+          const std::array<int, 3> at = BoxPart::corner(ijk, k);
+          const std::array<double, 3> x = part.point(at);
+          for (std::size_t a = 0; a < 3; ++a) sum[a] += x[a];
+        }
+      }
+      const double elements = double(end - begin);
+      for (double& v : sum) v /= 8.0 * elements;
+      chunks.centroid.push_back(sum);
+      chunks.weight.push_back(elements);
+      chunks.block_of.push_back(std::uint32_t(part.index));
+
+      for (std::int64_t g = highest + 1; g <= std::int64_t(last_node(c)); ++g)
+        masks[std::size_t(g) & (window - 1)] = 0;
+      highest = std::max<std::int64_t>(highest, last_node(c));
+      for (std::uint32_t e = begin; e < end; ++e)
+        for (const std::uint32_t g : part.element_nodes(e)) taken |= masks[g & (window - 1)];
+      if (taken == ~std::uint64_t{0}) {
+        base += 64;
+        std::fill(masks.begin(), masks.end(), std::uint64_t{0});
+        taken = 0;
+      }
+      int colour = 0;
+      while (taken & (std::uint64_t{1} << colour)) ++colour;
+      for (std::uint32_t e = begin; e < end; ++e)
+        for (const std::uint32_t g : part.element_nodes(e))
+          masks[g & (window - 1)] |= std::uint64_t{1} << colour;
+      chunks.colour.push_back(int(base) + colour);
+      colours = std::max(colours, base + std::size_t(colour) + 1);
+    }
+    chunks.colours.push_back(colours);
+  }
+  return chunks;
+}
+
+// The chunks (global indices) of the elements around node g.
+int chunks_at(const BoxPart& part, std::uint32_t g, std::array<std::size_t, 8>& out) {
+  std::array<std::uint32_t, 8> elements{};
+  const int count = part.elements_at(part.node_ijk(g), elements);
+  int unique = 0;
+  for (int k = 0; k < count; ++k) {
+    const std::size_t c = part.first_chunk + elements[std::size_t(k)] / chunk_size;
+    if (std::find(out.begin(), out.begin() + unique, c) == out.begin() + unique)
+      out[std::size_t(unique++)] = c;
+  }
+  return unique;
+}
+
+// The lumped masses of `nodes` (global ids, ascending), kg: each from the elements
+// around it, in ascending order, by the family's rule (element::add_lumped_mass), so
+// every node gets one process's additions in one process's order.
+std::vector<double> masses_of(const input::Deck& deck, const Lattice& lattice,
+                              const std::vector<std::uint32_t>& nodes) {
+  std::vector<std::uint32_t> elements;  // global ids
+  for (const std::uint32_t g : nodes) {
+    const BoxPart& part = lattice.part_of_node(g);
+    std::array<std::uint32_t, 8> around{};
+    const int count = part.elements_at(part.node_ijk(g), around);
+    for (int k = 0; k < count; ++k) elements.push_back(part.first_element + around[std::size_t(k)]);
+  }
+  std::sort(elements.begin(), elements.end());
+  elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+  std::vector<std::uint32_t> halo;  // the nodes of those elements, ascending
+  for (const std::uint32_t e : elements) {
+    const BoxPart& part = lattice.part_of_element(e);
+    for (const std::uint32_t g : part.element_nodes(e - part.first_element)) halo.push_back(g);
+  }
+  std::sort(halo.begin(), halo.end());
+  halo.erase(std::unique(halo.begin(), halo.end()), halo.end());
+  auto index = [&](std::uint32_t g) {
+    return std::uint32_t(std::lower_bound(halo.begin(), halo.end(), g) - halo.begin());
+  };
+  NodalVectors x(halo.size());
+  for (std::size_t i = 0; i < halo.size(); ++i) {
+    const BoxPart& part = lattice.part_of_node(halo[i]);
+    const std::array<double, 3> p = part.point(part.node_ijk(halo[i]));
+    for (int c = 0; c < 3; ++c) x.component(c)[i] = p[std::size_t(c)];
+  }
+  std::vector<double> mass(halo.size(), 0.0);
+  for (std::size_t first = 0; first < elements.size();) {  // a block of each part's elements
+    const BoxPart& part = lattice.part_of_element(elements[first]);
+    std::size_t last = first;
+    std::vector<std::uint32_t> connectivity;
+    for (; last < elements.size() && elements[last] < part.first_element + part.element_count; ++last)
+      for (const std::uint32_t g : part.element_nodes(elements[last] - part.first_element))
+        connectivity.push_back(index(g));
+    const input::MaterialOptions& m = deck.materials.at(std::size_t(part.options->material_index));
+    element::ElementBlock block;  // what the lumping reads: the family, density and nodes
+    block.formulation = part.options->formulation;
+    block.family = &element::element_family(block.formulation);
+    block.nodes_per_element = 8;
+    block.material = material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density);
+    block.count = std::uint32_t(last - first);
+    block.connectivity = connectivity.data();
+    element::add_lumped_mass(block, x, mass);
+    first = last;
+  }
+  std::vector<double> result(nodes.size());
+  for (std::size_t k = 0; k < nodes.size(); ++k) result[k] = mass[index(nodes[k])];
+  return result;
+}
+
+// The nodes (global ids, ascending) of the faces the contact pairs and walls name.
+std::vector<std::uint32_t> surface_nodes_of(const input::Deck& deck, const Lattice& lattice) {
+  std::vector<std::uint32_t> nodes;
+  auto add = [&](const std::vector<input::FaceRef>& faces) {
+    for (const input::FaceRef& f : faces) {
+      const BoxPart& part = lattice.parts.at(std::size_t(f.part));
+      const mesh::Face face = mesh::lattice_face(part.n, 1, f.side, mesh::box_normal_lengths(*part.options),
+                                                 [&](int i, int j, int k) {
+                                                   return part.node({i, j, k});
+                                                 });
+      nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
+    }
+  };
+  for (const input::ContactOptions& pair : deck.contact) add(pair.slave), add(pair.master);
+  for (const input::RigidWallOptions& wall : deck.rigid_walls) add(wall.slave);
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
+// The fixed components of each of `nodes` (global ids, ascending): the indices into
+// `nodes` of those on a face of a boundary condition fixing component c.
+std::array<std::vector<std::uint32_t>, 3> fixed_of(const input::Deck& deck, const Lattice& lattice,
+                                                   const std::vector<std::uint32_t>& nodes) {
+  std::array<std::vector<std::uint32_t>, 3> fixed;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const BoxPart& part = lattice.part_of_node(nodes[i]);
+    const std::array<int, 3> ijk = part.node_ijk(nodes[i]);
+    for (std::size_t c = 0; c < 3; ++c) {
+      bool held = false;
+      for (const auto& bc : deck.boundary_conditions)
+        for (const input::FaceRef& f : bc.faces)
+          held = held || (bc.fix[c] && f.part == part.index && part.on_side(ijk, f.side));
+      if (held) fixed[c].push_back(std::uint32_t(i));
+    }
+  }
+  return fixed;
+}
+
+// The model of the contact faces alone (RankSetup::surfaces).
+Model surface_model(const input::Deck& deck, const Lattice& lattice,
+                    const std::vector<std::uint32_t>& nodes) {
+  Model m;
+  auto index = [&](std::uint32_t g) {
+    return std::uint32_t(std::lower_bound(nodes.begin(), nodes.end(), g) - nodes.begin());
+  };
+  m.mesh.x_ref.resize(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const BoxPart& part = lattice.part_of_node(nodes[i]);
+    const std::array<double, 3> p = part.point(part.node_ijk(nodes[i]));
+    for (int c = 0; c < 3; ++c) m.mesh.x_ref.component(c)[i] = p[std::size_t(c)];
+  }
+  std::vector<input::FaceRef> faces;
+  for (const input::ContactOptions& pair : deck.contact) {
+    faces.insert(faces.end(), pair.slave.begin(), pair.slave.end());
+    faces.insert(faces.end(), pair.master.begin(), pair.master.end());
+  }
+  for (const input::RigidWallOptions& wall : deck.rigid_walls)
+    faces.insert(faces.end(), wall.slave.begin(), wall.slave.end());
+  for (const BoxPart& part : lattice.parts) {
+    mesh::PartRange& range = m.mesh.parts.emplace_back();
+    range.first_node = part.first_node;
+    range.node_count = part.node_count;
+    range.first_element = part.first_element;
+    range.element_count = part.element_count;
+    range.elements = part.n;
+    range.normal_lengths = mesh::box_normal_lengths(*part.options);
+    for (const input::FaceRef& f : faces) {  // the part's faces as a mapped part has them
+      if (f.part != part.index) continue;
+      if (std::any_of(range.faces.begin(), range.faces.end(),
+                      [&](const auto& face) { return face.first == f.side; }))
+        continue;
+      range.faces.emplace_back(
+          f.side, mesh::lattice_face(part.n, 1, f.side, range.normal_lengths, [&](int i, int j, int k) {
+            return index(part.node({i, j, k}));
+          }));
+    }
+  }
+  m.mass = masses_of(deck, lattice, nodes);
+  m.inverse_mass.resize(m.mass.size());
+  for (std::size_t i = 0; i < m.mass.size(); ++i) m.inverse_mass[i] = 1.0 / m.mass[i];
+  m.fixed_nodes = fixed_of(deck, lattice, nodes);
+  return m;
+}
+
+}  // namespace
+
+bool sets_up_by_rank(const input::Deck& deck, Partitioning partitioning, bool weigh_by_work) {
+  if (partitioning != Partitioning::bisection || weigh_by_work || deck.parts.empty()) return false;
+  return std::all_of(deck.parts.begin(), deck.parts.end(), [](const input::PartOptions& part) {
+    return part.geometry == input::Geometry::box && !input::is_quadratic(part.formulation) &&
+           part.perturbation_fraction == 0.0;
+  });
+}
+
+RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm) {
+  // The memory check with this machine's share of the model.
+  MPI_Comm here = MPI_COMM_NULL;
+  mpi::check(MPI_Comm_split_type(comm.comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &here),
+             "MPI_Comm_split_type of the ranks on this machine");
+  int ranks_here = 1;
+  MPI_Comm_size(here, &ranks_here);
+  MPI_Comm_free(&here);
+  check_mesh_size(deck, MachineShare{comm.size, ranks_here});
+
+  const Lattice lattice(deck);
+  const int me = comm.rank;
+  RankSetup setup;
+  setup.nodes = lattice.nodes;
+  setup.elements = lattice.elements;
+  Chunks chunks = walk_chunks(lattice);
+  chunks.rank = bisect_chunks(chunks.centroid, chunks.weight, chunks.block_of, comm.size, lattice.elements);
+  chunks.centroid = {};
+
+  LocalRun& run = setup.run;
+  Decomposition& d = run.decomposition;
+  Model& m = run.model;
+  d.comm = comm;
+  d.global_nodes = lattice.nodes;
+  d.global_elements = lattice.elements;
+  d.partitioning = Partitioning::bisection;
+  d.set_up_by_rank = true;
+
+  // This rank's chunks, elements and nodes (in ascending global order).
+  std::vector<std::vector<std::uint32_t>> my_chunks(lattice.parts.size());
+  for (const BoxPart& part : lattice.parts)
+    for (std::size_t c = 0; c < part.chunks; ++c)
+      if (chunks.rank[part.first_chunk + c] == me)
+        my_chunks[std::size_t(part.index)].push_back(std::uint32_t(c));
+  for (const BoxPart& part : lattice.parts)
+    for (const std::uint32_t c : my_chunks[std::size_t(part.index)])
+      for (std::uint32_t e = c * chunk_size; e < std::min((c + 1) * chunk_size, part.element_count); ++e) {
+        d.global_element.push_back(part.first_element + e);
+        for (const std::uint32_t g : part.element_nodes(e)) d.global_node.push_back(g);
+      }
+  std::sort(d.global_node.begin(), d.global_node.end());
+  d.global_node.erase(std::unique(d.global_node.begin(), d.global_node.end()), d.global_node.end());
+  auto local_of = [&](std::uint32_t g) {
+    return std::uint32_t(std::lower_bound(d.global_node.begin(), d.global_node.end(), g) -
+                         d.global_node.begin());
+  };
+  const std::size_t local_nodes = d.global_node.size();
+
+  // The running sums' plan from the chunks around each node; the edge cut counted at
+  // the owners (each pair of chunks on different ranks, once per node they share).
+  {
+    std::vector<std::vector<std::pair<int, int>>> chain(local_nodes);
+    std::vector<std::uint32_t> block_of(local_nodes);
+    long edge_cut = 0;
+    for (std::size_t i = 0; i < local_nodes; ++i) {
+      const BoxPart& part = lattice.part_of_node(d.global_node[i]);
+      std::array<std::size_t, 8> around{};
+      const int count = chunks_at(part, d.global_node[i], around);
+      int owner = std::numeric_limits<int>::max();
+      for (int k = 0; k < count; ++k) {
+        chain[i].emplace_back(chunks.colour[around[std::size_t(k)]], chunks.rank[around[std::size_t(k)]]);
+        owner = std::min(owner, chunks.rank[around[std::size_t(k)]]);
+      }
+      if (owner == me)
+        for (int a = 0; a < count; ++a)
+          for (int b = a + 1; b < count; ++b)
+            edge_cut += chunks.rank[around[std::size_t(a)]] != chunks.rank[around[std::size_t(b)]];
+      block_of[i] = std::uint32_t(part.index);
+    }
+    mpi::check(MPI_Allreduce(&edge_cut, &d.edge_cut, 1, MPI_LONG, MPI_SUM, comm.comm),
+               "MPI_Allreduce of the edge cut");
+    plan_force_exchange(d, me, std::move(chain), block_of, chunks.colours);
+  }
+
+  // The rank's mesh and blocks: its chunks of each part, in the whole model's order.
+  m.mesh.x_ref.resize(local_nodes);
+  for (std::size_t i = 0; i < local_nodes; ++i) {
+    const BoxPart& part = lattice.part_of_node(d.global_node[i]);
+    const std::array<double, 3> p = part.point(part.node_ijk(d.global_node[i]));
+    for (int c = 0; c < 3; ++c) m.mesh.x_ref.component(c)[i] = p[std::size_t(c)];
+  }
+  for (const BoxPart& part : lattice.parts) {
+    mesh::PartRange& range = m.mesh.parts.emplace_back();
+    range.first_node = part.first_node;
+    range.node_count = part.node_count;
+    range.first_element = part.first_element;
+    range.element_count = part.element_count;
+    range.elements = part.n;
+  }
+  std::vector<std::size_t> first_connectivity;
+  for (const BoxPart& part : lattice.parts) {
+    first_connectivity.push_back(m.mesh.connectivity.size());
+    for (const std::uint32_t c : my_chunks[std::size_t(part.index)])
+      for (std::uint32_t e = c * chunk_size; e < std::min((c + 1) * chunk_size, part.element_count); ++e) {
+        for (const std::uint32_t g : part.element_nodes(e)) m.mesh.connectivity.push_back(local_of(g));
+        m.mesh.element_part.push_back(part.index);
+      }
+  }
+  // Flags a block's kernel depends on, which each rank decides from its own elements:
+  // they must agree (the same kernels as one process's).
+  std::vector<int> low(2 * lattice.parts.size(), 1), high(2 * lattice.parts.size(), 0);
+  std::uint32_t first_element = 0;
+  for (const BoxPart& part : lattice.parts) {
+    const auto& mine = my_chunks[std::size_t(part.index)];
+    if (mine.empty()) continue;
+    const input::PartOptions& options = *part.options;
+    const input::MaterialOptions& material = deck.materials.at(std::size_t(options.material_index));
+    std::uint32_t count = 0;
+    for (const std::uint32_t c : mine)
+      count += std::min((c + 1) * chunk_size, part.element_count) - c * chunk_size;
+    m.blocks.push_back(element::make_element_block(
+        options.formulation,
+        material::elastic_constants(material.youngs_modulus, material.poissons_ratio, material.density),
+        options.hourglass_coefficient, first_element, count,
+        m.mesh.connectivity.data() + first_connectivity[std::size_t(part.index)], m.mesh.x_ref,
+        material::make_law(material, input::resolved_kinematics(options, material), options.f_bar)));
+    element::ElementBlock& block = m.blocks.back();
+    first_element += count;
+    // The whole block's colours, each keeping its index (possibly with no chunk here).
+    EXDYN_ASSERT(block.chunk_begin.size() == mine.size() + 1);
+    block.colours.assign(chunks.colours[std::size_t(part.index)], {});
+    for (std::size_t local = 0; local < mine.size(); ++local)
+      block.colours[std::size_t(chunks.colour[part.first_chunk + mine[local]])].push_back(
+          std::uint32_t(local));
+    const auto b = 2 * std::size_t(part.index);
+    low[b] = high[b] = block.constant_jacobian ? 1 : 0;
+    low[b + 1] = high[b + 1] = block.axis_aligned ? 1 : 0;
+  }
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, low.data(), int(low.size()), MPI_INT, MPI_MIN, comm.comm),
+             "MPI_Allreduce of the blocks' layouts");
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, high.data(), int(high.size()), MPI_INT, MPI_MAX, comm.comm),
+             "MPI_Allreduce of the blocks' layouts");
+  if (low != high)
+    throw std::logic_error("rank setup: the ranks chose different element layouts for a block");
+  split_colour_steps(my_chunks, m, d);
+
+  // Masses of the rank's nodes; the owned ones count in the energies.
+  m.mass = masses_of(deck, lattice, d.global_node);
+  m.inverse_mass.resize(local_nodes);
+  m.counted_mass.resize(local_nodes);
+  for (std::size_t i = 0; i < local_nodes; ++i) {
+    EXDYN_ASSERT(m.mass[i] > 0.0);
+    m.inverse_mass[i] = 1.0 / m.mass[i];
+    m.counted_mass[i] = d.owned[i] != 0 ? m.mass[i] : 0.0;
+  }
+  m.fixed_nodes = fixed_of(deck, lattice, d.global_node);
+  if (!deck.loads.empty()) {  // build_model's gravity, node by node
+    m.load_acceleration.resize(local_nodes);
+    for (const input::LoadOptions& load : deck.loads)
+      for (std::size_t i = 0; i < local_nodes; ++i) {
+        const int p = lattice.part_of_node(d.global_node[i]).index;
+        if (!load.parts.empty() && std::find(load.parts.begin(), load.parts.end(), p) == load.parts.end())
+          continue;
+        for (int c = 0; c < 3; ++c) m.load_acceleration.component(c)[i] += load.gravity[std::size_t(c)];
+      }
+  }
+  // initial_velocity's values, node by node.
+  run.initial_velocity.resize(local_nodes);
+  for (std::size_t i = 0; i < local_nodes; ++i) {
+    const BoxPart& part = lattice.part_of_node(d.global_node[i]);
+    const input::PartOptions& options = *part.options;
+    for (int c = 0; c < 3; ++c)
+      run.initial_velocity.component(c)[i] = options.initial_velocity[std::size_t(c)];
+    if (const auto& spin = options.initial_angular_velocity) {
+      const input::Vec3& point = (*spin)[0];
+      const input::Vec3& omega = (*spin)[1];
+      const double r[3] = {m.mesh.x_ref.x[i] - point[0], m.mesh.x_ref.y[i] - point[1],
+                           m.mesh.x_ref.z[i] - point[2]};
+      run.initial_velocity.x[i] += omega[1] * r[2] - omega[2] * r[1];
+      run.initial_velocity.y[i] += omega[2] * r[0] - omega[0] * r[2];
+      run.initial_velocity.z[i] += omega[0] * r[1] - omega[1] * r[0];
+    }
+  }
+  apply_fixed_components(m, run.initial_velocity);
+
+  // The whole model's stable step: the minimum over the elements, exact on any ranks.
+  double dt = critical_time_step(m);
+  mpi::check(MPI_Allreduce(&dt, &setup.critical_dt, 1, MPI_DOUBLE, MPI_MIN, comm.comm),
+             "MPI_Allreduce of the stable step");
+
+  // The output rows: a node's owner is the lowest rank of the chunks around it.
+  std::vector<std::uint32_t> owned, elements(d.global_element.size());
+  for (std::size_t i = 0; i < local_nodes; ++i)
+    if (d.owned[i] != 0) owned.push_back(std::uint32_t(i));
+  std::iota(elements.begin(), elements.end(), 0u);
+  d.node_rows = row_exchange(
+      comm, d.global_nodes,
+      [&](std::size_t g) {
+        std::array<std::size_t, 8> around{};
+        const BoxPart& part = lattice.part_of_node(std::uint32_t(g));
+        const int count = chunks_at(part, std::uint32_t(g), around);
+        int owner = std::numeric_limits<int>::max();
+        for (int k = 0; k < count; ++k) owner = std::min(owner, chunks.rank[around[std::size_t(k)]]);
+        return owner;
+      },
+      std::move(owned), d.global_node);
+  d.element_rows = row_exchange(
+      comm, d.global_elements,
+      [&](std::size_t e) {
+        const BoxPart& part = lattice.part_of_element(e);
+        return chunks.rank[part.first_chunk + (e - part.first_element) / chunk_size];
+      },
+      std::move(elements), d.global_element);
+
+  // The contact faces: their model, and the ranks holding each of their nodes.
+  setup.surface_nodes = surface_nodes_of(deck, lattice);
+  setup.surfaces = surface_model(deck, lattice, setup.surface_nodes);
+  run.contact_holders.resize(setup.surface_nodes.size());
+  for (std::size_t k = 0; k < setup.surface_nodes.size(); ++k) {
+    std::array<std::size_t, 8> around{};
+    const std::uint32_t g = setup.surface_nodes[k];
+    const int count = chunks_at(lattice.part_of_node(g), g, around);
+    std::vector<int>& holders = run.contact_holders[k];
+    for (int a = 0; a < count; ++a) holders.push_back(chunks.rank[around[std::size_t(a)]]);
+    std::sort(holders.begin(), holders.end());
+    holders.erase(std::unique(holders.begin(), holders.end()), holders.end());
+  }
+  return setup;
+}
+
+void globalize_contact(ContactModel& contact, const std::vector<std::uint32_t>& surface_nodes) {
+  auto ids = [&](std::vector<std::uint32_t>& nodes) {
+    for (std::uint32_t& n : nodes) n = surface_nodes[n];
+  };
+  auto segments = [&](std::vector<contact::SegmentNodes>& list) {
+    for (contact::SegmentNodes& s : list)
+      for (int k = 0; k < contact::node_count(s.type); ++k)
+        s.nodes[std::size_t(k)] = surface_nodes[s.nodes[std::size_t(k)]];
+  };
+  auto surfaces = [&](contact::ContactSurfaces& s) {
+    ids(s.slave_nodes);
+    ids(s.moving_nodes);
+    segments(s.slave_segments);
+    segments(s.segments);
+  };
+  for (ContactPair& pair : contact.pairs)
+    for (contact::ContactSurfaces& s : pair.passes) surfaces(s);
+  for (RigidWall& wall : contact.walls) surfaces(wall.surfaces);
+  ids(contact.nodes);
+}
+
+}  // namespace exdyn::solver

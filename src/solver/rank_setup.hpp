@@ -1,0 +1,49 @@
+// Setting up a run on many ranks without the whole model (docs/parallel.md, "Setup").
+//
+// For a deck whose parts are all boxes of 8-node elements (without perturbation),
+// every rank walks the parts' lattices chunk by chunk, keeping only a chunk's
+// centroid and colour: the partition and the colours of the whole model, the same
+// on every rank and the same as decomposition.hpp computes from a whole model. Then
+// each rank builds only its own elements and their nodes, and from the elements
+// around its nodes (a halo of one element, never kept) their lumped masses, adding
+// each node's element shares in one process's order. The contact surfaces are built
+// from the contact faces alone. No rank holds more than its part, one layer of the
+// lattice, one figure per chunk and the contact faces: the same bits as one process.
+// Other decks are set up by localize (decomposition.hpp), from the whole model.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/mpi.hpp"
+#include "input/options.hpp"
+#include "solver/contact_setup.hpp"
+#include "solver/decomposition.hpp"
+#include "solver/model.hpp"
+#include "solver/partitioning.hpp"
+
+namespace exdyn::solver {
+
+// True when the deck can be set up rank by rank: every part a box of hex8 or hex8r
+// elements without perturbation, partitioned by bisection weighed by elements.
+bool sets_up_by_rank(const input::Deck& deck, Partitioning partitioning, bool weigh_by_work);
+
+struct RankSetup {
+  LocalRun run;                         // this rank's model, velocities, decomposition, contact holders
+  double critical_dt = 0.0;             // the whole model's stable step without the Courant factor, s
+  std::size_t nodes = 0, elements = 0;  // of the whole model
+  // The contact faces' nodes (global ids, ascending) and a model of them alone (its
+  // node k is surface_nodes[k]: coordinates, masses, fixed components, the faces of its
+  // parts) for build_contact; globalize_contact renumbers what that builds.
+  std::vector<std::uint32_t> surface_nodes;
+  Model surfaces;
+};
+
+// Every rank calls it (collective over comm).
+RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm);
+
+// A contact model built on RankSetup::surfaces, renumbered to global node ids (the
+// renumbering keeps the order, so sorted lists stay sorted).
+void globalize_contact(ContactModel& contact, const std::vector<std::uint32_t>& surface_nodes);
+
+}  // namespace exdyn::solver
