@@ -594,6 +594,24 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm) {
   return setup;
 }
 
+LatticeChunks lattice_chunks(const input::Deck& deck, int ranks) {
+  const Lattice lattice(deck);
+  const Chunks chunks = walk_chunks(lattice);
+  return {chunks.colour,
+          bisect_chunks(chunks.centroid, chunks.weight, chunks.block_of, ranks, lattice.elements)};
+}
+
+std::vector<double> lattice_masses(const input::Deck& deck, const std::vector<std::uint32_t>& nodes) {
+  return masses_of(deck, Lattice(deck), nodes);
+}
+
+std::pair<std::vector<std::uint32_t>, Model> contact_faces_model(const input::Deck& deck) {
+  const Lattice lattice(deck);
+  std::vector<std::uint32_t> nodes = surface_nodes_of(deck, lattice);
+  Model model = surface_model(deck, lattice, nodes);
+  return {std::move(nodes), std::move(model)};
+}
+
 void globalize_contact(ContactModel& contact, const std::vector<std::uint32_t>& surface_nodes) {
   auto ids = [&](std::vector<std::uint32_t>& nodes) {
     for (std::uint32_t& n : nodes) n = surface_nodes[n];

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "common/mpi.hpp"
@@ -41,6 +42,17 @@ struct RankSetup {
 
 // Every rank calls it (collective over comm).
 RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm);
+
+// The pieces of set_up_rank that need no other rank, for the tests that hold them to
+// the whole model's (tests/solver/test_decomposition.cpp): each chunk's colour in its
+// block and its rank of `ranks` (blocks one after the other); the lumped masses of
+// `nodes` (global ids, ascending); the contact faces' nodes and model.
+struct LatticeChunks {
+  std::vector<int> colour, rank;
+};
+LatticeChunks lattice_chunks(const input::Deck& deck, int ranks);
+std::vector<double> lattice_masses(const input::Deck& deck, const std::vector<std::uint32_t>& nodes);
+std::pair<std::vector<std::uint32_t>, Model> contact_faces_model(const input::Deck& deck);
 
 // A contact model built on RankSetup::surfaces, renumbered to global node ids (the
 // renumbering keeps the order, so sorted lists stay sorted).

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <map>
+#include <numeric>
 #include <random>
 #include <set>
 #include <tuple>
@@ -18,6 +19,7 @@
 #include "solver/distributed_contact.hpp"
 #include "solver/load_balance.hpp"
 #include "solver/model.hpp"
+#include "solver/rank_setup.hpp"
 
 namespace {
 
@@ -288,6 +290,113 @@ TEST(SliceBlock, TheSameBitsAtTheNodesOfItsChunksAlone) {
       }
     }
   }
+}
+
+// Setting up rank by rank (solver/rank_setup.hpp) walks the lattice chunk by chunk in
+// place of the whole model: the colours, the partition, the masses and the contact
+// surfaces must be the whole model's, bit for bit. Decks: the plates (two parts), the
+// sliding block (two parts of other sizes, friction, gravity), the wall deck, and the
+// plates graded and long along x (a chunk spans rows: the colours' node window wraps).
+std::vector<input::Deck> lattice_decks() {
+  std::vector<input::Deck> decks{deck_of("plate_impact.yaml"), deck_of("sliding_block.yaml"),
+                                 deck_of("oblique_impact.yaml"), deck_of("plate_impact.yaml")};
+  decks[1].parts[0].elements = {16, 16, 2};
+  decks[1].parts[1].elements = {32, 28, 2};
+  decks[2].parts[0].elements = {80, 1, 40};
+  input::Deck& graded = decks[3];
+  graded.parts[0].elements = {700, 1, 30};
+  graded.parts[0].grading = {3.0, 1.0, 0.5};
+  graded.parts[1].elements = {650, 2, 3};
+  return decks;
+}
+
+TEST(RankSetup, ColoursAndPartitionAreTheWholeModels) {
+  for (const input::Deck& deck : lattice_decks()) {
+    ASSERT_TRUE(solver::sets_up_by_rank(deck, solver::Partitioning::bisection, false));
+    const solver::Model model = solver::build_model(deck);
+    std::vector<int> colour;
+    for (const auto& block : model.blocks) {
+      std::vector<int> of(block.chunk_begin.size() - 1, -1);
+      for (std::size_t k = 0; k < block.colours.size(); ++k)
+        for (const std::uint32_t c : block.colours[k]) of[c] = int(k);
+      colour.insert(colour.end(), of.begin(), of.end());
+    }
+    for (const int ranks : {1, 2, 3, 5}) {
+      if (std::size_t(ranks) > colour.size()) continue;
+      const solver::LatticeChunks chunks = solver::lattice_chunks(deck, ranks);
+      EXPECT_EQ(chunks.colour, colour) << deck.name;
+      EXPECT_EQ(chunks.rank, solver::partition_chunks(model, ranks))
+          << deck.name << ", " << ranks << " ranks";
+    }
+  }
+}
+
+TEST(RankSetup, MassesAreTheWholeModelsBitForBit) {
+  for (const input::Deck& deck : lattice_decks()) {
+    const solver::Model model = solver::build_model(deck);
+    std::vector<std::uint32_t> every(model.mesh.node_count()), some;
+    std::iota(every.begin(), every.end(), 0u);
+    for (std::uint32_t g = 0; g < every.size(); g += 7)
+      some.push_back(g);  // a sparse set: halos of their own
+    EXPECT_EQ(solver::lattice_masses(deck, every), model.mass) << deck.name;
+    const std::vector<double> masses = solver::lattice_masses(deck, some);
+    for (std::size_t k = 0; k < some.size(); ++k) ASSERT_EQ(masses[k], model.mass[some[k]]) << deck.name;
+  }
+}
+
+// The contact built on the faces alone and renumbered: the whole model's surfaces.
+TEST(RankSetup, ContactFromTheFacesIsTheWholeModels) {
+  for (const input::Deck& deck : lattice_decks()) {
+    const solver::Model model = solver::build_model(deck);
+    const double dt = solver::critical_time_step(model);
+    const solver::ContactModel whole = solver::build_contact(deck, model, 0.1 * dt, dt);
+    auto [nodes, faces] = solver::contact_faces_model(deck);
+    EXPECT_EQ(nodes, solver::contact_face_nodes(deck, model.mesh)) << deck.name;
+    solver::ContactModel built = solver::build_contact(deck, faces, 0.1 * dt, dt);
+    solver::globalize_contact(built, nodes);
+    EXPECT_EQ(built.nodes, whole.nodes) << deck.name;
+    auto same = [&](const contact::ContactSurfaces& a, const contact::ContactSurfaces& b) {
+      auto ids = [](const std::vector<contact::SegmentNodes>& list) {
+        std::vector<std::array<std::uint32_t, 8>> out;
+        for (const auto& s : list) out.push_back(s.nodes);
+        return out;
+      };
+      EXPECT_EQ(a.slave_nodes, b.slave_nodes) << deck.name;
+      EXPECT_EQ(a.moving_nodes, b.moving_nodes) << deck.name;
+      EXPECT_EQ(ids(a.slave_segments), ids(b.slave_segments)) << deck.name;
+      EXPECT_EQ(ids(a.segments), ids(b.segments)) << deck.name;
+      EXPECT_EQ(a.stiffness, b.stiffness) << deck.name;
+      EXPECT_EQ(a.normal_length, b.normal_length) << deck.name;
+      ASSERT_EQ(a.edges.size(), b.edges.size());
+      for (std::size_t k = 0; k < a.edges.size(); ++k) {
+        EXPECT_EQ(a.edges[k].continued, b.edges[k].continued) << deck.name;
+        EXPECT_EQ(a.edges[k].mirror_axis, b.edges[k].mirror_axis) << deck.name;
+      }
+    };
+    ASSERT_EQ(built.pairs.size(), whole.pairs.size());
+    for (std::size_t p = 0; p < whole.pairs.size(); ++p) {
+      ASSERT_EQ(built.pairs[p].passes.size(), whole.pairs[p].passes.size());
+      for (std::size_t k = 0; k < whole.pairs[p].passes.size(); ++k)
+        same(built.pairs[p].passes[k], whole.pairs[p].passes[k]);
+      EXPECT_EQ(built.pairs[p].settings.search_distance, whole.pairs[p].settings.search_distance);
+    }
+    ASSERT_EQ(built.walls.size(), whole.walls.size());
+    for (std::size_t w = 0; w < whole.walls.size(); ++w)
+      same(built.walls[w].surfaces, whole.walls[w].surfaces);
+  }
+}
+
+// Which decks are set up rank by rank.
+TEST(RankSetup, OnlyBoxesOf8NodeElementsWithBisectionByElements) {
+  EXPECT_TRUE(solver::sets_up_by_rank(deck_of("plate_impact.yaml"), solver::Partitioning::bisection, false));
+  EXPECT_FALSE(solver::sets_up_by_rank(deck_of("plate_impact.yaml"), solver::Partitioning::metis, false));
+  EXPECT_FALSE(solver::sets_up_by_rank(deck_of("plate_impact.yaml"), solver::Partitioning::bisection, true));
+  for (const char* file :
+       {"plate_impact_hex20.yaml", "hertz_ball.yaml", "taylor_rods.yaml", "plate_impact_gmsh.yaml"})
+    EXPECT_FALSE(solver::sets_up_by_rank(deck_of(file), solver::Partitioning::bisection, false)) << file;
+  input::Deck perturbed = deck_of("plate_impact.yaml");
+  perturbed.parts[0].perturbation_fraction = 0.1;
+  EXPECT_FALSE(solver::sets_up_by_rank(perturbed, solver::Partitioning::bisection, false));
 }
 
 }  // namespace
