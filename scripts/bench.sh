@@ -102,7 +102,7 @@ for isa in x86-64-v2 x86-64-v3 x86-64-v4; do
 done
 
 for b in build/release/bench/element/element_bench build/release/bench/contact/contact_local_search_bench \
-         build/release/bench/global_search/bench_global_search; do
+         build/release/bench/global_search/bench_global_search build/release/bench/setup/setup_bench; do
   if [ -x "$b" ]; then
     echo; echo "== $(basename "$b")"
     "$b" --benchmark_min_time=$([ $quick = 1 ] && echo 0.05 || echo 0.5)

@@ -7,7 +7,8 @@ thread each), short runs of
 - the Hertz ball (input/hertz_ball.yaml as it is),
 - weak scaling: two 100 x 1 x 100 plates per rank, stacked along z (the contact face
   grows with the ranks, a rank's part of it does not),
-read from each run's summary (`mpi.per_rank`): every rank's peak resident memory, the
+read from each run's summary (`mpi.per_rank`, and `mpi.setup`: whether each rank built
+only its part or the whole model): every rank's peak resident memory, the
 slave points it owns, the segments of its views (own and ghost), its ghost segments
 and ghost nodes, the contact's messages and bytes it sends per step, and the force
 exchange's. Each row gives the largest over the ranks (and the mean where it differs),
@@ -63,7 +64,7 @@ def row(label, ranks, s, gathered_bytes):
     def mean(key):
         return sum(r[key]) / len(r[key]) if r.get(key) else 0.0
     return {
-        "case": label, "ranks": ranks,
+        "case": label, "ranks": ranks, "setup": s["mpi"].get("setup", "whole"),
         "peak_mb": largest("peak_resident_mb"),
         "points": largest("contact_points"), "points_mean": mean("contact_points"),
         "segments": largest("contact_segments"), "ghost_segments": largest("ghost_segments"),
@@ -85,10 +86,10 @@ def gathered(one):
 
 def table(rows):
     return batch.table(
-        ["case", "ranks", "peak resident MB", "slave points (largest / mean)", "segments in view",
+        ["case", "ranks", "setup", "peak resident MB", "slave points (largest / mean)", "segments in view",
          "ghost segments", "ghost nodes", "contact messages/step", "contact kB/step (largest / mean)",
          "gathered contact kB/step", "force messages/step", "force kB/step"],
-        [[r["case"], r["ranks"], f"{r['peak_mb']:.0f}", f"{r['points']:.0f} / {r['points_mean']:.0f}",
+        [[r["case"], r["ranks"], r["setup"].replace("_", " "), f"{r['peak_mb']:.0f}", f"{r['points']:.0f} / {r['points_mean']:.0f}",
           f"{r['segments']:.0f}", f"{r['ghost_segments']:.0f}", f"{r['ghost_nodes']:.0f}",
           f"{r['contact_messages']:.1f}", f"{r['contact_kb']:.1f} / {r['contact_kb_mean']:.1f}",
           f"{r['gathered_kb']:.1f}", f"{r['force_messages']:.0f}", f"{r['force_kb']:.1f}"] for r in rows])

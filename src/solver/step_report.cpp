@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 #include "common/parallel.hpp"
 
@@ -117,23 +118,26 @@ void StepWriter::write(State& state, double dt) {
     data.von_mises = von_mises_.data();
     data.plastic_strain = state.plastic_strain.data();
   } else {
-    const std::pair<const NodalVectors*, NodalVectors*> vectors[] = {{&state.displacement, &rows_[0]},
-                                                                     {&velocity_, &rows_[1]},
-                                                                     {&state.acceleration, &rows_[2]},
-                                                                     {contact_force, &rows_[3]}};
-    for (const auto& [local, rows] : vectors) rows_of(d_, *local, *rows);
-    rows_of(d_, state.gap.data(), 1, true, gap_rows_);
-    rows_of(d_, state.stress.data(), 6, false, stress_rows_);
-    rows_of(d_, von_mises_.data(), 1, false, von_mises_rows_);
-    rows_of(d_, state.plastic_strain.data(), 1, false, plastic_strain_rows_);
-    data.displacement = &rows_[0];
-    data.velocity = &rows_[1];
-    data.acceleration = &rows_[2];
-    data.contact_force = &rows_[3];
-    data.gap = gap_rows_.data();
-    data.stress = stress_rows_.data();
-    data.von_mises = von_mises_rows_.data();
-    data.plastic_strain = plastic_strain_rows_.data();
+    // The rows of the fields the deck writes only (every rank knows them: the same deck).
+    using input::OutputField;
+    auto wanted = [&](OutputField f) {
+      return std::find(fields_.begin(), fields_.end(), f) != fields_.end();
+    };
+    const std::tuple<OutputField, const NodalVectors*, NodalVectors*, const NodalVectors**> vectors[] = {
+        {OutputField::displacement, &state.displacement, &rows_[0], &data.displacement},
+        {OutputField::velocity, &velocity_, &rows_[1], &data.velocity},
+        {OutputField::acceleration, &state.acceleration, &rows_[2], &data.acceleration},
+        {OutputField::contact_force, contact_force, &rows_[3], &data.contact_force}};
+    for (const auto& [field, local, rows, out] : vectors)
+      if (wanted(field)) rows_of(d_, *local, *rows), *out = rows;
+    const std::tuple<OutputField, const double*, int, bool, std::vector<double>*, const double**> values[] = {
+        {OutputField::gap, state.gap.data(), 1, true, &gap_rows_, &data.gap},
+        {OutputField::stress, state.stress.data(), 6, false, &stress_rows_, &data.stress},
+        {OutputField::von_mises, von_mises_.data(), 1, false, &von_mises_rows_, &data.von_mises},
+        {OutputField::plastic_strain, state.plastic_strain.data(), 1, false, &plastic_strain_rows_,
+         &data.plastic_strain}};
+    for (const auto& [field, local, k, nodal, rows, out] : values)
+      if (wanted(field)) rows_of(d_, local, k, nodal, *rows), *out = rows->data();
   }
   writer_.write_step(data);
 }

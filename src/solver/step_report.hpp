@@ -5,6 +5,7 @@
 
 #include <csignal>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/mpi.hpp"
@@ -19,8 +20,10 @@ namespace exdyn::solver {
 // write their rows (decomposition.hpp, rows_of), which write them together.
 class StepWriter {
  public:
-  StepWriter(output::ResultWriter& writer, const Model& model, Decomposition& d)
-      : writer_(writer), model_(model), d_(d) {
+  // fields: the deck's output fields (on many ranks only theirs travel to the writers).
+  StepWriter(output::ResultWriter& writer, const Model& model, Decomposition& d,
+             std::vector<input::OutputField> fields)
+      : writer_(writer), model_(model), d_(d), fields_(std::move(fields)) {
     velocity_.resize(model.mesh.node_count());
     von_mises_.resize(model.mesh.element_count());
   }
@@ -30,6 +33,7 @@ class StepWriter {
   output::ResultWriter& writer_;
   const Model& model_;
   Decomposition& d_;
+  std::vector<input::OutputField> fields_;
   NodalVectors velocity_;
   std::vector<double> von_mises_;
   std::array<NodalVectors, 4> rows_;  // many ranks: this rank's rows of u, v, a, f_contact
