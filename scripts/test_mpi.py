@@ -3,11 +3,13 @@
 
 - equal fields: the plate contact (hex8, nodes), a hex20 contact deck (quadrature points
   on 8-node segments), a curved deck (the Hertz ball, hex20), friction on a curved rail,
-  the two Taylor rods (finite strain, plasticity, contact at folds) and a rigid wall with
-  friction on 1, 2 and 3 ranks (and 3 ranks x 2 threads) give every field of every step,
-  and the mesh, bit for bit as one process (the contact distributed: each rank its own
-  slave points); the history (sums over the ranks) to 1e-12; the summary says mpi.ranks and
-  the same contact figures;
+  the two Taylor rods (finite strain, plasticity, contact at folds), a rigid wall with
+  friction, a mesh of 8- and 20-node elements, gravity and friction between boxes, a spin
+  with finite strain and hex8r plasticity on 1, 2 and 3 ranks (and 3 ranks x 2 threads)
+  give every field of every step, and the mesh, bit for bit as one process (the contact
+  distributed: each rank its own slave points); the history (sums over the ranks) to
+  1e-12; the summary says mpi.ranks, the same contact figures and mpi.setup (the decks of
+  8-node boxes set up rank by rank, the others whole);
 - two passes on two mirror-image cylinders stay mirror images to 1e-12 on 2 and 3 ranks;
 - the guards stop every rank with the message of one rank: an unstable run and an
   inverted element (exit 1, the same message as one process, the file readable);
@@ -15,8 +17,9 @@
 - SIGKILL of one rank at random moments: the file still opens, every listed step the
   same bits as the one-process run's;
 - ParaView opens a result written by 3 ranks;
-- more ranks than the mesh has chunks, and an mpirun that cannot start the ranks, end
-  with a clear error.
+- more ranks than the mesh has chunks, and an mpirun that cannot start the ranks (more
+  ranks than slots; a host file naming a machine that cannot be reached), end with a
+  clear error and no result that looks complete.
 
   scripts/test_mpi.py --exdyn build/release/src/app/exdyn [--quick]
 
