@@ -80,7 +80,8 @@ std::vector<std::vector<T>> all_to_all(DistributedContact& dc, const std::vector
 // Sends each link's buffer and receives into each link's buffer (sizes and tags known
 // to both).
 void exchange(DistributedContact& dc, std::vector<NodeLink*>& sends, std::vector<NodeLink*>& receives) {
-  std::vector<MPI_Request> requests;
+  std::vector<MPI_Request>& requests = dc.requests;
+  requests.clear();
   requests.reserve(sends.size() + receives.size());
   for (NodeLink* link : receives) {
     requests.emplace_back();
@@ -249,7 +250,10 @@ void plan_totals(DistributedContact& dc, const std::vector<std::uint32_t>& globa
 
 // The held nodes of every store from this rank's arrays, the ghosts from their owners.
 void refresh_stores(DistributedContact& dc, const NodalVectors& u, const NodalVectors& v) {
-  std::vector<NodeLink*> sends, receives;
+  std::vector<NodeLink*>& sends = dc.send_links;
+  std::vector<NodeLink*>& receives = dc.receive_links;
+  sends.clear();
+  receives.clear();
   for (PassShare& share : dc.passes) {
     ContactStore& store = share.store;
     for (std::size_t i = 0; i < store.global.size(); ++i) {
@@ -533,8 +537,11 @@ void add_records(DistributedContact& dc, std::vector<std::vector<contact::ForceR
                  std::vector<double>& gap) {
   // To the owners this rank's stores name (record_peers: empty messages too, so that
   // each receiver knows how many to expect), from those that name this rank.
-  std::vector<contact::ForceRecord> in = std::move(out[std::size_t(dc.comm.rank)]);
-  std::vector<MPI_Request> requests;
+  std::vector<contact::ForceRecord>& in = dc.incoming;
+  in.swap(out[std::size_t(dc.comm.rank)]);  // this rank's own records (the old buffer goes back, emptied)
+  out[std::size_t(dc.comm.rank)].clear();
+  std::vector<MPI_Request>& requests = dc.requests;
+  requests.clear();
   requests.reserve(dc.record_sends.size());
   for (const int rank : dc.record_sends) {
     const std::vector<contact::ForceRecord>& records = out[std::size_t(rank)];
@@ -581,7 +588,10 @@ void add_records(DistributedContact& dc, std::vector<std::vector<contact::ForceR
     force.y[local] += r.value[1];
     force.z[local] += r.value[2];
   }
-  std::vector<NodeLink*> sends, receives;
+  std::vector<NodeLink*>& sends = dc.send_links;
+  std::vector<NodeLink*>& receives = dc.receive_links;
+  sends.clear();
+  receives.clear();
   for (NodeLink& link : dc.total_sends) {
     for (std::size_t k = 0; k < link.nodes.size(); ++k)
       for (int c = 0; c < 3; ++c) link.buffer[3 * k + std::size_t(c)] = force.component(c)[link.nodes[k]];
@@ -635,7 +645,8 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
 
   // Which pairs' passes search again: the largest motion since their last search over
   // all ranks (an exact max: every rank decides as one process does).
-  std::vector<double> motion;
+  std::vector<double>& motion = dc.motion;
+  motion.clear();
   {
     std::size_t k = 0;
     for (ContactPair& pair : contact.pairs)
@@ -653,7 +664,9 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
   }
 
   // The passes, their forces and gaps as records, sent to their nodes' owners.
-  std::vector<std::vector<contact::ForceRecord>> out(std::size_t(dc.comm.size));
+  std::vector<std::vector<contact::ForceRecord>>& out = dc.outgoing;
+  out.resize(std::size_t(dc.comm.size));
+  for (auto& records : out) records.clear();
   auto send_records = [&](const PassShare& share, const contact::RecordSink& sink) {
     for (contact::ForceRecord r : sink.records) {
       const int owner = share.store.owner[r.node];
@@ -679,7 +692,8 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
         pair.passes[p] = share.view;  // the pair's own copy (the summary's counts)
         searched = true;
       }
-      contact::RecordSink sink;
+      contact::RecordSink& sink = share.sink;
+      sink.records.clear();
       sink.pass = share.index;
       sink.point_keys = &share.point_keys;
       state.friction_work = share.local_friction_work;
@@ -695,7 +709,8 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
   }
   for (RigidWall& wall : contact.walls) {
     PassShare& share = dc.passes[k++];
-    contact::RecordSink sink;
+    contact::RecordSink& sink = share.sink;
+    sink.records.clear();
     sink.pass = share.index;
     sink.point_keys = &share.point_keys;
     wall.state.friction_work = share.local_friction_work;

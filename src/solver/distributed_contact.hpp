@@ -69,6 +69,7 @@ struct PassShare {
   std::vector<NodeLink> ghost_sends, ghost_receives;
   std::size_t ghost_segments = 0, ghost_nodes = 0;  // in the view and the store
   double local_friction_work = 0.0;                 // this rank's points', J (the state holds all ranks')
+  contact::RecordSink sink;  // the pass's records of a step (kept: no allocation a step)
 };
 
 // This rank's share of the contact (docs/output.md, mpi.per_rank), summed over the
@@ -97,6 +98,13 @@ struct DistributedContact {
   long steps = 0;
   ContactShareFigures largest;
   double wait_seconds = 0.0;  // in the contact's exchanges, s
+  // A step's scratch, kept so that a step allocates nothing once the sizes settle:
+  // each pass's motion since its search, and the records for each rank.
+  std::vector<double> motion;
+  std::vector<std::vector<contact::ForceRecord>> outgoing;
+  std::vector<contact::ForceRecord> incoming;  // the records this rank adds
+  std::vector<NodeLink*> send_links, receive_links;
+  std::vector<MPI_Request> requests;
 };
 
 // This rank's share of the contact of the whole model (`contact`, global node ids):
