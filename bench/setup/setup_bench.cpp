@@ -31,15 +31,15 @@ input::Deck plates(int mesh) {
 void WholeModel(benchmark::State& state) {
   const input::Deck deck = plates(int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(solver::build_model(deck));
-  state.counters["elements/s"] =
-      benchmark::Counter(2.0 * double(state.range(0) * state.range(0)), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["elements/s"] = benchmark::Counter(2.0 * double(state.range(0) * state.range(0)),
+                                                    benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void LatticeWalk(benchmark::State& state) {
   const input::Deck deck = plates(int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(solver::lattice_chunks(deck, 8));
-  state.counters["elements/s"] =
-      benchmark::Counter(2.0 * double(state.range(0) * state.range(0)), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["elements/s"] = benchmark::Counter(2.0 * double(state.range(0) * state.range(0)),
+                                                    benchmark::Counter::kIsIterationInvariantRate);
 }
 
 void HaloMasses(benchmark::State& state) {
@@ -48,8 +48,8 @@ void HaloMasses(benchmark::State& state) {
   std::vector<std::uint32_t> nodes(2 * (m + 1) * 2 * (m + 1) / 8);
   std::iota(nodes.begin(), nodes.end(), 0u);
   for (auto _ : state) benchmark::DoNotOptimize(solver::lattice_masses(deck, nodes));
-  state.counters["elements/s"] =
-      benchmark::Counter(2.0 * double(state.range(0) * state.range(0)), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["elements/s"] = benchmark::Counter(2.0 * double(state.range(0) * state.range(0)),
+                                                    benchmark::Counter::kIsIterationInvariantRate);
 }
 
 BENCHMARK(WholeModel)->Arg(200)->Arg(400)->Arg(1000)->Unit(benchmark::kMillisecond);

@@ -72,6 +72,16 @@ struct BoxPart {
             out[std::size_t(count++)] = std::uint32_t(i + n[0] * (j + n[1] * k));
     return count;
   }
+  // The part's range in a mesh without its lattice (its faces, if any, added by the caller).
+  mesh::PartRange range() const {
+    mesh::PartRange r;
+    r.first_node = first_node;
+    r.node_count = node_count;
+    r.first_element = first_element;
+    r.element_count = element_count;
+    r.elements = n;
+    return r;
+  }
   // Whether node ijk lies on the side `side` of the part.
   bool on_side(const std::array<int, 3>& ijk, input::PartFace side) const {
     switch (side) {
@@ -130,6 +140,16 @@ struct Lattice {
     auto it = std::upper_bound(parts.begin(), parts.end(), g,
                                [](std::uint32_t v, const BoxPart& p) { return v < p.first_node; });
     return *(it - 1);
+  }
+  // The coordinates of `ids` (global ids), m: build_mesh's bits.
+  NodalVectors points(const std::vector<std::uint32_t>& ids) const {
+    NodalVectors x(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const BoxPart& part = part_of_node(ids[i]);
+      const std::array<double, 3> p = part.point(part.node_ijk(ids[i]));
+      for (int c = 0; c < 3; ++c) x.component(c)[i] = p[std::size_t(c)];
+    }
+    return x;
   }
   const BoxPart& part_of_element(std::size_t e) const {
     auto it = std::upper_bound(parts.begin(), parts.end(), e,
@@ -249,12 +269,7 @@ std::vector<double> masses_of(const input::Deck& deck, const Lattice& lattice,
   auto index = [&](std::uint32_t g) {
     return std::uint32_t(std::lower_bound(halo.begin(), halo.end(), g) - halo.begin());
   };
-  NodalVectors x(halo.size());
-  for (std::size_t i = 0; i < halo.size(); ++i) {
-    const BoxPart& part = lattice.part_of_node(halo[i]);
-    const std::array<double, 3> p = part.point(part.node_ijk(halo[i]));
-    for (int c = 0; c < 3; ++c) x.component(c)[i] = p[std::size_t(c)];
-  }
+  const NodalVectors x = lattice.points(halo);
   std::vector<double> mass(halo.size(), 0.0);
   for (std::size_t first = 0; first < elements.size();) {  // a block of each part's elements
     const BoxPart& part = lattice.part_of_element(elements[first]);
@@ -325,12 +340,7 @@ Model surface_model(const input::Deck& deck, const Lattice& lattice,
   auto index = [&](std::uint32_t g) {
     return std::uint32_t(std::lower_bound(nodes.begin(), nodes.end(), g) - nodes.begin());
   };
-  m.mesh.x_ref.resize(nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const BoxPart& part = lattice.part_of_node(nodes[i]);
-    const std::array<double, 3> p = part.point(part.node_ijk(nodes[i]));
-    for (int c = 0; c < 3; ++c) m.mesh.x_ref.component(c)[i] = p[std::size_t(c)];
-  }
+  m.mesh.x_ref = lattice.points(nodes);
   std::vector<input::FaceRef> faces;
   for (const input::ContactOptions& pair : deck.contact) {
     faces.insert(faces.end(), pair.slave.begin(), pair.slave.end());
@@ -339,12 +349,7 @@ Model surface_model(const input::Deck& deck, const Lattice& lattice,
   for (const input::RigidWallOptions& wall : deck.rigid_walls)
     faces.insert(faces.end(), wall.slave.begin(), wall.slave.end());
   for (const BoxPart& part : lattice.parts) {
-    mesh::PartRange& range = m.mesh.parts.emplace_back();
-    range.first_node = part.first_node;
-    range.node_count = part.node_count;
-    range.first_element = part.first_element;
-    range.element_count = part.element_count;
-    range.elements = part.n;
+    mesh::PartRange& range = m.mesh.parts.emplace_back(part.range());
     range.normal_lengths = mesh::box_normal_lengths(*part.options);
     for (const input::FaceRef& f : faces) {  // the part's faces as a mapped part has them
       if (f.part != part.index) continue;
@@ -449,20 +454,8 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm) {
   }
 
   // The rank's mesh and blocks: its chunks of each part, in the whole model's order.
-  m.mesh.x_ref.resize(local_nodes);
-  for (std::size_t i = 0; i < local_nodes; ++i) {
-    const BoxPart& part = lattice.part_of_node(d.global_node[i]);
-    const std::array<double, 3> p = part.point(part.node_ijk(d.global_node[i]));
-    for (int c = 0; c < 3; ++c) m.mesh.x_ref.component(c)[i] = p[std::size_t(c)];
-  }
-  for (const BoxPart& part : lattice.parts) {
-    mesh::PartRange& range = m.mesh.parts.emplace_back();
-    range.first_node = part.first_node;
-    range.node_count = part.node_count;
-    range.first_element = part.first_element;
-    range.element_count = part.element_count;
-    range.elements = part.n;
-  }
+  m.mesh.x_ref = lattice.points(d.global_node);
+  for (const BoxPart& part : lattice.parts) m.mesh.parts.push_back(part.range());
   std::vector<std::size_t> first_connectivity;
   for (const BoxPart& part : lattice.parts) {
     first_connectivity.push_back(m.mesh.connectivity.size());
