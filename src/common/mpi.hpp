@@ -10,6 +10,7 @@
 
 #include <mpi.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -98,6 +99,20 @@ inline std::vector<double> all_gather(const Communicator& c, const double* value
     return all;
   }
   check(MPI_Allgather(values, count, MPI_DOUBLE, all.data(), count, MPI_DOUBLE, c.comm), "MPI_Allgather");
+  return all;
+}
+
+// Every rank's `values` (any number each), rank after rank, on every rank.
+inline std::vector<std::uint32_t> all_gather_varying(const Communicator& c,
+                                                     const std::vector<std::uint32_t>& values) {
+  const int mine = static_cast<int>(values.size());
+  std::vector<int> counts(std::size_t(c.size)), offsets(std::size_t(c.size), 0);
+  check(MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, c.comm), "MPI_Allgather of the counts");
+  for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<std::uint32_t> all(std::size_t(offsets.back() + counts.back()));
+  check(MPI_Allgatherv(values.data(), mine, MPI_UINT32_T, all.data(), counts.data(), offsets.data(),
+                       MPI_UINT32_T, c.comm),
+        "MPI_Allgatherv");
   return all;
 }
 

@@ -90,7 +90,8 @@ void allocate_material_state(ElementBlock& block) {
 ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
                                 double hourglass_coefficient, std::uint32_t first_element,
                                 std::uint32_t count, const std::uint32_t* connectivity,
-                                const NodalVectors& x_ref, const material::MaterialLaw& law) {
+                                const NodalVectors& x_ref, const material::MaterialLaw& law,
+                                std::vector<std::array<double, 60>> group_points) {
   ElementBlock block;
   block.formulation = formulation;
   block.family = &element_family(formulation);
@@ -101,6 +102,7 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
   block.first_element = first_element;
   block.count = count;
   block.connectivity = connectivity;
+  block.group_points = std::move(group_points);
   block.family->prepare(block, x_ref);
   EXDYN_ASSERT(block.loop != nullptr);
   build_schedule(block, x_ref.size());
@@ -229,6 +231,7 @@ ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint3
   slice.first_element = first_element;
   slice.connectivity = connectivity;
   slice.shared = block.shared;
+  slice.group_points = block.group_points;
   slice.loop = block.loop;
   slice.constant_jacobian = block.constant_jacobian;
   slice.axis_aligned = block.axis_aligned;

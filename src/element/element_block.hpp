@@ -5,6 +5,7 @@
 // the kernels (hex8.hpp, hex8r.hpp, hex20.hpp) are free functions on fixed-size data.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -73,6 +74,12 @@ struct ElementBlock {
   std::vector<double> reference;
   std::vector<double> shared;
   std::vector<std::uint32_t> reference_index;  // per element, where the family keeps its data there
+  // 20-node blocks of parallelepipeds (hex20_family.cpp): the first element of each
+  // group of equal Jacobians, whose reference data and stable step the group shares:
+  // its 20 nodes' x, then y, then z, m. Given to make_element_block for a rank's part
+  // of a block built alone (solver/rank_setup.cpp), they are the whole block's, so the
+  // part shares the whole block's matrices and steps (jacobian_group_starts).
+  std::vector<std::array<double, 60>> group_points;
   // Doubles of `reference` per element (its layout interleaves packs of elements,
   // element_loop.hpp, but element e's data starts at e * this for e a multiple of the
   // pack width; slice_block relies on it).
@@ -95,11 +102,22 @@ struct ElementBlock {
 };
 
 // Builds a block and precomputes its reference data from the reference
-// coordinates. `connectivity` must outlive the block.
+// coordinates. `connectivity` must outlive the block. `group_points`: a whole block's
+// groups (ElementBlock::group_points) where this block is a rank's part of it.
 ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
                                 double hourglass_coefficient, std::uint32_t first_element,
                                 std::uint32_t count, const std::uint32_t* connectivity,
-                                const NodalVectors& x_ref, const material::MaterialLaw& law = {});
+                                const NodalVectors& x_ref, const material::MaterialLaw& law = {},
+                                std::vector<std::array<double, 60>> group_points = {});
+
+// The elements [0, count) of a 20-node block that start its groups of equal Jacobians
+// (ElementBlock::group_points), ascending: none for 8-node formulations or elements
+// that are not all parallelepipeds, and 65 when there are more than 64 (too many for
+// the shared-matrix layout). A rank's part of a block gives the candidates: the whole
+// block's groups start at those of the ranks' starts that start one among them all.
+std::vector<std::uint32_t> jacobian_group_starts(input::Formulation formulation, std::uint32_t count,
+                                                 const std::uint32_t* connectivity,
+                                                 const NodalVectors& x_ref);
 
 // Makes the states the last element pass wrote the committed ones (the solver, once
 // per step before its element pass; nothing for a block without states), and undoes

@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "common/errors.hpp"
@@ -221,6 +222,37 @@ bool same_jacobian(const double* a, const double* b) {
   return difference <= 1e-12 * size && std::abs(a[9] - b[9]) <= 1e-12 * std::abs(a[9]);
 }
 
+// A group's first element as ElementVectors20 (ElementBlock::group_points' layout).
+ElementVectors20 group_element(const std::array<double, 60>& points) {
+  ElementVectors20 x{ElementVectors20::Uninitialized{}};
+  for (int k = 0; k < 20; ++k)
+    x.x[k] = points[std::size_t(k)], x.y[k] = points[std::size_t(20 + k)],
+    x.z[k] = points[std::size_t(40 + k)];
+  return x;
+}
+
+// Elements [0, count) grouped by Jacobian in order (`reference(e)` their reference
+// data): an element joins the previous element's group or else the first whose
+// first element it matches (same_jacobian), or starts a group. `first` are the
+// groups' first elements: max_groups + 1 of them when there are more (no affine layout).
+template <class Reference>
+void group_by_jacobian(std::uint32_t count, Reference reference, std::vector<std::uint32_t>& index,
+                       std::vector<std::uint32_t>& first) {
+  index.resize(count);
+  for (std::uint32_t e = 0; e < count && first.size() <= max_groups; ++e) {
+    const double* mine = reference(e);
+    std::size_t g = 0;
+    // The previous element's group first: runs of equal elements are the rule.
+    if (e > 0 && same_jacobian(reference(first[index[e - 1]]), mine))
+      g = index[e - 1];
+    else
+      for (g = 0; g < first.size(); ++g)
+        if (same_jacobian(reference(first[g]), mine)) break;
+    if (g == first.size()) first.push_back(e);
+    index[e] = static_cast<std::uint32_t>(g);
+  }
+}
+
 template <int GaussPerDirection>
 void prepare(ElementBlock& block, const NodalVectors& x_ref) {
   constexpr int gauss_points = GaussPerDirection * GaussPerDirection * GaussPerDirection;
@@ -239,31 +271,51 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
     if (!(smallest > 0.0)) throw_inverted(block.first_element + e, smallest);
     affine = affine && hex20::is_affine(x);
   }
-  // Group the elements by Jacobian (a box part: one group, or one per grading step).
-  std::vector<std::uint32_t> representative;  // one element of each group
-  if (affine) {
+  // Group the elements by Jacobian (a box part: one group, or one per grading step),
+  // each group's reference data from its first element: this block's, or the whole
+  // block's where this is a rank's part of it (group_points given).
+  std::vector<double> group_reference;  // per group
+  if (affine && block.group_points.empty()) {
+    std::vector<std::uint32_t> first;
+    group_by_jacobian(
+        block.count, [&](std::uint32_t e) { return block.reference.data() + std::size_t(stride) * e; },
+        block.reference_index, first);
+    affine = first.size() <= max_groups;
+    for (const std::uint32_t e : first) {
+      const double* data = block.reference.data() + std::size_t(stride) * e;
+      group_reference.insert(group_reference.end(), data, data + stride);
+      const ElementVectors20 x = gather20(x_ref, block.connectivity + 20 * std::size_t(e));
+      std::array<double, 60>& points = block.group_points.emplace_back();
+      for (int k = 0; k < 20; ++k)
+        points[std::size_t(k)] = x.x[k], points[std::size_t(20 + k)] = x.y[k],
+        points[std::size_t(40 + k)] = x.z[k];
+    }
+  } else if (affine) {
+    affine = block.group_points.size() <= max_groups;
+    group_reference.resize(std::size_t(stride) * block.group_points.size());
+    for (std::size_t g = 0; g < block.group_points.size(); ++g)
+      hex20::make_reference(group_element(block.group_points[g]), rule, table.data(),
+                            group_reference.data() + std::size_t(stride) * g);
     block.reference_index.resize(block.count);
     for (std::uint32_t e = 0; e < block.count && affine; ++e) {
       const double* mine = block.reference.data() + std::size_t(stride) * e;
       std::size_t g = 0;
-      // The previous element's group first: runs of equal elements are the rule.
-      if (e > 0 && same_jacobian(block.reference.data() +
-                                     std::size_t(stride) * representative[block.reference_index[e - 1]],
-                                 mine))
+      if (e > 0 &&
+          same_jacobian(group_reference.data() + std::size_t(stride) * block.reference_index[e - 1], mine))
         g = block.reference_index[e - 1];
       else
-        for (g = 0; g < representative.size(); ++g)
-          if (same_jacobian(block.reference.data() + std::size_t(stride) * representative[g], mine)) break;
-      if (g == representative.size()) {
-        if (representative.size() == max_groups) affine = false;
-        representative.push_back(e);
-      }
+        while (g < block.group_points.size() &&
+               !same_jacobian(group_reference.data() + std::size_t(stride) * g, mine))
+          ++g;
+      if (g == block.group_points.size())
+        throw std::logic_error("hex20 prepare: an element matches none of the whole block's Jacobians");
       block.reference_index[e] = static_cast<std::uint32_t>(g);
     }
   }
   if (!block.law.linear_small()) {  // the law's loop on the general layout
     block.constant_jacobian = false;
     block.reference_index.clear();
+    block.group_points.clear();
     block.shared = std::move(table);
     const Isa isa = selected_isa();
     block.loop = law_loop(block.law, [isa]<class Flow, bool Finite>() {
@@ -275,17 +327,18 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
   }
   block.constant_jacobian = affine;
   if (affine) {
-    block.shared.assign(std::size_t(matrix_size) * representative.size(), 0.0);
-    for (std::size_t g = 0; g < representative.size(); ++g)
-      element_matrix(gauss_points, table.data(),
-                     block.reference.data() + std::size_t(stride) * representative[g], block.material.lambda,
-                     block.material.mu, block.shared.data() + std::size_t(matrix_size) * g);
+    block.shared.assign(std::size_t(matrix_size) * block.group_points.size(), 0.0);
+    for (std::size_t g = 0; g < block.group_points.size(); ++g)
+      element_matrix(gauss_points, table.data(), group_reference.data() + std::size_t(stride) * g,
+                     block.material.lambda, block.material.mu,
+                     block.shared.data() + std::size_t(matrix_size) * g);
     block.reference.clear();
     block.reference.shrink_to_fit();
     block.reference_per_element = 0;
     block.loop = packed_for_isa<affine_loop<2>, affine_loop<4>, affine_loop<8>>(selected_isa());
   } else {
     block.reference_index.clear();
+    block.group_points.clear();
     block.shared = std::move(table);
     block.loop = packed_for_isa<general_loop<gauss_points, 2>, general_loop<gauss_points, 4>,
                                 general_loop<gauss_points, 8>>(selected_isa());
@@ -324,21 +377,11 @@ double element_eigenvalue_step(const ElementBlock& block, const NodalVectors& x_
   hex20::derivative_table(rule, table.data());
   double smallest = std::numeric_limits<double>::infinity();
   const auto count = static_cast<std::ptrdiff_t>(block.count);
-  std::vector<char> done;  // affine: whether the group's step is known
-  std::vector<double> group_step;
-  if (block.constant_jacobian) {
-    const std::size_t groups = block.shared.size() / matrix_size;
-    done.assign(groups, 0);
-    group_step.assign(groups, 0.0);
-    for (std::uint32_t e = 0; e < block.count; ++e) {
-      const std::uint32_t g = block.reference_index[e];
-      if (done[g]) continue;
-      const std::array<double, 20> m = hex20::hrz_masses(
-          gather20(x_ref, block.connectivity + 20 * std::size_t(e)), block.material.density);
-      group_step[g] = element_step(block.shared.data() + std::size_t(matrix_size) * g, m);
-      done[g] = 1;
-      smallest = std::min(smallest, group_step[g]);
-    }
+  if (block.constant_jacobian) {  // each group's step from its first element (ElementBlock::group_points)
+    for (std::size_t g = 0; g < block.group_points.size(); ++g)
+      smallest = std::min(smallest, element_step(block.shared.data() + std::size_t(matrix_size) * g,
+                                                 hex20::hrz_masses(group_element(block.group_points[g]),
+                                                                   block.material.density)));
     return smallest;
   }
 #pragma omp parallel for schedule(dynamic, 16) reduction(min : smallest)
@@ -355,7 +398,40 @@ double element_eigenvalue_step(const ElementBlock& block, const NodalVectors& x_
   return smallest;
 }
 
+template <int GaussPerDirection>
+std::vector<std::uint32_t> group_starts(std::uint32_t count, const std::uint32_t* connectivity,
+                                        const NodalVectors& x_ref) {
+  constexpr int gauss_points = GaussPerDirection * GaussPerDirection * GaussPerDirection;
+  constexpr int stride = hex20::reference_size(gauss_points);
+  const hex20::GaussRule rule = hex20::gauss_rule(GaussPerDirection);
+  std::vector<double> table(std::size_t(hex20::table_stride) * gauss_points);
+  hex20::derivative_table(rule, table.data());
+  std::vector<double> reference(std::size_t(stride) * count);
+  for (std::uint32_t e = 0; e < count; ++e) {
+    const ElementVectors20 x = gather20(x_ref, connectivity + 20 * std::size_t(e));
+    if (!hex20::is_affine(x)) return {};
+    hex20::make_reference(x, rule, table.data(), reference.data() + std::size_t(stride) * e);
+  }
+  std::vector<std::uint32_t> index, first;
+  group_by_jacobian(
+      count, [&](std::uint32_t e) { return reference.data() + std::size_t(stride) * e; }, index, first);
+  return first;
+}
+
 }  // namespace
+
+std::vector<std::uint32_t> jacobian_group_starts(input::Formulation formulation, std::uint32_t count,
+                                                 const std::uint32_t* connectivity,
+                                                 const NodalVectors& x_ref) {
+  switch (formulation) {
+    case input::Formulation::hex20:
+      return group_starts<3>(count, connectivity, x_ref);
+    case input::Formulation::hex20r:
+      return group_starts<2>(count, connectivity, x_ref);
+    default:
+      return {};
+  }
+}
 
 const ElementFamily hex20_family{"hex20", 20, prepare<3>, add_hrz_mass, element_eigenvalue_step};
 const ElementFamily hex20r_family{"hex20r", 20, prepare<2>, add_hrz_mass, element_eigenvalue_step};

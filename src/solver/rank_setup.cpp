@@ -21,55 +21,108 @@ namespace {
 
 constexpr std::uint32_t chunk_size = element::element_chunk;
 
-// A box part of 8-node elements by numbers (mesh.hpp): node (i, j, k) is
-// first_node + i + (nx + 1) (j + (ny + 1) k), element (i, j, k) is i + nx (j + ny k)
-// of the part (first_element + that in the mesh), and the part is block `index`.
+// A box part by numbers (mesh.hpp): its lattice points (I, J, K), order per element
+// along each axis (order 2: only those with at most one odd index are nodes), are
+// numbered first_node + 0, 1, ... in the order K, J, I; element (i, j, k) is
+// i + nx (j + ny k) of the part (first_element + that in the mesh), and the part is
+// block `index`.
 struct BoxPart {
   int index = 0;
   const input::PartOptions* options = nullptr;
   std::array<int, 3> n{};
+  int order = 1, nodes_per_element = 8;
   std::uint32_t first_node = 0, node_count = 0, first_element = 0, element_count = 0;
   std::size_t first_chunk = 0, chunks = 0;  // the block's chunks among all blocks'
   std::array<std::vector<double>, 3> grid;  // grid coordinates along x, y, z (mesh::box_point), m
 
+  // Order 2: the nodes of a layer of even K (rows of even J: 2 nx + 1 nodes, of odd
+  // J: nx + 1) and of odd K (rows of even J only, nx + 1 nodes).
+  std::size_t row() const { return std::size_t(order * n[0] + 1); }
+  std::size_t short_row() const { return std::size_t(n[0] + 1); }
+  std::size_t even_layer() const {
+    return order == 1 ? row() * std::size_t(n[1] + 1)
+                      : row() * std::size_t(n[1] + 1) + short_row() * std::size_t(n[1]);
+  }
+  std::size_t odd_layer() const { return short_row() * std::size_t(n[1] + 1); }
+
   std::uint32_t node(const std::array<int, 3>& ijk) const {
-    return first_node +
-           static_cast<std::uint32_t>(
-               std::size_t(ijk[0]) +
-               std::size_t(n[0] + 1) * (std::size_t(ijk[1]) + std::size_t(n[1] + 1) * std::size_t(ijk[2])));
+    const auto i = std::size_t(ijk[0]), j = std::size_t(ijk[1]), k = std::size_t(ijk[2]);
+    if (order == 1)
+      return first_node + static_cast<std::uint32_t>(i + row() * (j + std::size_t(n[1] + 1) * k));
+    std::size_t id = ((k + 1) / 2) * even_layer() + (k / 2) * odd_layer();
+    if (k % 2 == 0)
+      id += ((j + 1) / 2) * row() + (j / 2) * short_row() + (j % 2 == 0 ? i : i / 2);
+    else
+      id += (j / 2) * short_row() + i / 2;
+    return first_node + static_cast<std::uint32_t>(id);
   }
   std::array<int, 3> node_ijk(std::uint32_t g) const {
     std::size_t r = g - first_node;
-    const int i = int(r % std::size_t(n[0] + 1));
-    r /= std::size_t(n[0] + 1);
-    return {i, int(r % std::size_t(n[1] + 1)), int(r / std::size_t(n[1] + 1))};
+    if (order == 1) {
+      const int i = int(r % row());
+      r /= row();
+      return {i, int(r % std::size_t(n[1] + 1)), int(r / std::size_t(n[1] + 1))};
+    }
+    const std::size_t k2 = r / (even_layer() + odd_layer());
+    r %= even_layer() + odd_layer();
+    if (r >= even_layer()) {
+      r -= even_layer();
+      return {int(2 * (r % short_row())), int(2 * (r / short_row())), int(2 * k2 + 1)};
+    }
+    const std::size_t j2 = r / (row() + short_row());
+    r %= row() + short_row();
+    if (r < row()) return {int(r), int(2 * j2), int(2 * k2)};
+    return {int(2 * (r - row())), int(2 * j2 + 1), int(2 * k2)};
   }
   std::array<int, 3> element_ijk(std::uint32_t e) const {
     const auto nx = std::uint32_t(n[0]), ny = std::uint32_t(n[1]);
     return {int(e % nx), int((e / nx) % ny), int(e / (nx * ny))};
   }
-  // The corner (i, j, k) + offset of VTK node `local` (mesh::brick_offsets, order 1).
-  static std::array<int, 3> corner(const std::array<int, 3>& ijk, int local) {
+  // The lattice point of VTK node `local` of element (i, j, k) (mesh::brick_offsets:
+  // half elements).
+  std::array<int, 3> corner(const std::array<int, 3>& ijk, int local) const {
     const auto& d = mesh::brick_offsets[std::size_t(local)];
-    return {ijk[0] + d[0] / 2, ijk[1] + d[1] / 2, ijk[2] + d[2] / 2};
+    return {order * ijk[0] + d[0] * order / 2, order * ijk[1] + d[1] * order / 2,
+            order * ijk[2] + d[2] * order / 2};
   }
-  std::array<std::uint32_t, 8> element_nodes(std::uint32_t e) const {
+  // The element's nodes (VTK order); corner 0 is its lowest id and corner 6 its highest.
+  struct ElementNodes {
+    std::array<std::uint32_t, 20> ids{};
+    int count = 0;
+    std::uint32_t operator[](int k) const { return ids[std::size_t(k)]; }
+    const std::uint32_t* begin() const { return ids.data(); }
+    const std::uint32_t* end() const { return ids.data() + count; }
+  };
+  ElementNodes element_nodes(std::uint32_t e) const {
     const std::array<int, 3> ijk = element_ijk(e);
-    std::array<std::uint32_t, 8> nodes{};
-    for (int k = 0; k < 8; ++k) nodes[std::size_t(k)] = node(corner(ijk, k));
+    ElementNodes nodes;
+    nodes.count = nodes_per_element;
+    for (int k = 0; k < nodes_per_element; ++k) nodes.ids[std::size_t(k)] = node(corner(ijk, k));
     return nodes;
   }
+  // build_mesh's point: a grid point, or the middle of the edge between two.
   std::array<double, 3> point(const std::array<int, 3>& ijk) const {
-    return {grid[0][std::size_t(ijk[0])], grid[1][std::size_t(ijk[1])], grid[2][std::size_t(ijk[2])]};
+    std::array<double, 3> x{};
+    for (std::size_t a = 0; a < 3; ++a) {
+      const std::vector<double>& line = grid[a];
+      const int at = ijk[a];
+      x[a] = at % order == 0 ? line[std::size_t(at / order)]
+                             : 0.5 * (line[std::size_t(at / order)] + line[std::size_t(at / order + 1)]);
+    }
+    return x;
   }
-  // The part's elements around node ijk, ascending (at most 8); returns how many.
+  // The part's elements around lattice point ijk, ascending (at most 8); returns how many.
   int elements_at(const std::array<int, 3>& ijk, std::array<std::uint32_t, 8>& out) const {
+    std::array<int, 3> low{}, high{};  // the element indices along each axis whose span holds the point
+    for (std::size_t a = 0; a < 3; ++a) {
+      low[a] = ijk[a] % order == 0 ? std::max(0, ijk[a] / order - 1) : ijk[a] / order;
+      high[a] = std::min(n[a] - 1, ijk[a] / order);
+    }
     int count = 0;
-    for (int k = ijk[2] - 1; k <= ijk[2]; ++k)
-      for (int j = ijk[1] - 1; j <= ijk[1]; ++j)
-        for (int i = ijk[0] - 1; i <= ijk[0]; ++i)
-          if (i >= 0 && j >= 0 && k >= 0 && i < n[0] && j < n[1] && k < n[2])
-            out[std::size_t(count++)] = std::uint32_t(i + n[0] * (j + n[1] * k));
+    for (int k = low[2]; k <= high[2]; ++k)
+      for (int j = low[1]; j <= high[1]; ++j)
+        for (int i = low[0]; i <= high[0]; ++i)
+          out[std::size_t(count++)] = std::uint32_t(i + n[0] * (j + n[1] * k));
     return count;
   }
   // The part's range in a mesh without its lattice (its faces, if any, added by the caller).
@@ -80,23 +133,25 @@ struct BoxPart {
     r.first_element = first_element;
     r.element_count = element_count;
     r.elements = n;
+    r.order = order;
+    r.nodes_per_element = nodes_per_element;
     return r;
   }
-  // Whether node ijk lies on the side `side` of the part.
+  // Whether lattice point ijk lies on the side `side` of the part.
   bool on_side(const std::array<int, 3>& ijk, input::PartFace side) const {
     switch (side) {
       case input::PartFace::xmin:
         return ijk[0] == 0;
       case input::PartFace::xmax:
-        return ijk[0] == n[0];
+        return ijk[0] == order * n[0];
       case input::PartFace::ymin:
         return ijk[1] == 0;
       case input::PartFace::ymax:
-        return ijk[1] == n[1];
+        return ijk[1] == order * n[1];
       case input::PartFace::zmin:
         return ijk[2] == 0;
       case input::PartFace::zmax:
-        return ijk[2] == n[2];
+        return ijk[2] == order * n[2];
       default:
         throw std::logic_error(std::string("a box part has no face ") + input::name(side));
     }
@@ -115,9 +170,11 @@ struct Lattice {
       part.index = int(p);
       part.options = &options;
       part.n = options.elements;
+      part.order = input::is_quadratic(options.formulation) ? 2 : 1;
+      part.nodes_per_element = part.order == 2 ? 20 : 8;
       part.first_node = std::uint32_t(nodes);
-      part.node_count =
-          std::uint32_t(std::size_t(part.n[0] + 1) * std::size_t(part.n[1] + 1) * std::size_t(part.n[2] + 1));
+      part.node_count = std::uint32_t(std::size_t(part.n[2] + 1) * part.even_layer() +
+                                      std::size_t(part.n[2]) * (part.order == 2 ? part.odd_layer() : 0));
       part.first_element = std::uint32_t(elements);
       part.element_count =
           std::uint32_t(std::size_t(part.n[0]) * std::size_t(part.n[1]) * std::size_t(part.n[2]));
@@ -198,7 +255,7 @@ Chunks walk_chunks(const Lattice& lattice) {
       for (std::uint32_t e = begin; e < end; ++e) {
         const std::array<int, 3> ijk = part.element_ijk(e);
         for (int k = 0; k < 8; ++k) {
-          const std::array<int, 3> at = BoxPart::corner(ijk, k);
+          const std::array<int, 3> at = part.corner(ijk, k);
           const std::array<double, 3> x = part.point(at);
           for (std::size_t a = 0; a < 3; ++a) sum[a] += x[a];
         }
@@ -282,7 +339,7 @@ std::vector<double> masses_of(const input::Deck& deck, const Lattice& lattice,
     element::ElementBlock block;  // what the lumping reads: the family, density and nodes
     block.formulation = part.options->formulation;
     block.family = &element::element_family(block.formulation);
-    block.nodes_per_element = 8;
+    block.nodes_per_element = part.nodes_per_element;
     block.material = material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density);
     block.count = std::uint32_t(last - first);
     block.connectivity = connectivity.data();
@@ -300,10 +357,10 @@ std::vector<std::uint32_t> surface_nodes_of(const input::Deck& deck, const Latti
   auto add = [&](const std::vector<input::FaceRef>& faces) {
     for (const input::FaceRef& f : faces) {
       const BoxPart& part = lattice.parts.at(std::size_t(f.part));
-      const mesh::Face face = mesh::lattice_face(part.n, 1, f.side, mesh::box_normal_lengths(*part.options),
-                                                 [&](int i, int j, int k) {
-                                                   return part.node({i, j, k});
-                                                 });
+      const mesh::Face face = mesh::lattice_face(
+          part.n, part.order, f.side, mesh::box_normal_lengths(*part.options), [&](int i, int j, int k) {
+            return part.node({i, j, k});
+          });
       nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
     }
   };
@@ -356,10 +413,10 @@ Model surface_model(const input::Deck& deck, const Lattice& lattice,
       if (std::any_of(range.faces.begin(), range.faces.end(),
                       [&](const auto& face) { return face.first == f.side; }))
         continue;
-      range.faces.emplace_back(
-          f.side, mesh::lattice_face(part.n, 1, f.side, range.normal_lengths, [&](int i, int j, int k) {
-            return index(part.node({i, j, k}));
-          }));
+      range.faces.emplace_back(f.side, mesh::lattice_face(part.n, part.order, f.side, range.normal_lengths,
+                                                          [&](int i, int j, int k) {
+                                                            return index(part.node({i, j, k}));
+                                                          }));
     }
   }
   m.mass = masses_of(deck, lattice, nodes);
@@ -369,13 +426,45 @@ Model surface_model(const input::Deck& deck, const Lattice& lattice,
   return m;
 }
 
+// The whole block's groups of equal Jacobians of a 20-node part (ElementBlock::
+// group_points), on every rank: each rank's own group starts (`count` elements here,
+// their global ids `global`) are candidates, and the groups start at those of the
+// candidates, in global order, that start one among them all; their points come from
+// the lattice, so every rank has the whole block's bits. Collective over comm.
+std::vector<std::array<double, 60>> whole_block_groups(const Lattice& lattice, const BoxPart& part,
+                                                       std::uint32_t count, const std::uint32_t* connectivity,
+                                                       const NodalVectors& x_ref, const std::uint32_t* global,
+                                                       const mpi::Communicator& comm) {
+  const input::Formulation formulation = part.options->formulation;
+  std::vector<std::uint32_t> mine;
+  for (const std::uint32_t e : element::jacobian_group_starts(formulation, count, connectivity, x_ref))
+    mine.push_back(global[e]);
+  std::vector<std::uint32_t> candidates = mpi::all_gather_varying(comm, mine);
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  std::vector<std::uint32_t> nodes, order;  // the candidates' nodes, and 0, 1, ... into them
+  for (const std::uint32_t e : candidates)
+    for (const std::uint32_t g : part.element_nodes(e - part.first_element)) {
+      order.push_back(std::uint32_t(nodes.size()));
+      nodes.push_back(g);
+    }
+  const NodalVectors points = lattice.points(nodes);
+  std::vector<std::array<double, 60>> groups;
+  for (const std::uint32_t c :
+       element::jacobian_group_starts(formulation, std::uint32_t(candidates.size()), order.data(), points)) {
+    std::array<double, 60>& group = groups.emplace_back();
+    for (std::size_t k = 0; k < 20; ++k)
+      for (std::size_t a = 0; a < 3; ++a) group[20 * a + k] = points.component(int(a))[20 * c + k];
+  }
+  return groups;
+}
+
 }  // namespace
 
 bool sets_up_by_rank(const input::Deck& deck, Partitioning partitioning, bool weigh_by_work) {
   if (partitioning != Partitioning::bisection || weigh_by_work || deck.parts.empty()) return false;
   return std::all_of(deck.parts.begin(), deck.parts.end(), [](const input::PartOptions& part) {
-    return part.geometry == input::Geometry::box && !input::is_quadratic(part.formulation) &&
-           part.perturbation_fraction == 0.0;
+    return part.geometry == input::Geometry::box && part.perturbation_fraction == 0.0;
   });
 }
 
@@ -468,23 +557,40 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm) {
   // Flags a block's kernel depends on, which each rank decides from its own elements:
   // they must agree (the same kernels as one process's).
   std::vector<int> low(2 * lattice.parts.size(), 1), high(2 * lattice.parts.size(), 0);
+  // A 20-node block's step scale (ElementBlock::step_scale) is the whole block's family
+  // step over its corner-based step: each an exact minimum over the ranks.
+  std::vector<double> steps(2 * lattice.parts.size(), std::numeric_limits<double>::infinity());
+  std::vector<std::size_t> block_of_part(lattice.parts.size(), ~std::size_t{0});  // ~0: none here
   std::uint32_t first_element = 0;
   for (const BoxPart& part : lattice.parts) {
     const auto& mine = my_chunks[std::size_t(part.index)];
-    if (mine.empty()) continue;
     const input::PartOptions& options = *part.options;
     const input::MaterialOptions& material = deck.materials.at(std::size_t(options.material_index));
     std::uint32_t count = 0;
     for (const std::uint32_t c : mine)
       count += std::min((c + 1) * chunk_size, part.element_count) - c * chunk_size;
+    const material::MaterialLaw law =
+        material::make_law(material, input::resolved_kinematics(options, material), options.f_bar);
+    const std::uint32_t* connectivity =
+        m.mesh.connectivity.data() + first_connectivity[std::size_t(part.index)];
+    std::vector<std::array<double, 60>> groups;  // collective: every rank, with or without elements here
+    if (part.order == 2 && law.linear_small())
+      groups = whole_block_groups(lattice, part, count, connectivity, m.mesh.x_ref,
+                                  d.global_element.data() + first_element, comm);
+    if (mine.empty()) continue;
     m.blocks.push_back(element::make_element_block(
         options.formulation,
         material::elastic_constants(material.youngs_modulus, material.poissons_ratio, material.density),
-        options.hourglass_coefficient, first_element, count,
-        m.mesh.connectivity.data() + first_connectivity[std::size_t(part.index)], m.mesh.x_ref,
-        material::make_law(material, input::resolved_kinematics(options, material), options.f_bar)));
+        options.hourglass_coefficient, first_element, count, connectivity, m.mesh.x_ref, law,
+        std::move(groups)));
     element::ElementBlock& block = m.blocks.back();
+    block_of_part[std::size_t(part.index)] = m.blocks.size() - 1;
     first_element += count;
+    if (block.nodes_per_element != 8) {
+      steps[2 * std::size_t(part.index)] = element::critical_time_step(block, m.mesh.x_ref);
+      steps[2 * std::size_t(part.index) + 1] =
+          element::current_time_step(block, m.mesh.x_ref, NodalVectors(m.mesh.x_ref.size())).dt;
+    }
     // The whole block's colours, each keeping its index (possibly with no chunk here).
     EXDYN_ASSERT(block.chunk_begin.size() == mine.size() + 1);
     block.colours.assign(chunks.colours[std::size_t(part.index)], {});
@@ -501,6 +607,11 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm) {
              "MPI_Allreduce of the blocks' layouts");
   if (low != high)
     throw std::logic_error("rank setup: the ranks chose different element layouts for a block");
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, steps.data(), int(steps.size()), MPI_DOUBLE, MPI_MIN, comm.comm),
+             "MPI_Allreduce of the blocks' stable steps");
+  for (std::size_t p = 0; p < lattice.parts.size(); ++p)
+    if (block_of_part[p] != ~std::size_t{0} && m.blocks[block_of_part[p]].nodes_per_element != 8)
+      m.blocks[block_of_part[p]].step_scale = steps[2 * p] / steps[2 * p + 1];
   split_colour_steps(my_chunks, m, d);
 
   // Masses of the rank's nodes; the owned ones count in the energies.

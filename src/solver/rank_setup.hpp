@@ -1,6 +1,6 @@
 // Setting up a run on many ranks without the whole model (docs/parallel.md, "Setup").
 //
-// For a deck whose parts are all boxes of 8-node elements (without perturbation),
+// For a deck whose parts are all boxes (without perturbation),
 // every rank walks the parts' lattices chunk by chunk, keeping only a chunk's
 // centroid and colour: the partition and the colours of the whole model, the same
 // on every rank and the same as decomposition.hpp computes from a whole model. Then
@@ -9,6 +9,8 @@
 // each node's element shares in one process's order. The contact surfaces are built
 // from the contact faces alone. No rank holds more than its part, one layer of the
 // lattice, one figure per chunk and the contact faces: the same bits as one process.
+// A 20-node block takes the whole block's groups of equal Jacobians, gathered from the
+// ranks' group starts (ElementBlock::group_points).
 // Other decks are set up by localize (decomposition.hpp), from the whole model.
 #pragma once
 
@@ -25,8 +27,8 @@
 
 namespace exdyn::solver {
 
-// True when the deck can be set up rank by rank: every part a box of hex8 or hex8r
-// elements without perturbation, partitioned by bisection weighed by elements.
+// True when the deck can be set up rank by rank: every part a box without
+// perturbation, partitioned by bisection weighed by elements.
 bool sets_up_by_rank(const input::Deck& deck, Partitioning partitioning, bool weigh_by_work);
 
 struct RankSetup {

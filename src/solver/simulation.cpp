@@ -110,9 +110,7 @@ class TimeLoop {
 // (rank_setup.hpp); any other deck is built whole by every rank, which cuts out its
 // part (the chunks weighed by their elements or their measured work: load_balance.hpp)
 // and its share of the contact (distributed_contact.hpp), and keeps only those
-// (decomposition.hpp). The stable step of a whole model comes from it on every rank:
-// the 20-node rule takes one element per group of equal Jacobians, the group's first
-// in the whole block, so a rank's part could give another last bit (docs/parallel.md).
+// (decomposition.hpp). The stable step is the whole model's either way (docs/parallel.md).
 TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output::RunSummary& summary)
     : deck_(deck), controls_(controls), summary_(summary) {
   const mpi::Communicator& comm = controls.comm;

@@ -243,6 +243,60 @@ TEST(Hex20, AffineMatrixPathEqualsTheGaussPointKernel) {
   }
 }
 
+// A rank's part of a block built alone (solver/rank_setup.cpp) shares the whole
+// block's groups of equal Jacobians: the groups start at those of the parts' starts
+// that start one among them all, and a part given the whole block's group points has
+// its matrices, each element's group and its stable step, bit for bit.
+TEST(Hex20, APartGivenTheWholeBlocksGroupsSharesItsMatricesAndStep) {
+  for (const auto formulation : {input::Formulation::hex20, input::Formulation::hex20r}) {
+    input::Deck deck = box_deck(formulation, {6, 4, 5}, {1.0, 0.5, 0.3});
+    deck.parts[0].grading = {2.0, 1.0, 1.5};  // 6 x 5 spacings: 30 groups
+    const mesh::Mesh mesh = mesh::build_mesh(deck);
+    const std::uint32_t count = 120, split = 77;
+    const ElementBlock whole =
+        make_element_block(formulation, steel, 0.0, 0, count, mesh.connectivity.data(), mesh.x_ref);
+    ASSERT_TRUE(whole.constant_jacobian);
+    const std::vector<std::uint32_t> starts =
+        jacobian_group_starts(formulation, count, mesh.connectivity.data(), mesh.x_ref);
+    ASSERT_EQ(starts.size(), whole.group_points.size());
+    ASSERT_EQ(starts.size(), 30u);
+    for (std::size_t g = 0; g < starts.size(); ++g) {
+      const std::uint32_t* nodes = mesh.connectivity.data() + 20 * std::size_t(starts[g]);
+      for (std::size_t k = 0; k < 20; ++k) {
+        EXPECT_EQ(whole.group_points[g][k], mesh.x_ref.x[nodes[k]]);
+        EXPECT_EQ(whole.group_points[g][40 + k], mesh.x_ref.z[nodes[k]]);
+      }
+    }
+    // The two parts' starts, then the starts among them: the whole block's.
+    const std::uint32_t* second = mesh.connectivity.data() + 20 * std::size_t(split);
+    std::vector<std::uint32_t> candidates =
+        jacobian_group_starts(formulation, split, mesh.connectivity.data(), mesh.x_ref);
+    for (const std::uint32_t e : jacobian_group_starts(formulation, count - split, second, mesh.x_ref))
+      candidates.push_back(split + e);
+    std::vector<std::uint32_t> candidate_nodes;
+    for (const std::uint32_t e : candidates)
+      candidate_nodes.insert(candidate_nodes.end(), mesh.connectivity.begin() + 20 * std::ptrdiff_t(e),
+                             mesh.connectivity.begin() + 20 * std::ptrdiff_t(e + 1));
+    std::vector<std::uint32_t> found;
+    for (const std::uint32_t c : jacobian_group_starts(formulation, std::uint32_t(candidates.size()),
+                                                       candidate_nodes.data(), mesh.x_ref))
+      found.push_back(candidates[c]);
+    EXPECT_EQ(found, starts);
+
+    const ElementBlock part = make_element_block(formulation, steel, 0.0, split, count - split, second,
+                                                 mesh.x_ref, {}, whole.group_points);
+    ASSERT_TRUE(part.constant_jacobian);
+    EXPECT_EQ(part.shared, whole.shared);
+    for (std::uint32_t e = 0; e < count - split; ++e)
+      ASSERT_EQ(part.reference_index[e], whole.reference_index[split + e]) << e;
+    EXPECT_EQ(critical_time_step(part, mesh.x_ref), critical_time_step(whole, mesh.x_ref));
+    // Built alone, the part numbers its own groups: other matrices.
+    const ElementBlock alone =
+        make_element_block(formulation, steel, 0.0, split, count - split, second, mesh.x_ref);
+    EXPECT_NE(alone.shared, whole.shared);
+  }
+}
+
 TEST(Hex20, PackedGeneralLoopEqualsTheElementKernelOnAnyRange) {
   // A distorted box of 15 elements (not a multiple of 2, 4 or 8): the general kernel on
   // packs of elements, for ranges that start and end inside packs, against the
