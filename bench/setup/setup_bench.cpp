@@ -37,7 +37,8 @@ void WholeModel(benchmark::State& state) {
 
 void LatticeWalk(benchmark::State& state) {
   const input::Deck deck = plates(int(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(solver::lattice_chunks(deck, 8));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(solver::lattice_chunks(deck, 8, solver::Partitioning::bisection));
   state.counters["elements/s"] = benchmark::Counter(2.0 * double(state.range(0) * state.range(0)),
                                                     benchmark::Counter::kIsIterationInvariantRate);
 }

@@ -24,6 +24,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "common/mpi.hpp"
@@ -62,6 +63,16 @@ std::vector<int> bisect_chunks(const std::vector<std::array<double, 3>>& centroi
                                int ranks, std::size_t elements);
 // Throws InputError when `ranks` ranks cannot each get one of `chunks` chunks.
 void check_rank_count(int ranks, std::size_t chunks, std::size_t elements);
+
+// The graph of chunks (blocks one after the other): for each chunk its neighbours, the
+// chunks sharing a node with it (ascending), each with the number of nodes they share.
+struct ChunkGraph {
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> neighbours;  // (chunk, shared nodes)
+};
+// The METIS partition of partition_chunks on the graph and the chunks' weights (the
+// same on every rank: METIS's seed is fixed). Throws InputError when METIS fails or
+// leaves a rank without a chunk.
+std::vector<int> metis_chunks(const ChunkGraph& graph, const std::vector<double>& weight, int ranks);
 
 // The figures of a partition (docs/parallel.md, "Partitions"): the chunk graph's edge
 // cut (the shared nodes summed over the pairs of chunks on different ranks) and the

@@ -31,12 +31,6 @@ std::vector<std::vector<std::uint32_t>> chunk_nodes(const Model& model) {
   return result;
 }
 
-// The chunk graph: for each chunk, its neighbours (chunks sharing a node, ascending) and
-// the nodes shared with each.
-struct ChunkGraph {
-  std::vector<std::vector<std::pair<std::uint32_t, std::uint32_t>>> neighbours;  // (chunk, shared nodes)
-};
-
 ChunkGraph chunk_graph(const std::vector<std::vector<std::uint32_t>>& nodes_of, std::size_t node_count) {
   // The chunks at each node, then the pairs they make.
   std::vector<std::uint32_t> start(node_count + 1, 0);
@@ -67,11 +61,12 @@ ChunkGraph chunk_graph(const std::vector<std::vector<std::uint32_t>>& nodes_of, 
   return graph;
 }
 
-std::vector<int> metis_partition(const std::vector<std::vector<std::uint32_t>>& nodes_of,
-                                 const std::vector<double>& weight, std::size_t node_count, int ranks) {
-  const ChunkGraph graph = chunk_graph(nodes_of, node_count);
+}  // namespace
+
+std::vector<int> metis_chunks(const ChunkGraph& graph, const std::vector<double>& weight, int ranks) {
+  const std::size_t chunks = graph.neighbours.size();
   std::vector<idx_t> xadj{0}, adjncy, adjwgt, vwgt;
-  for (std::size_t c = 0; c < nodes_of.size(); ++c) {
+  for (std::size_t c = 0; c < chunks; ++c) {
     for (const auto& [other, shared] : graph.neighbours[c]) {
       adjncy.push_back(idx_t(other));
       adjwgt.push_back(idx_t(shared));
@@ -79,13 +74,13 @@ std::vector<int> metis_partition(const std::vector<std::vector<std::uint32_t>>& 
     xadj.push_back(idx_t(adjncy.size()));
     vwgt.push_back(idx_t(weight[c]));
   }
-  idx_t vertices = idx_t(nodes_of.size()), constraints = 1, parts = ranks, objective = 0;
+  idx_t vertices = idx_t(chunks), constraints = 1, parts = ranks, objective = 0;
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);
   options[METIS_OPTION_SEED] = 1;  // the same partition on every rank and every run
   options[METIS_OPTION_NUMBERING] = 0;
   options[METIS_OPTION_CONTIG] = 0;
-  std::vector<idx_t> part(nodes_of.size(), 0);
+  std::vector<idx_t> part(chunks, 0);
   real_t imbalance = 1.03f;
   const int status =
       ranks == 2
@@ -95,7 +90,7 @@ std::vector<int> metis_partition(const std::vector<std::vector<std::uint32_t>>& 
           : METIS_PartGraphKway(&vertices, &constraints, xadj.data(), adjncy.data(), vwgt.data(), nullptr,
                                 adjwgt.data(), &parts, nullptr, &imbalance, options, &objective, part.data());
   if (status != METIS_OK)
-    throw InputError("METIS could not partition " + std::to_string(nodes_of.size()) + " chunks over " +
+    throw InputError("METIS could not partition " + std::to_string(chunks) + " chunks over " +
                      std::to_string(ranks) + " ranks (status " + std::to_string(status) +
                      "); use --partition bisection");
   std::vector<int> rank_of(part.begin(), part.end());
@@ -104,12 +99,10 @@ std::vector<int> metis_partition(const std::vector<std::vector<std::uint32_t>>& 
   for (int r = 0; r < ranks; ++r)
     if (chunks_on[std::size_t(r)] == 0)
       throw InputError("METIS left rank " + std::to_string(r) + " of " + std::to_string(ranks) +
-                       " without a chunk of the " + std::to_string(nodes_of.size()) +
+                       " without a chunk of the " + std::to_string(chunks) +
                        "; run on fewer ranks or use --partition bisection");
   return rank_of;
 }
-
-}  // namespace
 
 PartitionFigures partition_figures(const Model& model, const std::vector<int>& chunk_rank) {
   const std::vector<std::vector<std::uint32_t>> nodes_of = chunk_nodes(model);
@@ -164,7 +157,7 @@ std::vector<int> partition_chunks(const Model& model, int ranks, Partitioning pa
   if (partitioning == Partitioning::metis) {
     check_rank_count(ranks, chunks, mesh.element_count());
     if (ranks == 1) return std::vector<int>(chunks, 0);
-    return metis_partition(chunk_nodes(model), weight, mesh.node_count(), ranks);
+    return metis_chunks(chunk_graph(chunk_nodes(model), mesh.node_count()), weight, ranks);
   }
   return bisect_chunks(centroid, weight, block_of, ranks, mesh.element_count());
 }

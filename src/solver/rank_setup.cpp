@@ -289,6 +289,22 @@ Chunks walk_chunks(const Lattice& lattice) {
   return chunks;
 }
 
+// The chunk graph of partition.cpp from the lattice, part by part and chunk by chunk:
+// each chunk's nodes (once each), the chunks around each of them, and how many of
+// its nodes each other chunk shares. Parts share no node, so no edge joins two parts.
+ChunkGraph lattice_graph(const Lattice& lattice);
+
+// The partition of the chunks over `ranks` ranks: partition_chunks' on the whole model.
+std::vector<int> partition_lattice(const Lattice& lattice, const Chunks& chunks, int ranks,
+                                   Partitioning partitioning) {
+  if (partitioning == Partitioning::metis) {
+    check_rank_count(ranks, lattice.chunks, lattice.elements);
+    if (ranks == 1) return std::vector<int>(lattice.chunks, 0);
+    return metis_chunks(lattice_graph(lattice), chunks.weight, ranks);
+  }
+  return bisect_chunks(chunks.centroid, chunks.weight, chunks.block_of, ranks, lattice.elements);
+}
+
 // The chunks (global indices) of the elements around node g.
 int chunks_at(const BoxPart& part, std::uint32_t g, std::array<std::size_t, 8>& out) {
   std::array<std::uint32_t, 8> elements{};
@@ -300,6 +316,37 @@ int chunks_at(const BoxPart& part, std::uint32_t g, std::array<std::size_t, 8>& 
       out[std::size_t(unique++)] = c;
   }
   return unique;
+}
+
+ChunkGraph lattice_graph(const Lattice& lattice) {
+  ChunkGraph graph;
+  graph.neighbours.resize(lattice.chunks);
+  std::vector<std::uint32_t> count(lattice.chunks, 0), nodes, touched;
+  for (const BoxPart& part : lattice.parts)
+    for (std::size_t c = 0; c < part.chunks; ++c) {
+      const std::size_t me = part.first_chunk + c;
+      nodes.clear();
+      for (auto e = std::uint32_t(c * chunk_size);
+           e < std::min<std::size_t>((c + 1) * chunk_size, part.element_count); ++e)
+        for (const std::uint32_t g : part.element_nodes(e)) nodes.push_back(g);
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      touched.clear();
+      for (const std::uint32_t g : nodes) {
+        std::array<std::size_t, 8> around{};
+        const int n = chunks_at(part, g, around);
+        for (int k = 0; k < n; ++k) {
+          const std::size_t other = around[std::size_t(k)];
+          if (other != me && count[other]++ == 0) touched.push_back(std::uint32_t(other));
+        }
+      }
+      std::sort(touched.begin(), touched.end());
+      for (const std::uint32_t other : touched) {
+        graph.neighbours[me].emplace_back(other, count[other]);
+        count[other] = 0;
+      }
+    }
+  return graph;
 }
 
 // The lumped masses of `nodes` (global ids, ascending), kg: each from the elements
@@ -461,14 +508,14 @@ std::vector<std::array<double, 60>> whole_block_groups(const Lattice& lattice, c
 
 }  // namespace
 
-bool sets_up_by_rank(const input::Deck& deck, Partitioning partitioning, bool weigh_by_work) {
-  if (partitioning != Partitioning::bisection || weigh_by_work || deck.parts.empty()) return false;
+bool sets_up_by_rank(const input::Deck& deck, bool weigh_by_work) {
+  if (weigh_by_work || deck.parts.empty()) return false;
   return std::all_of(deck.parts.begin(), deck.parts.end(), [](const input::PartOptions& part) {
     return part.geometry == input::Geometry::box && part.perturbation_fraction == 0.0;
   });
 }
 
-RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm) {
+RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning) {
   // The memory check with this machine's share of the model.
   MPI_Comm here = MPI_COMM_NULL;
   mpi::check(MPI_Comm_split_type(comm.comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &here),
@@ -484,7 +531,7 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm) {
   setup.nodes = lattice.nodes;
   setup.elements = lattice.elements;
   Chunks chunks = walk_chunks(lattice);
-  chunks.rank = bisect_chunks(chunks.centroid, chunks.weight, chunks.block_of, comm.size, lattice.elements);
+  chunks.rank = partition_lattice(lattice, chunks, comm.size, partitioning);
   chunks.centroid = {};
 
   LocalRun& run = setup.run;
@@ -493,7 +540,7 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm) {
   d.comm = comm;
   d.global_nodes = lattice.nodes;
   d.global_elements = lattice.elements;
-  d.partitioning = Partitioning::bisection;
+  d.partitioning = partitioning;
   d.set_up_by_rank = true;
 
   // This rank's chunks, elements and nodes (in ascending global order).
@@ -698,11 +745,10 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm) {
   return setup;
 }
 
-LatticeChunks lattice_chunks(const input::Deck& deck, int ranks) {
+LatticeChunks lattice_chunks(const input::Deck& deck, int ranks, Partitioning partitioning) {
   const Lattice lattice(deck);
   const Chunks chunks = walk_chunks(lattice);
-  return {chunks.colour,
-          bisect_chunks(chunks.centroid, chunks.weight, chunks.block_of, ranks, lattice.elements)};
+  return {chunks.colour, partition_lattice(lattice, chunks, ranks, partitioning)};
 }
 
 std::vector<double> lattice_masses(const input::Deck& deck, const std::vector<std::uint32_t>& nodes) {

@@ -2,7 +2,8 @@
 //
 // For a deck whose parts are all boxes (without perturbation),
 // every rank walks the parts' lattices chunk by chunk, keeping only a chunk's
-// centroid and colour: the partition and the colours of the whole model, the same
+// centroid and colour (and for METIS the chunk graph, made from the lattice too): the
+// partition and the colours of the whole model, the same
 // on every rank and the same as decomposition.hpp computes from a whole model. Then
 // each rank builds only its own elements and their nodes, and from the elements
 // around its nodes (a halo of one element, never kept) their lumped masses, adding
@@ -28,8 +29,8 @@
 namespace exdyn::solver {
 
 // True when the deck can be set up rank by rank: every part a box without
-// perturbation, partitioned by bisection weighed by elements.
-bool sets_up_by_rank(const input::Deck& deck, Partitioning partitioning, bool weigh_by_work);
+// perturbation, the chunks weighed by their elements (bisection or METIS).
+bool sets_up_by_rank(const input::Deck& deck, bool weigh_by_work);
 
 struct RankSetup {
   LocalRun run;                         // this rank's model, velocities, decomposition, contact holders
@@ -43,7 +44,7 @@ struct RankSetup {
 };
 
 // Every rank calls it (collective over comm).
-RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm);
+RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning);
 
 // The pieces of set_up_rank that need no other rank, for the tests that hold them to
 // the whole model's (tests/solver/test_decomposition.cpp): each chunk's colour in its
@@ -52,7 +53,7 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm);
 struct LatticeChunks {
   std::vector<int> colour, rank;
 };
-LatticeChunks lattice_chunks(const input::Deck& deck, int ranks);
+LatticeChunks lattice_chunks(const input::Deck& deck, int ranks, Partitioning partitioning);
 std::vector<double> lattice_masses(const input::Deck& deck, const std::vector<std::uint32_t>& nodes);
 std::pair<std::vector<std::uint32_t>, Model> contact_faces_model(const input::Deck& deck);
 
