@@ -61,6 +61,9 @@ std::vector<int> partition_chunks(const Model& model, int ranks,
 std::vector<int> bisect_chunks(const std::vector<std::array<double, 3>>& centroid,
                                const std::vector<double>& weight, const std::vector<std::uint32_t>& block_of,
                                int ranks, std::size_t elements);
+// The chunks' weights (their elements) made their measured costs (seconds a step,
+// load_balance.hpp) in elements of the mean chunk's cost per element, at least 1 each.
+void weigh_by_costs(std::vector<double>& weight, const std::vector<double>& costs);
 // Throws InputError when `ranks` ranks cannot each get one of `chunks` chunks.
 void check_rank_count(int ranks, std::size_t chunks, std::size_t elements);
 

@@ -2,6 +2,7 @@
 #include "solver/load_balance.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 
 #include "common/timer.hpp"
@@ -13,10 +14,9 @@ namespace {
 
 constexpr int repeats = 3;  // the best of three: the least disturbed by the machine
 
-// Seconds of one element pass of each block per element, and of one contact pass per
-// slave point (pairs' passes, then walls), at u = 0 with the initial velocities.
-std::vector<double> measure(const Model& model, const ContactModel& contact, const NodalVectors& velocity,
-                            double dt) {
+}  // namespace
+
+std::vector<double> element_costs(const Model& model, double dt) {
   std::vector<double> costs;
   const NodalVectors u(model.mesh.node_count());
   NodalVectors f(model.mesh.node_count());
@@ -30,6 +30,14 @@ std::vector<double> measure(const Model& model, const ContactModel& contact, con
     }
     costs.push_back(best / double(std::max<std::uint32_t>(block.count, 1)));
   }
+  return costs;
+}
+
+std::vector<double> contact_costs(const Model& model, const ContactModel& contact,
+                                  const NodalVectors& velocity) {
+  std::vector<double> costs;
+  const NodalVectors u(model.mesh.node_count());
+  NodalVectors f(model.mesh.node_count());
   std::vector<double> gap(model.mesh.node_count(), std::numeric_limits<double>::infinity());
   auto time_pass = [&](auto&& run, std::size_t points) {
     double best = std::numeric_limits<double>::infinity();
@@ -64,12 +72,30 @@ std::vector<double> measure(const Model& model, const ContactModel& contact, con
   return costs;
 }
 
-}  // namespace
+void add_point_costs(const ContactModel& contact, const std::vector<double>& pass_costs,
+                     const std::function<std::size_t(std::uint32_t)>& chunk_of_node,
+                     std::vector<double>& chunk) {
+  std::size_t k = 0;
+  auto add_points = [&](const contact::ContactSurfaces& s, double cost) {
+    for (std::size_t p = 0; p < s.point_count(); ++p) {
+      const std::uint32_t node =
+          s.quadrature ? s.slave_segments[s.quadrature_points[p].segment].nodes[0] : s.slave_nodes[p];
+      chunk[chunk_of_node(node)] += cost;
+    }
+  };
+  for (const ContactPair& pair : contact.pairs)
+    for (const contact::ContactSurfaces& pass : pair.passes) add_points(pass, pass_costs[k++]);
+  for (const RigidWall& wall : contact.walls) add_points(wall.surfaces, pass_costs[k++]);
+}
 
 std::vector<double> chunk_costs(const Model& model, const ContactModel& contact, const NodalVectors& velocity,
                                 double dt, const mpi::Communicator& comm) {
   std::vector<double> costs;
-  if (comm.root()) costs = measure(model, contact, velocity, dt);
+  if (comm.root()) {
+    costs = element_costs(model, dt);
+    const std::vector<double> passes = contact_costs(model, contact, velocity);
+    costs.insert(costs.end(), passes.begin(), passes.end());
+  }
   std::size_t passes = 0;
   for (const ContactPair& pair : contact.pairs) passes += pair.passes.size();
   costs.resize(model.blocks.size() + passes + contact.walls.size());
@@ -91,17 +117,9 @@ std::vector<double> chunk_costs(const Model& model, const ContactModel& contact,
     }
   }
   // Each slave point in the chunk of its node (or of its slave segment's first node).
-  std::size_t k = model.blocks.size();
-  auto add_points = [&](const contact::ContactSurfaces& s, double cost) {
-    for (std::size_t p = 0; p < s.point_count(); ++p) {
-      const std::uint32_t node =
-          s.quadrature ? s.slave_segments[s.quadrature_points[p].segment].nodes[0] : s.slave_nodes[p];
-      chunk[std::size_t(first_chunk[node])] += cost;
-    }
-  };
-  for (const ContactPair& pair : contact.pairs)
-    for (const contact::ContactSurfaces& pass : pair.passes) add_points(pass, costs[k++]);
-  for (const RigidWall& wall : contact.walls) add_points(wall.surfaces, costs[k++]);
+  add_point_costs(
+      contact, std::vector<double>(costs.begin() + std::ptrdiff_t(model.blocks.size()), costs.end()),
+      [&](std::uint32_t node) { return std::size_t(first_chunk[node]); }, chunk);
   return chunk;
 }
 

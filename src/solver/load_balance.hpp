@@ -7,10 +7,14 @@
 // point far from any segment to 1.2 us for one sliding in contact): rank 0 times one
 // element pass of each block and one pass of each contact pass at the initial state of
 // the whole model, the best of three, and sends the costs to every rank, which then
-// computes the same weights. The timing decides only which rank holds which chunk, so
-// the results are the same bits whatever it measures.
+// computes the same weights. (A deck set up rank by rank times the same passes on a
+// first setup of its parts: rank_setup.cpp.) The timing decides only which rank holds
+// which chunk, so the results are the same bits whatever it measures.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "common/mpi.hpp"
@@ -26,5 +30,18 @@ namespace exdyn::solver {
 // every rank. dt: the first step (s), for the materials' rates.
 std::vector<double> chunk_costs(const Model& model, const ContactModel& contact, const NodalVectors& velocity,
                                 double dt, const mpi::Communicator& comm);
+
+// Its pieces, for a model that is a rank's part (rank_setup.cpp). Seconds of one
+// element pass of each block per element (the best of three; dt for the materials'
+// rates), and of one contact pass per slave point (pairs' passes, then walls; at u = 0
+// with the velocities given, on the model the contact's node ids index).
+std::vector<double> element_costs(const Model& model, double dt);
+std::vector<double> contact_costs(const Model& model, const ContactModel& contact,
+                                  const NodalVectors& velocity);
+// chunk[chunk_of_node(node)] += each slave point's pass cost (pass_costs: contact_costs'
+// order), the point counted at its node or at its slave segment's first node.
+void add_point_costs(const ContactModel& contact, const std::vector<double>& pass_costs,
+                     const std::function<std::size_t(std::uint32_t)>& chunk_of_node,
+                     std::vector<double>& chunk);
 
 }  // namespace exdyn::solver

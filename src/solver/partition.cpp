@@ -147,19 +147,21 @@ std::vector<int> partition_chunks(const Model& model, int ranks, Partitioning pa
     }
   }
   const std::size_t chunks = centroid.size();
-  if (!costs.empty()) {  // measured seconds, in elements of the mean chunk's cost per element
-    EXDYN_ASSERT(costs.size() == chunks);
-    double total_cost = 0.0, total_elements = 0.0;
-    for (std::size_t c = 0; c < chunks; ++c) total_cost += costs[c], total_elements += weight[c];
-    for (std::size_t c = 0; c < chunks; ++c)
-      weight[c] = total_cost > 0.0 ? std::max(costs[c] * total_elements / total_cost, 1.0) : weight[c];
-  }
+  if (!costs.empty()) weigh_by_costs(weight, costs);
   if (partitioning == Partitioning::metis) {
     check_rank_count(ranks, chunks, mesh.element_count());
     if (ranks == 1) return std::vector<int>(chunks, 0);
     return metis_chunks(chunk_graph(chunk_nodes(model), mesh.node_count()), weight, ranks);
   }
   return bisect_chunks(centroid, weight, block_of, ranks, mesh.element_count());
+}
+
+void weigh_by_costs(std::vector<double>& weight, const std::vector<double>& costs) {
+  EXDYN_ASSERT(costs.size() == weight.size());
+  double total_cost = 0.0, total_elements = 0.0;
+  for (std::size_t c = 0; c < weight.size(); ++c) total_cost += costs[c], total_elements += weight[c];
+  for (std::size_t c = 0; c < weight.size(); ++c)
+    weight[c] = total_cost > 0.0 ? std::max(costs[c] * total_elements / total_cost, 1.0) : weight[c];
 }
 
 void check_rank_count(int ranks, std::size_t chunks, std::size_t elements) {

@@ -13,6 +13,7 @@
 #include "material/elastic.hpp"
 #include "material/material_law.hpp"
 #include "mesh/mesh.hpp"
+#include "solver/load_balance.hpp"
 #include "solver/memory_estimate.hpp"
 
 namespace exdyn::solver {
@@ -398,6 +399,28 @@ std::vector<double> masses_of(const input::Deck& deck, const Lattice& lattice,
   return result;
 }
 
+// initial_velocity's values for `nodes` (global ids) of a model of them (their
+// coordinates and fixed components), node by node.
+NodalVectors initial_velocities(const Lattice& lattice, const std::vector<std::uint32_t>& nodes,
+                                const Model& m) {
+  NodalVectors v(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const input::PartOptions& options = *lattice.part_of_node(nodes[i]).options;
+    for (int c = 0; c < 3; ++c) v.component(c)[i] = options.initial_velocity[std::size_t(c)];
+    if (const auto& spin = options.initial_angular_velocity) {
+      const input::Vec3& point = (*spin)[0];
+      const input::Vec3& omega = (*spin)[1];
+      const double r[3] = {m.mesh.x_ref.x[i] - point[0], m.mesh.x_ref.y[i] - point[1],
+                           m.mesh.x_ref.z[i] - point[2]};
+      v.x[i] += omega[1] * r[2] - omega[2] * r[1];
+      v.y[i] += omega[2] * r[0] - omega[0] * r[2];
+      v.z[i] += omega[0] * r[1] - omega[1] * r[0];
+    }
+  }
+  apply_fixed_components(m, v);
+  return v;
+}
+
 // The nodes (global ids, ascending) of the faces the contact pairs and walls name.
 std::vector<std::uint32_t> surface_nodes_of(const input::Deck& deck, const Lattice& lattice) {
   std::vector<std::uint32_t> nodes;
@@ -506,33 +529,13 @@ std::vector<std::array<double, 60>> whole_block_groups(const Lattice& lattice, c
   return groups;
 }
 
-}  // namespace
-
-bool sets_up_by_rank(const input::Deck& deck, bool weigh_by_work) {
-  if (weigh_by_work || deck.parts.empty()) return false;
-  return std::all_of(deck.parts.begin(), deck.parts.end(), [](const input::PartOptions& part) {
-    return part.geometry == input::Geometry::box && part.perturbation_fraction == 0.0;
-  });
-}
-
-RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning) {
-  // The memory check with this machine's share of the model.
-  MPI_Comm here = MPI_COMM_NULL;
-  mpi::check(MPI_Comm_split_type(comm.comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &here),
-             "MPI_Comm_split_type of the ranks on this machine");
-  int ranks_here = 1;
-  MPI_Comm_size(here, &ranks_here);
-  MPI_Comm_free(&here);
-  check_mesh_size(deck, MachineShare{comm.size, ranks_here});
-
-  const Lattice lattice(deck);
+// This rank's part of the model, its chunks chunks.rank's.
+RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, const Lattice& lattice,
+                     const Chunks& chunks, Partitioning partitioning) {
   const int me = comm.rank;
   RankSetup setup;
   setup.nodes = lattice.nodes;
   setup.elements = lattice.elements;
-  Chunks chunks = walk_chunks(lattice);
-  chunks.rank = partition_lattice(lattice, chunks, comm.size, partitioning);
-  chunks.centroid = {};
 
   LocalRun& run = setup.run;
   Decomposition& d = run.decomposition;
@@ -681,24 +684,7 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Pa
         for (int c = 0; c < 3; ++c) m.load_acceleration.component(c)[i] += load.gravity[std::size_t(c)];
       }
   }
-  // initial_velocity's values, node by node.
-  run.initial_velocity.resize(local_nodes);
-  for (std::size_t i = 0; i < local_nodes; ++i) {
-    const BoxPart& part = lattice.part_of_node(d.global_node[i]);
-    const input::PartOptions& options = *part.options;
-    for (int c = 0; c < 3; ++c)
-      run.initial_velocity.component(c)[i] = options.initial_velocity[std::size_t(c)];
-    if (const auto& spin = options.initial_angular_velocity) {
-      const input::Vec3& point = (*spin)[0];
-      const input::Vec3& omega = (*spin)[1];
-      const double r[3] = {m.mesh.x_ref.x[i] - point[0], m.mesh.x_ref.y[i] - point[1],
-                           m.mesh.x_ref.z[i] - point[2]};
-      run.initial_velocity.x[i] += omega[1] * r[2] - omega[2] * r[1];
-      run.initial_velocity.y[i] += omega[2] * r[0] - omega[0] * r[2];
-      run.initial_velocity.z[i] += omega[0] * r[1] - omega[1] * r[0];
-    }
-  }
-  apply_fixed_components(m, run.initial_velocity);
+  run.initial_velocity = initial_velocities(lattice, d.global_node, m);
 
   // The whole model's stable step: the minimum over the elements, exact on any ranks.
   double dt = critical_time_step(m);
@@ -742,6 +728,82 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Pa
     std::sort(holders.begin(), holders.end());
     holders.erase(std::unique(holders.begin(), holders.end()), holders.end());
   }
+  return setup;
+}
+
+// Each chunk's seconds a step (chunk_costs' figures) from a first setup of the parts:
+// its elements at their block's cost per element, timed on the ranks' parts (the least
+// over the ranks holding one), and the slave points of its nodes at their pass's cost
+// per point, timed by rank 0 on the contact faces' model. Collective over comm.
+std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communicator& comm,
+                                   const Lattice& lattice, const Chunks& chunks, const RankSetup& trial) {
+  const double dt = time_stepping(deck.time, trial.critical_dt).dt;
+  const Model& m = trial.run.model;
+  const Decomposition& d = trial.run.decomposition;
+  std::vector<double> part_cost(lattice.parts.size(), std::numeric_limits<double>::infinity());
+  const std::vector<double> block_cost = element_costs(m, dt);
+  for (std::size_t b = 0; b < m.blocks.size(); ++b)
+    part_cost[std::size_t(lattice.part_of_element(d.global_element[m.blocks[b].first_element]).index)] =
+        block_cost[b];
+  mpi::check(
+      MPI_Allreduce(MPI_IN_PLACE, part_cost.data(), int(part_cost.size()), MPI_DOUBLE, MPI_MIN, comm.comm),
+      "MPI_Allreduce of the element costs");
+  const ContactModel contact = build_contact(deck, trial.surfaces, dt, trial.critical_dt);  // faces' ids
+  std::size_t passes = contact.walls.size();
+  for (const ContactPair& pair : contact.pairs) passes += pair.passes.size();
+  std::vector<double> pass_cost(passes, 0.0);
+  if (comm.root())
+    pass_cost = contact_costs(trial.surfaces, contact,
+                              initial_velocities(lattice, trial.surface_nodes, trial.surfaces));
+  if (passes > 0)
+    mpi::check(MPI_Bcast(pass_cost.data(), int(passes), MPI_DOUBLE, 0, comm.comm), "MPI_Bcast of the costs");
+
+  std::vector<double> cost(chunks.weight.size());
+  for (std::size_t c = 0; c < cost.size(); ++c) cost[c] = part_cost[chunks.block_of[c]] * chunks.weight[c];
+  add_point_costs(
+      contact, pass_cost,
+      [&](std::uint32_t face_node) {  // the first chunk holding the node
+        const std::uint32_t g = trial.surface_nodes[face_node];
+        std::array<std::size_t, 8> around{};
+        const int count = chunks_at(lattice.part_of_node(g), g, around);
+        return *std::min_element(around.begin(), around.begin() + count);
+      },
+      cost);
+  return cost;
+}
+
+}  // namespace
+
+bool sets_up_by_rank(const input::Deck& deck) {
+  return !deck.parts.empty() &&
+         std::all_of(deck.parts.begin(), deck.parts.end(), [](const input::PartOptions& part) {
+           return part.geometry == input::Geometry::box && part.perturbation_fraction == 0.0;
+         });
+}
+
+RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning,
+                      bool weigh_by_work) {
+  // The memory check with this machine's share of the model.
+  MPI_Comm here = MPI_COMM_NULL;
+  mpi::check(MPI_Comm_split_type(comm.comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &here),
+             "MPI_Comm_split_type of the ranks on this machine");
+  int ranks_here = 1;
+  MPI_Comm_size(here, &ranks_here);
+  MPI_Comm_free(&here);
+  check_mesh_size(deck, MachineShare{comm.size, ranks_here});
+
+  const Lattice lattice(deck);
+  Chunks chunks = walk_chunks(lattice);
+  chunks.rank = partition_lattice(lattice, chunks, comm.size, partitioning);
+  if (weigh_by_work) {  // a first setup by elements, timed, then the chunks weighed by their costs
+    const std::vector<double> costs =
+        measured_costs(deck, comm, lattice, chunks, build_part(deck, comm, lattice, chunks, partitioning));
+    weigh_by_costs(chunks.weight, costs);
+    chunks.rank = partition_lattice(lattice, chunks, comm.size, partitioning);
+  }
+  chunks.centroid = {};
+  RankSetup setup = build_part(deck, comm, lattice, chunks, partitioning);
+  setup.run.decomposition.weighed_by_work = weigh_by_work;
   return setup;
 }
 

@@ -29,8 +29,8 @@
 namespace exdyn::solver {
 
 // True when the deck can be set up rank by rank: every part a box without
-// perturbation, the chunks weighed by their elements (bisection or METIS).
-bool sets_up_by_rank(const input::Deck& deck, bool weigh_by_work);
+// perturbation (any partition, any weighing).
+bool sets_up_by_rank(const input::Deck& deck);
 
 struct RankSetup {
   LocalRun run;                         // this rank's model, velocities, decomposition, contact holders
@@ -44,7 +44,10 @@ struct RankSetup {
 };
 
 // Every rank calls it (collective over comm).
-RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning);
+// weigh_by_work: the chunks weighed by their measured work (load_balance.hpp), timed
+// on a first setup by elements, which is then dropped.
+RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning,
+                      bool weigh_by_work);
 
 // The pieces of set_up_rank that need no other rank, for the tests that hold them to
 // the whole model's (tests/solver/test_decomposition.cpp): each chunk's colour in its

@@ -116,8 +116,8 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   const mpi::Communicator& comm = controls.comm;
   NodalVectors initial_v;
   std::vector<std::uint32_t> contact_nodes;
-  if (comm.distributed() && sets_up_by_rank(deck, controls.weigh_by_work)) {
-    RankSetup setup = set_up_rank(deck, comm, controls.partitioning);
+  if (comm.distributed() && sets_up_by_rank(deck)) {
+    RankSetup setup = set_up_rank(deck, comm, controls.partitioning, controls.weigh_by_work);
     critical_dt_ = setup.critical_dt;
     clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, setup.run.model, &comm);
     contact_ = build_contact(deck, setup.surfaces, clock_->next(), critical_dt_);

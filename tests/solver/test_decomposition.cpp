@@ -323,7 +323,7 @@ std::vector<input::Deck> lattice_decks() {
 
 TEST(RankSetup, ColoursAndPartitionAreTheWholeModels) {
   for (const input::Deck& deck : lattice_decks()) {
-    ASSERT_TRUE(solver::sets_up_by_rank(deck, false));
+    ASSERT_TRUE(solver::sets_up_by_rank(deck));
     const solver::Model model = solver::build_model(deck);
     std::vector<int> colour;
     for (const auto& block : model.blocks) {
@@ -413,15 +413,14 @@ TEST(RankSetup, ContactFromTheFacesIsTheWholeModels) {
 }
 
 // Which decks are set up rank by rank.
-TEST(RankSetup, OnlyUnperturbedBoxesWeighedByElements) {
+TEST(RankSetup, OnlyUnperturbedBoxes) {
   for (const char* file : {"plate_impact.yaml", "plate_impact_hex20.yaml", "contact_patch_hex20.yaml"})
-    EXPECT_TRUE(solver::sets_up_by_rank(deck_of(file), false)) << file;
-  EXPECT_FALSE(solver::sets_up_by_rank(deck_of("plate_impact.yaml"), true));
+    EXPECT_TRUE(solver::sets_up_by_rank(deck_of(file))) << file;
   for (const char* file : {"hertz_ball.yaml", "taylor_rods.yaml", "plate_impact_gmsh.yaml"})
-    EXPECT_FALSE(solver::sets_up_by_rank(deck_of(file), false)) << file;
+    EXPECT_FALSE(solver::sets_up_by_rank(deck_of(file))) << file;
   input::Deck perturbed = deck_of("plate_impact.yaml");
   perturbed.parts[0].perturbation_fraction = 0.1;
-  EXPECT_FALSE(solver::sets_up_by_rank(perturbed, false));
+  EXPECT_FALSE(solver::sets_up_by_rank(perturbed));
 }
 
 }  // namespace
