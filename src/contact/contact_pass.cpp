@@ -156,14 +156,15 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
                       ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u,
                       const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,
                       std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds,
-                      RecordSink* records) {
+                      RecordSink* records, bool search_when_moved) {
   const std::size_t n_points = surfaces.point_count();
   {
     ScopedTimer timer(seconds.global_search);
     update_slave_points(surfaces, x_ref, u, state.slave_points);
     // A pair within search_distance now was within search_distance + margin at the
     // build as long as no node has moved more than margin / 2 since.
-    if (largest_motion_since_build(surfaces, state, x_ref, u) > 0.5 * settings.margin)
+    if (search_when_moved ? largest_motion_since_build(surfaces, state, x_ref, u) > 0.5 * settings.margin
+                          : !state.built)
       rebuild_candidates(surfaces, settings, state, x_ref, u);
   }
 

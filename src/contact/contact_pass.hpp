@@ -178,10 +178,14 @@ double largest_motion_since_build(const ContactSurfaces& surfaces, const Contact
 // there (callers start from +infinity and zero what stays so); with quadrature
 // points, a node's gap is the smallest of the points of the segments it belongs to.
 // With `records`, the forces and gaps go there instead of to `force` and `gap`.
+// search_when_moved: the pass searches again once a node has moved margin / 2 since
+// its last search; false where the caller decides that (the distributed contact, from
+// the motion over all ranks): the pass then searches only when it has no candidates
+// yet or the caller has reset them (state.built false).
 void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
                       ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u,
                       const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,
                       std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds,
-                      RecordSink* records = nullptr);
+                      RecordSink* records = nullptr, bool search_when_moved = true);
 
 }  // namespace exdyn::contact

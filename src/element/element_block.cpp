@@ -91,7 +91,7 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
                                 double hourglass_coefficient, std::uint32_t first_element,
                                 std::uint32_t count, const std::uint32_t* connectivity,
                                 const NodalVectors& x_ref, const material::MaterialLaw& law,
-                                std::vector<std::array<double, 60>> group_points) {
+                                WholeBlock whole) {
   ElementBlock block;
   block.formulation = formulation;
   block.family = &element_family(formulation);
@@ -102,8 +102,9 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
   block.first_element = first_element;
   block.count = count;
   block.connectivity = connectivity;
-  block.group_points = std::move(group_points);
+  block.whole = std::move(whole);
   block.family->prepare(block, x_ref);
+  block.whole = {};
   EXDYN_ASSERT(block.loop != nullptr);
   build_schedule(block, x_ref.size());
   allocate_material_state(block);
@@ -113,6 +114,11 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
     block.step_scale = block.family->critical_time_step(block, x_ref) / corner_step;
   }
   return block;
+}
+
+WholeBlock element_layout(input::Formulation formulation, std::uint32_t count,
+                          const std::uint32_t* connectivity, const NodalVectors& x_ref) {
+  return element_family(formulation).layout(count, connectivity, x_ref);
 }
 
 void commit_material_state(const ElementBlock& block) {

@@ -47,6 +47,16 @@ inline constexpr std::uint32_t element_chunk = 512;
 struct ElementBlock;
 struct ElementFamily;
 
+// What a rank's part of a block, built alone (solver/rank_setup.cpp), takes from the
+// whole block, so that its elements run the kernels and share the data they do there:
+// whether every element of the whole block is a parallelepiped (and, hex8, has its
+// edges along x, y, z), and a 20-node block's groups (ElementBlock::group_points).
+// The defaults leave a block to its own elements.
+struct WholeBlock {
+  bool parallelepipeds = true, axis_aligned = true;
+  std::vector<std::array<double, 60>> group_points;
+};
+
 // Adds the internal forces of the block's elements [begin, end) (local indices):
 // the family's loop for the block's reference layout, chosen once when the block is built.
 using ElementLoopFn = ElementEnergies (*)(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
@@ -76,10 +86,10 @@ struct ElementBlock {
   std::vector<std::uint32_t> reference_index;  // per element, where the family keeps its data there
   // 20-node blocks of parallelepipeds (hex20_family.cpp): the first element of each
   // group of equal Jacobians, whose reference data and stable step the group shares:
-  // its 20 nodes' x, then y, then z, m. Given to make_element_block for a rank's part
-  // of a block built alone (solver/rank_setup.cpp), they are the whole block's, so the
-  // part shares the whole block's matrices and steps (jacobian_group_starts).
+  // its 20 nodes' x, then y, then z, m. A rank's part of a block built alone has the
+  // whole block's (WholeBlock), so it shares its matrices and steps.
   std::vector<std::array<double, 60>> group_points;
+  WholeBlock whole;  // what make_element_block was given; prepare reads it
   // Doubles of `reference` per element (its layout interleaves packs of elements,
   // element_loop.hpp, but element e's data starts at e * this for e a multiple of the
   // pack width; slice_block relies on it).
@@ -102,13 +112,18 @@ struct ElementBlock {
 };
 
 // Builds a block and precomputes its reference data from the reference
-// coordinates. `connectivity` must outlive the block. `group_points`: a whole block's
-// groups (ElementBlock::group_points) where this block is a rank's part of it.
+// coordinates. `connectivity` must outlive the block. `whole`: the whole block's layout
+// and groups where this block is a rank's part of it.
 ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
                                 double hourglass_coefficient, std::uint32_t first_element,
                                 std::uint32_t count, const std::uint32_t* connectivity,
                                 const NodalVectors& x_ref, const material::MaterialLaw& law = {},
-                                std::vector<std::array<double, 60>> group_points = {});
+                                WholeBlock whole = {});
+
+// The layout elements [0, count) of a formulation allow alone (WholeBlock's flags): a
+// rank's part of a block takes the flags of all parts together.
+WholeBlock element_layout(input::Formulation formulation, std::uint32_t count,
+                          const std::uint32_t* connectivity, const NodalVectors& x_ref);
 
 // The elements [0, count) of a 20-node block that start its groups of equal Jacobians
 // (ElementBlock::group_points), ascending: none for 8-node formulations or elements

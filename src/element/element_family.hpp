@@ -25,6 +25,9 @@ struct ElementFamily {
                           std::vector<double>& mass) = nullptr;
   // The block's smallest stable step without the Courant factor, s.
   double (*critical_time_step)(const ElementBlock& block, const NodalVectors& x_ref) = nullptr;
+  // The layout `count` elements allow alone (WholeBlock's flags; no group points).
+  WholeBlock (*layout)(std::uint32_t count, const std::uint32_t* connectivity,
+                       const NodalVectors& x_ref) = nullptr;
 };
 
 // The family of a formulation (never null).

@@ -263,7 +263,7 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
 
   block.reference.assign(std::size_t(stride) * block.count, 0.0);
   block.reference_per_element = std::size_t(stride);  // 0 below when the block keeps only shared matrices
-  bool affine = true;
+  bool affine = block.whole.parallelepipeds;          // a rank's part takes the whole block's layout
   for (std::uint32_t e = 0; e < block.count; ++e) {
     const ElementVectors20 x = gather20(x_ref, block.connectivity + 20 * std::size_t(e));
     const double smallest =
@@ -275,7 +275,7 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
   // each group's reference data from its first element: this block's, or the whole
   // block's where this is a rank's part of it (group_points given).
   std::vector<double> group_reference;  // per group
-  if (affine && block.group_points.empty()) {
+  if (affine && block.whole.group_points.empty()) {
     std::vector<std::uint32_t> first;
     group_by_jacobian(
         block.count, [&](std::uint32_t e) { return block.reference.data() + std::size_t(stride) * e; },
@@ -291,6 +291,7 @@ void prepare(ElementBlock& block, const NodalVectors& x_ref) {
         points[std::size_t(40 + k)] = x.z[k];
     }
   } else if (affine) {
+    block.group_points = block.whole.group_points;
     affine = block.group_points.size() <= max_groups;
     group_reference.resize(std::size_t(stride) * block.group_points.size());
     for (std::size_t g = 0; g < block.group_points.size(); ++g)
@@ -418,6 +419,13 @@ std::vector<std::uint32_t> group_starts(std::uint32_t count, const std::uint32_t
   return first;
 }
 
+WholeBlock hex20_layout(std::uint32_t count, const std::uint32_t* connectivity, const NodalVectors& x_ref) {
+  WholeBlock layout;
+  for (std::uint32_t e = 0; e < count && layout.parallelepipeds; ++e)
+    layout.parallelepipeds = hex20::is_affine(gather20(x_ref, connectivity + 20 * std::size_t(e)));
+  return layout;
+}
+
 }  // namespace
 
 std::vector<std::uint32_t> jacobian_group_starts(input::Formulation formulation, std::uint32_t count,
@@ -433,7 +441,9 @@ std::vector<std::uint32_t> jacobian_group_starts(input::Formulation formulation,
   }
 }
 
-const ElementFamily hex20_family{"hex20", 20, prepare<3>, add_hrz_mass, element_eigenvalue_step};
-const ElementFamily hex20r_family{"hex20r", 20, prepare<2>, add_hrz_mass, element_eigenvalue_step};
+const ElementFamily hex20_family{"hex20",     20, prepare<3>, add_hrz_mass, element_eigenvalue_step,
+                                 hex20_layout};
+const ElementFamily hex20r_family{"hex20r",    20, prepare<2>, add_hrz_mass, element_eigenvalue_step,
+                                  hex20_layout};
 
 }  // namespace exdyn::element

@@ -177,21 +177,28 @@ void mark_row_packs(ElementBlock& block, int lanes) {
 }
 
 // True when every element is a parallelepiped with edges along x, y and z.
-bool all_axis_aligned(const ElementBlock& block, const NodalVectors& x_ref) {
+bool all_axis_aligned(std::uint32_t count, const std::uint32_t* connectivity, const NodalVectors& x_ref) {
   std::array<double, hex8::parallelepiped_reference_size> reference{};
-  for (std::uint32_t e = 0; e < block.count; ++e) {
-    hex8::make_parallelepiped_reference(gather8(x_ref, block.connectivity + 8 * static_cast<std::size_t>(e)),
+  for (std::uint32_t e = 0; e < count; ++e) {
+    hex8::make_parallelepiped_reference(gather8(x_ref, connectivity + 8 * static_cast<std::size_t>(e)),
                                         reference.data());
     if (!hex8::is_axis_aligned(reference.data())) return false;
   }
   return true;
 }
 
-bool all_parallelepipeds(const ElementBlock& block, const NodalVectors& x_ref) {
-  for (std::uint32_t e = 0; e < block.count; ++e)
-    if (!hex8::is_parallelepiped(gather8(x_ref, block.connectivity + 8 * static_cast<std::size_t>(e))))
+bool all_parallelepipeds(std::uint32_t count, const std::uint32_t* connectivity, const NodalVectors& x_ref) {
+  for (std::uint32_t e = 0; e < count; ++e)
+    if (!hex8::is_parallelepiped(gather8(x_ref, connectivity + 8 * static_cast<std::size_t>(e))))
       return false;
   return true;
+}
+
+WholeBlock hex8_layout(std::uint32_t count, const std::uint32_t* connectivity, const NodalVectors& x_ref) {
+  WholeBlock layout;
+  layout.parallelepipeds = all_parallelepipeds(count, connectivity, x_ref);
+  layout.axis_aligned = layout.parallelepipeds && all_axis_aligned(count, connectivity, x_ref);
+  return layout;
 }
 
 // The constant-Jacobian kernels when every element is a parallelepiped, their
@@ -209,9 +216,11 @@ void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
     mark_row_packs(block, lanes_for(isa));
     return;
   }
-  block.constant_jacobian = all_parallelepipeds(block, x_ref);
+  // A rank's part of a block takes the whole block's layout (ElementBlock::whole).
+  block.constant_jacobian =
+      block.whole.parallelepipeds && all_parallelepipeds(block.count, block.connectivity, x_ref);
   if (block.constant_jacobian) {
-    block.axis_aligned = all_axis_aligned(block, x_ref);
+    block.axis_aligned = block.whole.axis_aligned && all_axis_aligned(block.count, block.connectivity, x_ref);
     block.loop = block.axis_aligned
                      ? packed_for_isa<hex8_parallelepiped_loop<2, true>, hex8_parallelepiped_loop<4, true>,
                                       hex8_parallelepiped_loop<8, true>>(isa)
@@ -230,7 +239,8 @@ void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
 
 void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
   const Isa isa = selected_isa();
-  block.constant_jacobian = all_parallelepipeds(block, x_ref);
+  block.constant_jacobian =
+      block.whole.parallelepipeds && all_parallelepipeds(block.count, block.connectivity, x_ref);
   const double mu = block.material.mu, coefficient = block.hourglass_coefficient;
   if (!block.law.linear_small()) {
     block.constant_jacobian = false;
@@ -284,7 +294,9 @@ double characteristic_length_step(const ElementBlock& block, const NodalVectors&
 
 }  // namespace
 
-const ElementFamily hex8_family{"hex8", 8, prepare_hex8, add_row_sum_mass, characteristic_length_step};
-const ElementFamily hex8r_family{"hex8r", 8, prepare_hex8r, add_row_sum_mass, characteristic_length_step};
+const ElementFamily hex8_family{"hex8",     8, prepare_hex8, add_row_sum_mass, characteristic_length_step,
+                                hex8_layout};
+const ElementFamily hex8r_family{"hex8r",    8, prepare_hex8r, add_row_sum_mass, characteristic_length_step,
+                                 hex8_layout};
 
 }  // namespace exdyn::element

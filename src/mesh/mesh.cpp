@@ -65,10 +65,11 @@ std::uint32_t node_id(const PartRange& part, int i, int j, int k) {
 // perturbed part is checked here, where the error can name the deck key. (The
 // mid-edge nodes of a 20-node part sit at the middle of straight edges, so the
 // corner test covers them.)
-void check_perturbed_part(const Mesh& mesh, const input::Deck& deck, std::size_t part_index) {
-  const PartRange& part = mesh.parts[part_index];
+// `part` is part `part_index` of the deck, its first element in the whole mesh
+// `first_element` (the error names it).
+void check_perturbed_part(const PartRange& part, const NodalVectors& x, const input::Deck& deck,
+                          std::size_t part_index, std::uint32_t first_element) {
   const auto& n = part.elements;
-  const auto& x = mesh.x_ref;
   auto edge = [&](std::uint32_t from, std::uint32_t to) -> std::array<double, 3> {
     return {x.x[to] - x.x[from], x.y[to] - x.y[from], x.z[to] - x.z[from]};
   };
@@ -84,8 +85,7 @@ void check_perturbed_part(const Mesh& mesh, const input::Deck& deck, std::size_t
                              ex[1] * (ey[0] * ez[2] - ey[2] * ez[0]) +
                              ex[2] * (ey[0] * ez[1] - ey[1] * ez[0]);
           if (det > 0.0) continue;
-          const std::uint32_t element =
-              part.first_element + static_cast<std::uint32_t>(i + n[0] * (j + n[1] * k));
+          const std::uint32_t element = first_element + static_cast<std::uint32_t>(i + n[0] * (j + n[1] * k));
           throw InputError(
               SourceLocation{deck.source_file, 0, 0},
               "parts[" + std::to_string(part_index) + "].perturbation",
@@ -163,13 +163,15 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
   mesh.parts.push_back(std::move(part));
 }
 
-// Every physical surface the deck names must bound its part's volume.
-void check_physical_faces(const Mesh& mesh, const input::Deck& deck) {
+}  // namespace
+
+void check_physical_faces(const input::Deck& deck,
+                          const std::function<const PartRange&(std::size_t)>& part_of) {
   auto check = [&](const std::vector<input::FaceRef>& faces, const std::string& path) {
     for (std::size_t i = 0; i < faces.size(); ++i) {
       const input::FaceRef& f = faces[i];
       if (f.side != input::PartFace::physical) continue;
-      const PartRange& part = mesh.parts[static_cast<std::size_t>(f.part)];
+      const PartRange& part = part_of(static_cast<std::size_t>(f.part));
       if (!part.physical_faces[static_cast<std::size_t>(f.surface)].segments.empty()) continue;
       const input::PartOptions& options = deck.parts[static_cast<std::size_t>(f.part)];
       throw InputError(SourceLocation{deck.source_file, 0, 0}, path + "[" + std::to_string(i) + "]",
@@ -188,8 +190,6 @@ void check_physical_faces(const Mesh& mesh, const input::Deck& deck) {
   for (std::size_t w = 0; w < deck.rigid_walls.size(); ++w)
     check(deck.rigid_walls[w].slave, "rigid_walls[" + std::to_string(w) + "].slave");
 }
-
-}  // namespace
 
 double graded_fraction(int i, int n, double grading) {
   if (i <= 0) return 0.0;
@@ -290,9 +290,29 @@ Mesh build_mesh(const input::Deck& deck) {
       continue;
     }
     add_part(mesh, deck.parts[p], static_cast<int>(p));
-    if (deck.parts[p].perturbation_fraction > 0.0) check_perturbed_part(mesh, deck, p);
+    const PartRange& part = mesh.parts.back();
+    if (deck.parts[p].perturbation_fraction > 0.0)
+      check_perturbed_part(part, mesh.x_ref, deck, p, part.first_element);
   }
-  check_physical_faces(mesh, deck);
+  check_physical_faces(deck, [&](std::size_t p) -> const PartRange& { return mesh.parts[p]; });
+  return mesh;
+}
+
+Mesh build_part_mesh(const input::Deck& deck, std::size_t p, std::uint32_t first_element) {
+  const input::PartOptions& options = deck.parts[p];
+  Mesh mesh;
+  if (options.geometry == input::Geometry::mesh) {
+    const std::string key_path = "parts[" + std::to_string(p) + "].mesh";
+    const SourceLocation where{deck.source_file, 0, 0};
+    add_imported_part(mesh, options, static_cast<int>(p),
+                      input::read_gmsh(options.mesh.path, where, key_path + ".file"), where, key_path);
+  } else if (options.geometry != input::Geometry::box) {
+    add_mapped_part(mesh, options, static_cast<int>(p));
+  } else {
+    add_part(mesh, options, static_cast<int>(p));
+    if (options.perturbation_fraction > 0.0)
+      check_perturbed_part(mesh.parts.back(), mesh.x_ref, deck, p, first_element);
+  }
   return mesh;
 }
 

@@ -100,6 +100,18 @@ struct Mesh {
 // a perturbed part has no element with a non-positive corner Jacobian).
 Mesh build_mesh(const input::Deck& deck);
 
+// Part p of the deck alone, as build_mesh makes it (the same nodes in the same order
+// with the same bits, numbered from 0; its faces; the same checks of a perturbed or
+// imported part, an error naming element first_element + e for its element e): for a
+// rank that builds only its own elements of a part it cannot make piece by piece
+// (solver/rank_setup.hpp). An imported part's file is read again for each part.
+Mesh build_part_mesh(const input::Deck& deck, std::size_t p, std::uint32_t first_element);
+
+// Every physical surface the deck names bounds its part's volume (part_of(p): part p's
+// range), else an InputError naming the deck key; build_mesh checks it.
+void check_physical_faces(const input::Deck& deck,
+                          const std::function<const PartRange&(std::size_t)>& part_of);
+
 // The nodes and outward-oriented segments of one named face.
 Face face_of(const Mesh& mesh, const input::FaceRef& face);
 inline Face face_of(const Mesh& mesh, int part, input::PartFace side) {

@@ -2,9 +2,11 @@
 //
 // The unit of work is a chunk of an element block (element_chunk consecutive
 // elements, the unit of the threaded schedule): the chunks are split among the ranks
-// by recursive coordinate bisection of their centroids, and each rank keeps its
-// chunks as blocks of their own (element::slice_block: the same kernels, packs and
-// colours) and the nodes they touch, numbered locally in ascending global order. A
+// by recursive coordinate bisection of their centroids (or METIS), and each rank keeps
+// its chunks as blocks of their own (the same kernels, packs and colours) and the nodes
+// they touch, numbered locally in ascending global order: built by each rank alone
+// (rank_setup.hpp), or cut from a whole model (localize, element::slice_block: the
+// reference the unit tests hold the rank setup to). A
 // node touched by the chunks of several ranks is shared; each of them holds it and
 // computes its update, and the lowest of them owns it (counts its energy, writes it).
 //
@@ -164,9 +166,10 @@ void split_colour_steps(const std::vector<std::vector<std::uint32_t>>& my_chunks
 // Every node of the faces of the deck's contact pairs (global ids, ascending).
 std::vector<std::uint32_t> contact_face_nodes(const input::Deck& deck, const mesh::Mesh& mesh);
 
-// Cuts the global model (built by every rank) into this rank's part: a block per
-// global block with chunks here, and the nodes of those chunks; and finds the holders
-// of each of `contact_nodes` (global ids, ascending).
+// Cuts the global model into this rank's part: a block per global block with chunks
+// here, and the nodes of those chunks; and finds the holders of each of
+// `contact_nodes` (global ids, ascending). Runs set up rank by rank (rank_setup.hpp);
+// this is the reference the unit tests hold that to.
 LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact_nodes,
                   const NodalVectors& global_initial_velocity, const mpi::Communicator& comm,
                   Partitioning partitioning = Partitioning::bisection, const std::vector<double>& costs = {});

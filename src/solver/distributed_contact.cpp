@@ -699,8 +699,11 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
       state.friction_work = share.local_friction_work;
       contact::ContactStatistics& mine = dc.local_statistics[statistics];
       const double deepest = mine.max_penetration_over_h;
+      // The search is decided above, from the motion over all ranks: the pass does not
+      // measure it again.
       contact::run_contact_pass(share.view, pair.settings, state, share.store.x_ref, share.store.u,
-                                share.store.v, share.store.mass, no_force, no_gap, mine, pair.seconds, &sink);
+                                share.store.v, share.store.mass, no_force, no_gap, mine, pair.seconds, &sink,
+                                false);
       name_deepest(mine, deepest, share);
       share.local_friction_work = state.friction_work;
       send_records(share, sink);

@@ -4,12 +4,13 @@
 //
 // The costs are measured, since they range over two orders of magnitude (an element:
 // 0.009 us for a hex8 row pack to 0.4 us for a hex20; a slave point: 0.05 us for a
-// point far from any segment to 1.2 us for one sliding in contact): rank 0 times one
-// element pass of each block and one pass of each contact pass at the initial state of
-// the whole model, the best of three, and sends the costs to every rank, which then
-// computes the same weights. (A deck set up rank by rank times the same passes on a
-// first setup of its parts: rank_setup.cpp.) The timing decides only which rank holds
-// which chunk, so the results are the same bits whatever it measures.
+// point far from any segment to 1.2 us for one sliding in contact): one element pass of
+// each block and one pass of each contact pass at the initial state, the best of three,
+// the same costs then on every rank, which computes the same weights. A run times them
+// on a first setup of the ranks' parts (rank_setup.cpp: element_costs, contact_costs,
+// add_point_costs); chunk_costs times a whole model (on rank 0), for localize. The timing
+// decides only which rank holds which chunk, so the results are the same bits whatever
+// it measures.
 #pragma once
 
 #include <cstddef>

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -22,11 +23,16 @@ namespace {
 
 constexpr std::uint32_t chunk_size = element::element_chunk;
 
-// A box part by numbers (mesh.hpp): its lattice points (I, J, K), order per element
-// along each axis (order 2: only those with at most one odd index are nodes), are
-// numbered first_node + 0, 1, ... in the order K, J, I; element (i, j, k) is
-// i + nx (j + ny k) of the part (first_element + that in the mesh), and the part is
-// block `index`.
+// A part of the deck as the setup sees it, block `index`, its nodes first_node + 0, 1,
+// ... and its elements first_element + 0, 1, ... of the whole mesh, in build_mesh's
+// order and with its bits. Either
+//  - a box without perturbation, by numbers (mesh.hpp): its lattice points (I, J, K),
+//    order per element along each axis (order 2: only those with at most one odd
+//    index are nodes), are numbered in the order K, J, I; element (i, j, k) is
+//    i + nx (j + ny k) of the part; or
+//  - made whole (`built`: a mapped or imported part, a perturbed box), its mesh alone
+//    (mesh::build_part_mesh: its node k is first_node + k) with the elements at each
+//    node, held while the setup runs.
 struct BoxPart {
   int index = 0;
   const input::PartOptions* options = nullptr;
@@ -35,6 +41,10 @@ struct BoxPart {
   std::uint32_t first_node = 0, node_count = 0, first_element = 0, element_count = 0;
   std::size_t first_chunk = 0, chunks = 0;  // the block's chunks among all blocks'
   std::array<std::vector<double>, 3> grid;  // grid coordinates along x, y, z (mesh::box_point), m
+  std::unique_ptr<const mesh::Mesh> built;  // null: a box by numbers
+  // Made whole: the part's elements at its node k, ascending, are
+  // at_element[at_start[k] .. at_start[k + 1]).
+  std::vector<std::uint32_t> at_start, at_element;
 
   // Order 2: the nodes of a layer of even K (rows of even J: 2 nx + 1 nodes, of odd
   // J: nx + 1) and of odd K (rows of even J only, nx + 1 nodes).
@@ -95,11 +105,49 @@ struct BoxPart {
     const std::uint32_t* end() const { return ids.data() + count; }
   };
   ElementNodes element_nodes(std::uint32_t e) const {
-    const std::array<int, 3> ijk = element_ijk(e);
     ElementNodes nodes;
     nodes.count = nodes_per_element;
+    if (built) {
+      const std::uint32_t* local = built->connectivity.data() + std::size_t(nodes_per_element) * e;
+      for (int k = 0; k < nodes_per_element; ++k) nodes.ids[std::size_t(k)] = first_node + local[k];
+      return nodes;
+    }
+    const std::array<int, 3> ijk = element_ijk(e);
     for (int k = 0; k < nodes_per_element; ++k) nodes.ids[std::size_t(k)] = node(corner(ijk, k));
     return nodes;
+  }
+  // Node g's coordinates, m.
+  std::array<double, 3> point_of(std::uint32_t g) const {
+    if (!built) return point(node_ijk(g));
+    const NodalVectors& x = built->x_ref;
+    const std::size_t k = g - first_node;
+    return {x.x[k], x.y[k], x.z[k]};
+  }
+  // The part's elements around node g, ascending.
+  std::vector<std::uint32_t> elements_around(std::uint32_t g) const {
+    if (built) {
+      const std::size_t k = g - first_node;
+      return {at_element.begin() + std::ptrdiff_t(at_start[k]),
+              at_element.begin() + std::ptrdiff_t(at_start[k + 1])};
+    }
+    std::array<std::uint32_t, 8> around{};
+    const int count = elements_at(node_ijk(g), around);
+    return {around.begin(), around.begin() + count};
+  }
+  // The named face f of this part (f.part == index), in global node ids: face_of's.
+  mesh::Face face(const input::FaceRef& f) const {
+    if (!built)
+      return mesh::lattice_face(
+          n, order, f.side, mesh::box_normal_lengths(*options), [&](int i, int j, int k) {
+            return (i % order) + (j % order) + (k % order) > 1 ? mesh::no_node : node({i, j, k});
+          });
+    input::FaceRef own = f;
+    own.part = 0;
+    mesh::Face face = mesh::face_of(*built, own);
+    for (std::uint32_t& node_id : face.nodes) node_id += first_node;
+    for (mesh::FaceSegment& segment : face.segments)
+      for (int k = 0; k < segment.node_count; ++k) segment.nodes[std::size_t(k)] += first_node;
+    return face;
   }
   // build_mesh's point: a grid point, or the middle of the edge between two.
   std::array<double, 3> point(const std::array<int, 3>& ijk) const {
@@ -136,30 +184,14 @@ struct BoxPart {
     r.elements = n;
     r.order = order;
     r.nodes_per_element = nodes_per_element;
+    if (built) r.normal_lengths = built->parts[0].normal_lengths;
     return r;
-  }
-  // Whether lattice point ijk lies on the side `side` of the part.
-  bool on_side(const std::array<int, 3>& ijk, input::PartFace side) const {
-    switch (side) {
-      case input::PartFace::xmin:
-        return ijk[0] == 0;
-      case input::PartFace::xmax:
-        return ijk[0] == order * n[0];
-      case input::PartFace::ymin:
-        return ijk[1] == 0;
-      case input::PartFace::ymax:
-        return ijk[1] == order * n[1];
-      case input::PartFace::zmin:
-        return ijk[2] == 0;
-      case input::PartFace::zmax:
-        return ijk[2] == order * n[2];
-      default:
-        throw std::logic_error(std::string("a box part has no face ") + input::name(side));
-    }
   }
 };
 
-// The deck's parts as boxes, with their node, element and chunk ranges.
+// The deck's parts, with their node, element and chunk ranges. Throws the errors
+// build_mesh throws of a part made whole (a perturbed box's inverted element, an
+// imported part's file, the physical surfaces the deck names).
 struct Lattice {
   std::vector<BoxPart> parts;
   std::size_t nodes = 0, elements = 0, chunks = 0;
@@ -174,6 +206,10 @@ struct Lattice {
       part.order = input::is_quadratic(options.formulation) ? 2 : 1;
       part.nodes_per_element = part.order == 2 ? 20 : 8;
       part.first_node = std::uint32_t(nodes);
+      if (options.geometry != input::Geometry::box || options.perturbation_fraction != 0.0) {
+        make_whole(deck, part);
+        continue;
+      }
       part.node_count = std::uint32_t(std::size_t(part.n[2] + 1) * part.even_layer() +
                                       std::size_t(part.n[2]) * (part.order == 2 ? part.odd_layer() : 0));
       part.first_element = std::uint32_t(elements);
@@ -188,11 +224,43 @@ struct Lattice {
           part.grid[std::size_t(axis)].push_back(
               mesh::box_point(options, part.index, ijk)[std::size_t(axis)]);
         }
-      nodes += part.node_count;
-      elements += part.element_count;
-      chunks += part.chunks;
-      parts.push_back(std::move(part));
+      add(std::move(part));
     }
+    static const mesh::PartRange box;  // no physical surfaces
+    mesh::check_physical_faces(deck, [&](std::size_t p) -> const mesh::PartRange& {
+      return parts[p].built ? parts[p].built->parts[0] : box;
+    });
+  }
+  void add(BoxPart part) {
+    nodes += part.node_count;
+    elements += part.element_count;
+    chunks += part.chunks;
+    parts.push_back(std::move(part));
+  }
+  // A part made whole: its mesh and the elements at each of its nodes.
+  void make_whole(const input::Deck& deck, BoxPart& part) {
+    auto built = std::make_unique<mesh::Mesh>(
+        mesh::build_part_mesh(deck, std::size_t(part.index), std::uint32_t(elements)));
+    const mesh::PartRange& range = built->parts[0];
+    part.order = range.order;
+    part.nodes_per_element = range.nodes_per_element;
+    part.node_count = range.node_count;
+    part.first_element = std::uint32_t(elements);
+    part.element_count = range.element_count;
+    part.first_chunk = chunks;
+    part.chunks = (part.element_count + chunk_size - 1) / chunk_size;
+    const auto width = std::size_t(part.nodes_per_element);
+    part.at_start.assign(std::size_t(part.node_count) + 1, 0);
+    for (const std::uint32_t k : built->connectivity) ++part.at_start[k + 1];
+    for (std::size_t k = 0; k < part.node_count; ++k) part.at_start[k + 1] += part.at_start[k];
+    part.at_element.resize(built->connectivity.size());
+    std::vector<std::uint32_t> fill(part.at_start.begin(), part.at_start.end() - 1);
+    for (std::size_t i = 0; i < built->connectivity.size(); ++i)  // ascending: elements in order
+      part.at_element[fill[built->connectivity[i]]++] = std::uint32_t(i / width);
+    // An element uses a node once (add_imported_part refuses repeats; boxes and mapped
+    // parts have none), so each list holds each element once.
+    part.built = std::move(built);
+    add(std::move(part));
   }
   const BoxPart& part_of_node(std::uint32_t g) const {
     auto it = std::upper_bound(parts.begin(), parts.end(), g,
@@ -203,8 +271,7 @@ struct Lattice {
   NodalVectors points(const std::vector<std::uint32_t>& ids) const {
     NodalVectors x(ids.size());
     for (std::size_t i = 0; i < ids.size(); ++i) {
-      const BoxPart& part = part_of_node(ids[i]);
-      const std::array<double, 3> p = part.point(part.node_ijk(ids[i]));
+      const std::array<double, 3> p = part_of_node(ids[i]).point_of(ids[i]);
       for (int c = 0; c < 3; ++c) x.component(c)[i] = p[std::size_t(c)];
     }
     return x;
@@ -240,12 +307,17 @@ Chunks walk_chunks(const Lattice& lattice) {
       return part.element_nodes(
           std::uint32_t(std::min<std::size_t>((c + 1) * chunk_size, part.element_count) - 1))[6];
     };
+    // A part made whole keeps a mask per node (its nodes in no such order).
+    const bool windowed = !part.built;
     std::size_t span = 1;
-    for (std::size_t c = 0; c < part.chunks; ++c)
+    for (std::size_t c = 0; c < part.chunks && windowed; ++c)
       span = std::max<std::size_t>(span, last_node(c) - first_node(c) + 1);
     std::size_t window = 1;
     while (window < span) window *= 2;
-    std::vector<std::uint64_t> masks(window, 0);
+    std::vector<std::uint64_t> masks(windowed ? window : part.node_count, 0);
+    auto mask = [&](std::uint32_t g) -> std::uint64_t& {
+      return windowed ? masks[g & (window - 1)] : masks[g - part.first_node];
+    };
     std::int64_t highest = std::int64_t(part.first_node) - 1;  // nodes above it have no mask yet
     std::size_t base = 0, colours = 0;
     for (std::size_t c = 0; c < part.chunks; ++c) {
@@ -254,10 +326,11 @@ Chunks walk_chunks(const Lattice& lattice) {
       std::array<double, 3> sum{};
       std::uint64_t taken = 0;
       for (std::uint32_t e = begin; e < end; ++e) {
-        const std::array<int, 3> ijk = part.element_ijk(e);
+        const std::array<int, 3> ijk = part.built ? std::array<int, 3>{} : part.element_ijk(e);
+        const BoxPart::ElementNodes nodes = part.built ? part.element_nodes(e) : BoxPart::ElementNodes{};
         for (int k = 0; k < 8; ++k) {
-          const std::array<int, 3> at = part.corner(ijk, k);
-          const std::array<double, 3> x = part.point(at);
+          const std::array<double, 3> x =
+              part.built ? part.point_of(nodes[k]) : part.point(part.corner(ijk, k));
           for (std::size_t a = 0; a < 3; ++a) sum[a] += x[a];
         }
       }
@@ -267,11 +340,13 @@ Chunks walk_chunks(const Lattice& lattice) {
       chunks.weight.push_back(elements);
       chunks.block_of.push_back(std::uint32_t(part.index));
 
-      for (std::int64_t g = highest + 1; g <= std::int64_t(last_node(c)); ++g)
-        masks[std::size_t(g) & (window - 1)] = 0;
-      highest = std::max<std::int64_t>(highest, last_node(c));
+      if (windowed) {
+        for (std::int64_t g = highest + 1; g <= std::int64_t(last_node(c)); ++g)
+          masks[std::size_t(g) & (window - 1)] = 0;
+        highest = std::max<std::int64_t>(highest, last_node(c));
+      }
       for (std::uint32_t e = begin; e < end; ++e)
-        for (const std::uint32_t g : part.element_nodes(e)) taken |= masks[g & (window - 1)];
+        for (const std::uint32_t g : part.element_nodes(e)) taken |= mask(g);
       if (taken == ~std::uint64_t{0}) {
         base += 64;
         std::fill(masks.begin(), masks.end(), std::uint64_t{0});
@@ -280,8 +355,7 @@ Chunks walk_chunks(const Lattice& lattice) {
       int colour = 0;
       while (taken & (std::uint64_t{1} << colour)) ++colour;
       for (std::uint32_t e = begin; e < end; ++e)
-        for (const std::uint32_t g : part.element_nodes(e))
-          masks[g & (window - 1)] |= std::uint64_t{1} << colour;
+        for (const std::uint32_t g : part.element_nodes(e)) mask(g) |= std::uint64_t{1} << colour;
       chunks.colour.push_back(int(base) + colour);
       colours = std::max(colours, base + std::size_t(colour) + 1);
     }
@@ -306,17 +380,14 @@ std::vector<int> partition_lattice(const Lattice& lattice, const Chunks& chunks,
   return bisect_chunks(chunks.centroid, chunks.weight, chunks.block_of, ranks, lattice.elements);
 }
 
-// The chunks (global indices) of the elements around node g.
-int chunks_at(const BoxPart& part, std::uint32_t g, std::array<std::size_t, 8>& out) {
-  std::array<std::uint32_t, 8> elements{};
-  const int count = part.elements_at(part.node_ijk(g), elements);
-  int unique = 0;
-  for (int k = 0; k < count; ++k) {
-    const std::size_t c = part.first_chunk + elements[std::size_t(k)] / chunk_size;
-    if (std::find(out.begin(), out.begin() + unique, c) == out.begin() + unique)
-      out[std::size_t(unique++)] = c;
+// The chunks (global indices) of the elements around node g, ascending.
+std::vector<std::size_t> chunks_at(const BoxPart& part, std::uint32_t g) {
+  std::vector<std::size_t> out;
+  for (const std::uint32_t e : part.elements_around(g)) {
+    const std::size_t c = part.first_chunk + e / chunk_size;
+    if (out.empty() || out.back() != c) out.push_back(c);  // elements ascending: chunks too
   }
-  return unique;
+  return out;
 }
 
 ChunkGraph lattice_graph(const Lattice& lattice) {
@@ -333,14 +404,9 @@ ChunkGraph lattice_graph(const Lattice& lattice) {
       std::sort(nodes.begin(), nodes.end());
       nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
       touched.clear();
-      for (const std::uint32_t g : nodes) {
-        std::array<std::size_t, 8> around{};
-        const int n = chunks_at(part, g, around);
-        for (int k = 0; k < n; ++k) {
-          const std::size_t other = around[std::size_t(k)];
+      for (const std::uint32_t g : nodes)
+        for (const std::size_t other : chunks_at(part, g))
           if (other != me && count[other]++ == 0) touched.push_back(std::uint32_t(other));
-        }
-      }
       std::sort(touched.begin(), touched.end());
       for (const std::uint32_t other : touched) {
         graph.neighbours[me].emplace_back(other, count[other]);
@@ -358,9 +424,7 @@ std::vector<double> masses_of(const input::Deck& deck, const Lattice& lattice,
   std::vector<std::uint32_t> elements;  // global ids
   for (const std::uint32_t g : nodes) {
     const BoxPart& part = lattice.part_of_node(g);
-    std::array<std::uint32_t, 8> around{};
-    const int count = part.elements_at(part.node_ijk(g), around);
-    for (int k = 0; k < count; ++k) elements.push_back(part.first_element + around[std::size_t(k)]);
+    for (const std::uint32_t e : part.elements_around(g)) elements.push_back(part.first_element + e);
   }
   std::sort(elements.begin(), elements.end());
   elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
@@ -426,11 +490,7 @@ std::vector<std::uint32_t> surface_nodes_of(const input::Deck& deck, const Latti
   std::vector<std::uint32_t> nodes;
   auto add = [&](const std::vector<input::FaceRef>& faces) {
     for (const input::FaceRef& f : faces) {
-      const BoxPart& part = lattice.parts.at(std::size_t(f.part));
-      const mesh::Face face = mesh::lattice_face(
-          part.n, part.order, f.side, mesh::box_normal_lengths(*part.options), [&](int i, int j, int k) {
-            return part.node({i, j, k});
-          });
+      const mesh::Face face = lattice.parts.at(std::size_t(f.part)).face(f);
       nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
     }
   };
@@ -442,20 +502,22 @@ std::vector<std::uint32_t> surface_nodes_of(const input::Deck& deck, const Latti
 }
 
 // The fixed components of each of `nodes` (global ids, ascending): the indices into
-// `nodes` of those on a face of a boundary condition fixing component c.
+// `nodes` of those on a face of a boundary condition fixing component c (build_model's
+// rule: every node of the face, mid-side nodes included).
 std::array<std::vector<std::uint32_t>, 3> fixed_of(const input::Deck& deck, const Lattice& lattice,
                                                    const std::vector<std::uint32_t>& nodes) {
-  std::array<std::vector<std::uint32_t>, 3> fixed;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const BoxPart& part = lattice.part_of_node(nodes[i]);
-    const std::array<int, 3> ijk = part.node_ijk(nodes[i]);
-    for (std::size_t c = 0; c < 3; ++c) {
-      bool held = false;
-      for (const auto& bc : deck.boundary_conditions)
-        for (const input::FaceRef& f : bc.faces)
-          held = held || (bc.fix[c] && f.part == part.index && part.on_side(ijk, f.side));
-      if (held) fixed[c].push_back(std::uint32_t(i));
+  std::array<std::vector<std::uint32_t>, 3> held;  // global ids, per component
+  for (const auto& bc : deck.boundary_conditions)
+    for (const input::FaceRef& f : bc.faces) {
+      const mesh::Face face = lattice.parts.at(std::size_t(f.part)).face(f);
+      for (std::size_t c = 0; c < 3; ++c)
+        if (bc.fix[c]) held[c].insert(held[c].end(), face.nodes.begin(), face.nodes.end());
     }
+  std::array<std::vector<std::uint32_t>, 3> fixed;
+  for (std::size_t c = 0; c < 3; ++c) {
+    std::sort(held[c].begin(), held[c].end());
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (std::binary_search(held[c].begin(), held[c].end(), nodes[i])) fixed[c].push_back(std::uint32_t(i));
   }
   return fixed;
 }
@@ -476,17 +538,30 @@ Model surface_model(const input::Deck& deck, const Lattice& lattice,
   for (const input::RigidWallOptions& wall : deck.rigid_walls)
     faces.insert(faces.end(), wall.slave.begin(), wall.slave.end());
   for (const BoxPart& part : lattice.parts) {
+    // The part's faces as a mapped or imported part has them (face_of finds them by
+    // name or by physical surface), in the faces' node numbers.
     mesh::PartRange& range = m.mesh.parts.emplace_back(part.range());
-    range.normal_lengths = mesh::box_normal_lengths(*part.options);
-    for (const input::FaceRef& f : faces) {  // the part's faces as a mapped part has them
+    range.normal_lengths =
+        part.built ? part.built->parts[0].normal_lengths : mesh::box_normal_lengths(*part.options);
+    for (const input::FaceRef& f : faces) {
       if (f.part != part.index) continue;
-      if (std::any_of(range.faces.begin(), range.faces.end(),
-                      [&](const auto& face) { return face.first == f.side; }))
+      const bool physical = f.side == input::PartFace::physical;
+      const auto surface = std::size_t(f.surface);
+      if (physical ? surface < range.physical_faces.size() && !range.physical_faces[surface].segments.empty()
+                   : std::any_of(range.faces.begin(), range.faces.end(),
+                                 [&](const auto& face) { return face.first == f.side; }))
         continue;
-      range.faces.emplace_back(f.side, mesh::lattice_face(part.n, part.order, f.side, range.normal_lengths,
-                                                          [&](int i, int j, int k) {
-                                                            return index(part.node({i, j, k}));
-                                                          }));
+      mesh::Face face = part.face(f);
+      for (std::uint32_t& g : face.nodes) g = index(g);
+      for (mesh::FaceSegment& segment : face.segments)
+        for (int k = 0; k < segment.node_count; ++k)
+          segment.nodes[std::size_t(k)] = index(segment.nodes[std::size_t(k)]);
+      if (physical) {
+        if (range.physical_faces.size() <= surface) range.physical_faces.resize(surface + 1);
+        range.physical_faces[surface] = std::move(face);
+      } else {
+        range.faces.emplace_back(f.side, std::move(face));
+      }
     }
   }
   m.mass = masses_of(deck, lattice, nodes);
@@ -574,17 +649,16 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
     long edge_cut = 0;
     for (std::size_t i = 0; i < local_nodes; ++i) {
       const BoxPart& part = lattice.part_of_node(d.global_node[i]);
-      std::array<std::size_t, 8> around{};
-      const int count = chunks_at(part, d.global_node[i], around);
+      const std::vector<std::size_t> around = chunks_at(part, d.global_node[i]);
       int owner = std::numeric_limits<int>::max();
-      for (int k = 0; k < count; ++k) {
-        chain[i].emplace_back(chunks.colour[around[std::size_t(k)]], chunks.rank[around[std::size_t(k)]]);
-        owner = std::min(owner, chunks.rank[around[std::size_t(k)]]);
+      for (const std::size_t c : around) {
+        chain[i].emplace_back(chunks.colour[c], chunks.rank[c]);
+        owner = std::min(owner, chunks.rank[c]);
       }
       if (owner == me)
-        for (int a = 0; a < count; ++a)
-          for (int b = a + 1; b < count; ++b)
-            edge_cut += chunks.rank[around[std::size_t(a)]] != chunks.rank[around[std::size_t(b)]];
+        for (std::size_t a = 0; a < around.size(); ++a)
+          for (std::size_t b = a + 1; b < around.size(); ++b)
+            edge_cut += chunks.rank[around[a]] != chunks.rank[around[b]];
       block_of[i] = std::uint32_t(part.index);
     }
     mpi::check(MPI_Allreduce(&edge_cut, &d.edge_cut, 1, MPI_LONG, MPI_SUM, comm.comm),
@@ -604,64 +678,69 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
         m.mesh.element_part.push_back(part.index);
       }
   }
-  // Flags a block's kernel depends on, which each rank decides from its own elements:
-  // they must agree (the same kernels as one process's).
-  std::vector<int> low(2 * lattice.parts.size(), 1), high(2 * lattice.parts.size(), 0);
-  // A 20-node block's step scale (ElementBlock::step_scale) is the whole block's family
-  // step over its corner-based step: each an exact minimum over the ranks.
+  // Each block's stable step, and a 20-node block's step scale (ElementBlock::
+  // step_scale: its family step over its corner-based step): the whole block's, each an
+  // exact minimum over the ranks; the model's stable step is the least of them.
   std::vector<double> steps(2 * lattice.parts.size(), std::numeric_limits<double>::infinity());
   std::vector<std::size_t> block_of_part(lattice.parts.size(), ~std::size_t{0});  // ~0: none here
+  // Each part's elements here, and the layout the whole block's elements allow: the
+  // ranks' layouts together (a rank's elements may allow a faster one, such as a
+  // cylinder's square core).
+  std::vector<std::uint32_t> part_count(lattice.parts.size(), 0);
+  std::vector<int> layout(2 * lattice.parts.size(), 1);
+  for (const BoxPart& part : lattice.parts) {
+    const auto p = std::size_t(part.index);
+    for (const std::uint32_t c : my_chunks[p])
+      part_count[p] += std::min((c + 1) * chunk_size, part.element_count) - c * chunk_size;
+    const element::WholeBlock own =
+        element::element_layout(part.options->formulation, part_count[p],
+                                m.mesh.connectivity.data() + first_connectivity[p], m.mesh.x_ref);
+    layout[2 * p] = own.parallelepipeds ? 1 : 0;
+    layout[2 * p + 1] = own.axis_aligned ? 1 : 0;
+  }
+  mpi::check(MPI_Allreduce(MPI_IN_PLACE, layout.data(), int(layout.size()), MPI_INT, MPI_MIN, comm.comm),
+             "MPI_Allreduce of the blocks' layouts");
   std::uint32_t first_element = 0;
   for (const BoxPart& part : lattice.parts) {
-    const auto& mine = my_chunks[std::size_t(part.index)];
+    const auto p = std::size_t(part.index);
+    const auto& mine = my_chunks[p];
     const input::PartOptions& options = *part.options;
     const input::MaterialOptions& material = deck.materials.at(std::size_t(options.material_index));
-    std::uint32_t count = 0;
-    for (const std::uint32_t c : mine)
-      count += std::min((c + 1) * chunk_size, part.element_count) - c * chunk_size;
+    const std::uint32_t count = part_count[p];
     const material::MaterialLaw law =
         material::make_law(material, input::resolved_kinematics(options, material), options.f_bar);
-    const std::uint32_t* connectivity =
-        m.mesh.connectivity.data() + first_connectivity[std::size_t(part.index)];
-    std::vector<std::array<double, 60>> groups;  // collective: every rank, with or without elements here
-    if (part.order == 2 && law.linear_small())
-      groups = whole_block_groups(lattice, part, count, connectivity, m.mesh.x_ref,
-                                  d.global_element.data() + first_element, comm);
+    const std::uint32_t* connectivity = m.mesh.connectivity.data() + first_connectivity[p];
+    element::WholeBlock whole{layout[2 * p] != 0, layout[2 * p + 1] != 0, {}};
+    if (part.order == 2 && law.linear_small() && whole.parallelepipeds)  // collective: every rank
+      whole.group_points = whole_block_groups(lattice, part, count, connectivity, m.mesh.x_ref,
+                                              d.global_element.data() + first_element, comm);
     if (mine.empty()) continue;
     m.blocks.push_back(element::make_element_block(
         options.formulation,
         material::elastic_constants(material.youngs_modulus, material.poissons_ratio, material.density),
         options.hourglass_coefficient, first_element, count, connectivity, m.mesh.x_ref, law,
-        std::move(groups)));
+        std::move(whole)));
     element::ElementBlock& block = m.blocks.back();
     block_of_part[std::size_t(part.index)] = m.blocks.size() - 1;
     first_element += count;
-    if (block.nodes_per_element != 8) {
-      steps[2 * std::size_t(part.index)] = element::critical_time_step(block, m.mesh.x_ref);
-      steps[2 * std::size_t(part.index) + 1] =
-          element::current_time_step(block, m.mesh.x_ref, NodalVectors(m.mesh.x_ref.size())).dt;
-    }
+    steps[2 * p] = element::critical_time_step(block, m.mesh.x_ref);
+    if (block.nodes_per_element != 8)
+      steps[2 * p + 1] = element::current_time_step(block, m.mesh.x_ref, NodalVectors(m.mesh.x_ref.size())).dt;
     // The whole block's colours, each keeping its index (possibly with no chunk here).
     EXDYN_ASSERT(block.chunk_begin.size() == mine.size() + 1);
     block.colours.assign(chunks.colours[std::size_t(part.index)], {});
     for (std::size_t local = 0; local < mine.size(); ++local)
       block.colours[std::size_t(chunks.colour[part.first_chunk + mine[local]])].push_back(
           std::uint32_t(local));
-    const auto b = 2 * std::size_t(part.index);
-    low[b] = high[b] = block.constant_jacobian ? 1 : 0;
-    low[b + 1] = high[b + 1] = block.axis_aligned ? 1 : 0;
   }
-  mpi::check(MPI_Allreduce(MPI_IN_PLACE, low.data(), int(low.size()), MPI_INT, MPI_MIN, comm.comm),
-             "MPI_Allreduce of the blocks' layouts");
-  mpi::check(MPI_Allreduce(MPI_IN_PLACE, high.data(), int(high.size()), MPI_INT, MPI_MAX, comm.comm),
-             "MPI_Allreduce of the blocks' layouts");
-  if (low != high)
-    throw std::logic_error("rank setup: the ranks chose different element layouts for a block");
   mpi::check(MPI_Allreduce(MPI_IN_PLACE, steps.data(), int(steps.size()), MPI_DOUBLE, MPI_MIN, comm.comm),
              "MPI_Allreduce of the blocks' stable steps");
-  for (std::size_t p = 0; p < lattice.parts.size(); ++p)
+  setup.critical_dt = std::numeric_limits<double>::infinity();  // critical_time_step of the whole model
+  for (std::size_t p = 0; p < lattice.parts.size(); ++p) {
+    setup.critical_dt = std::min(setup.critical_dt, steps[2 * p]);
     if (block_of_part[p] != ~std::size_t{0} && m.blocks[block_of_part[p]].nodes_per_element != 8)
       m.blocks[block_of_part[p]].step_scale = steps[2 * p] / steps[2 * p + 1];
+  }
   split_colour_steps(my_chunks, m, d);
 
   // Masses of the rank's nodes; the owned ones count in the energies.
@@ -686,10 +765,6 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   }
   run.initial_velocity = initial_velocities(lattice, d.global_node, m);
 
-  // The whole model's stable step: the minimum over the elements, exact on any ranks.
-  double dt = critical_time_step(m);
-  mpi::check(MPI_Allreduce(&dt, &setup.critical_dt, 1, MPI_DOUBLE, MPI_MIN, comm.comm),
-             "MPI_Allreduce of the stable step");
 
   // The output rows: a node's owner is the lowest rank of the chunks around it.
   std::vector<std::uint32_t> owned, elements(d.global_element.size());
@@ -699,11 +774,9 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   d.node_rows = row_exchange(
       comm, d.global_nodes,
       [&](std::size_t g) {
-        std::array<std::size_t, 8> around{};
-        const BoxPart& part = lattice.part_of_node(std::uint32_t(g));
-        const int count = chunks_at(part, std::uint32_t(g), around);
         int owner = std::numeric_limits<int>::max();
-        for (int k = 0; k < count; ++k) owner = std::min(owner, chunks.rank[around[std::size_t(k)]]);
+        for (const std::size_t c : chunks_at(lattice.part_of_node(std::uint32_t(g)), std::uint32_t(g)))
+          owner = std::min(owner, chunks.rank[c]);
         return owner;
       },
       std::move(owned), d.global_node);
@@ -720,11 +793,9 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   setup.surfaces = surface_model(deck, lattice, setup.surface_nodes);
   run.contact_holders.resize(setup.surface_nodes.size());
   for (std::size_t k = 0; k < setup.surface_nodes.size(); ++k) {
-    std::array<std::size_t, 8> around{};
     const std::uint32_t g = setup.surface_nodes[k];
-    const int count = chunks_at(lattice.part_of_node(g), g, around);
     std::vector<int>& holders = run.contact_holders[k];
-    for (int a = 0; a < count; ++a) holders.push_back(chunks.rank[around[std::size_t(a)]]);
+    for (const std::size_t c : chunks_at(lattice.part_of_node(g), g)) holders.push_back(chunks.rank[c]);
     std::sort(holders.begin(), holders.end());
     holders.erase(std::unique(holders.begin(), holders.end()), holders.end());
   }
@@ -764,22 +835,13 @@ std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communica
       contact, pass_cost,
       [&](std::uint32_t face_node) {  // the first chunk holding the node
         const std::uint32_t g = trial.surface_nodes[face_node];
-        std::array<std::size_t, 8> around{};
-        const int count = chunks_at(lattice.part_of_node(g), g, around);
-        return *std::min_element(around.begin(), around.begin() + count);
+        return chunks_at(lattice.part_of_node(g), g).front();
       },
       cost);
   return cost;
 }
 
 }  // namespace
-
-bool sets_up_by_rank(const input::Deck& deck) {
-  return !deck.parts.empty() &&
-         std::all_of(deck.parts.begin(), deck.parts.end(), [](const input::PartOptions& part) {
-           return part.geometry == input::Geometry::box && part.perturbation_fraction == 0.0;
-         });
-}
 
 RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning,
                       bool weigh_by_work) {

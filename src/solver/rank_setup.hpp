@@ -1,18 +1,19 @@
 // Setting up a run on many ranks without the whole model (docs/parallel.md, "Setup").
 //
-// For a deck whose parts are all boxes (without perturbation),
-// every rank walks the parts' lattices chunk by chunk, keeping only a chunk's
-// centroid and colour (and for METIS the chunk graph, made from the lattice too): the
-// partition and the colours of the whole model, the same
-// on every rank and the same as decomposition.hpp computes from a whole model. Then
-// each rank builds only its own elements and their nodes, and from the elements
-// around its nodes (a halo of one element, never kept) their lumped masses, adding
-// each node's element shares in one process's order. The contact surfaces are built
-// from the contact faces alone. No rank holds more than its part, one layer of the
-// lattice, one figure per chunk and the contact faces: the same bits as one process.
-// A 20-node block takes the whole block's groups of equal Jacobians, gathered from the
-// ranks' group starts (ElementBlock::group_points).
-// Other decks are set up by localize (decomposition.hpp), from the whole model.
+// Every rank walks the parts chunk by chunk, keeping only a chunk's centroid and
+// colour (and for METIS the chunk graph): the partition and the colours of the whole
+// model, the same on every rank and the same as decomposition.hpp computes from a
+// whole model (localize, the reference the tests hold this to). A box without
+// perturbation is walked by numbers from its lattice; any other part (mapped,
+// imported, perturbed) is made whole as a mesh of its own (mesh::build_part_mesh) and
+// held while the setup runs. Then each rank builds only its own elements and their
+// nodes, and from the elements around its nodes (a halo of one element, never kept)
+// their lumped masses, adding each node's element shares in one process's order. The
+// contact surfaces are built from the contact faces alone. A block takes the whole
+// block's layout (parallelepipeds or not) and a 20-node block its groups of equal
+// Jacobians, gathered from the ranks' group starts (element::WholeBlock). No rank
+// holds more than its part, one layer of a box's lattice, one figure per chunk, the
+// contact faces and the meshes of the parts made whole: the same bits as one process.
 #pragma once
 
 #include <cstdint>
@@ -27,10 +28,6 @@
 #include "solver/partitioning.hpp"
 
 namespace exdyn::solver {
-
-// True when the deck can be set up rank by rank: every part a box without
-// perturbation (any partition, any weighing).
-bool sets_up_by_rank(const input::Deck& deck);
 
 struct RankSetup {
   LocalRun run;                         // this rank's model, velocities, decomposition, contact holders

@@ -30,7 +30,6 @@
 #include "output/result_writer.hpp"
 #include "solver/contact_setup.hpp"
 #include "solver/decomposition.hpp"
-#include "solver/load_balance.hpp"
 #include "solver/model.hpp"
 #include "solver/nodal_update.hpp"
 #include "solver/rank_setup.hpp"
@@ -106,17 +105,15 @@ class TimeLoop {
   int stop_requested_ = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
 };
 
-// On many ranks a deck of boxes is set up rank by rank, each building only its part
-// (rank_setup.hpp); any other deck is built whole by every rank, which cuts out its
-// part (the chunks weighed by their elements or their measured work: load_balance.hpp)
-// and its share of the contact (distributed_contact.hpp), and keeps only those
-// (decomposition.hpp). The stable step is the whole model's either way (docs/parallel.md).
+// On many ranks each rank sets up only its part (rank_setup.hpp: the chunks weighed by
+// their elements or their measured work) and its share of the contact
+// (distributed_contact.hpp); the stable step is the whole model's (docs/parallel.md).
 TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output::RunSummary& summary)
     : deck_(deck), controls_(controls), summary_(summary) {
   const mpi::Communicator& comm = controls.comm;
   NodalVectors initial_v;
   std::vector<std::uint32_t> contact_nodes;
-  if (comm.distributed() && sets_up_by_rank(deck)) {
+  if (comm.distributed()) {
     RankSetup setup = set_up_rank(deck, comm, controls.partitioning, controls.weigh_by_work);
     critical_dt_ = setup.critical_dt;
     clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, setup.run.model, &comm);
@@ -132,13 +129,6 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
     critical_dt_ = critical_time_step(model_);
     clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, model_);
     contact_ = build_contact(deck, model_, clock_->next(), critical_dt_);
-    if (comm.distributed()) {  // the chunks weighed by their elements or their measured work
-      contact_nodes = contact_face_nodes(deck, model_.mesh);
-      local_ =
-          localize(model_, contact_nodes, initial_v, comm, controls.partitioning,
-                   controls.weigh_by_work ? chunk_costs(model_, contact_, initial_v, clock_->next(), comm)
-                                          : std::vector<double>{});
-    }
     summary.nodes = static_cast<long>(model_.mesh.node_count());
     summary.elements = static_cast<long>(model_.mesh.element_count());
   }

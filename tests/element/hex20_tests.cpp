@@ -284,7 +284,7 @@ TEST(Hex20, APartGivenTheWholeBlocksGroupsSharesItsMatricesAndStep) {
     EXPECT_EQ(found, starts);
 
     const ElementBlock part = make_element_block(formulation, steel, 0.0, split, count - split, second,
-                                                 mesh.x_ref, {}, whole.group_points);
+                                                 mesh.x_ref, {}, WholeBlock{true, true, whole.group_points});
     ASSERT_TRUE(part.constant_jacobian);
     EXPECT_EQ(part.shared, whole.shared);
     for (std::uint32_t e = 0; e < count - split; ++e)

@@ -15,6 +15,7 @@
 #include "common/errors.hpp"
 #include "element/element_block.hpp"
 #include "input/deck_reader.hpp"
+#include "mesh/mesh.hpp"
 #include "solver/contact_setup.hpp"
 #include "solver/decomposition.hpp"
 #include "solver/distributed_contact.hpp"
@@ -196,7 +197,7 @@ TEST(DistributeContact, EveryPointAndSegmentBelongsToOneRankThatHoldsItsNodes) {
     const input::Deck deck = deck_of(file);
     const solver::Model model = solver::build_model(deck);
     const std::vector<std::uint32_t> contact = solver::contact_face_nodes(deck, model.mesh);
-    const double dt = solver::critical_time_step(model);
+    const double dt = 1e-8;  // s: any step, the same for both
     const solver::ContactModel whole = solver::build_contact(deck, model, 0.5 * dt, dt);
     std::size_t chunks = 0;
     for (const auto& block : model.blocks) chunks += block.chunk_begin.size() - 1;
@@ -299,12 +300,18 @@ TEST(SliceBlock, TheSameBitsAtTheNodesOfItsChunksAlone) {
 // sliding block (two parts of other sizes, friction, gravity), the wall deck, the
 // plates graded and long along x (a chunk spans rows: the colours' node window wraps),
 // the plates of 20-node elements, graded, and the contact patch of 20-node elements
-// on 8-node ones (a mixed mesh).
+// on 8-node ones (a mixed mesh); parts made whole: the Hertz ball (a mapped ball of
+// 20-node elements cut twice, on a graded box), the Taylor rods and the mirror
+// cylinders (mapped cylinders of 8- and 20-node elements), the rail (20-node),
+// the plates read from a Gmsh file, and the plates perturbed.
 std::vector<input::Deck> lattice_decks() {
-  std::vector<input::Deck> decks{deck_of("plate_impact.yaml"),       deck_of("sliding_block.yaml"),
-                                 deck_of("oblique_impact.yaml"),     deck_of("plate_impact.yaml"),
-                                 deck_of("plate_impact_hex20.yaml"), deck_of("plate_impact_hex20.yaml"),
-                                 deck_of("contact_patch_hex20.yaml")};
+  std::vector<input::Deck> decks{deck_of("plate_impact.yaml"),        deck_of("sliding_block.yaml"),
+                                 deck_of("oblique_impact.yaml"),      deck_of("plate_impact.yaml"),
+                                 deck_of("plate_impact_hex20.yaml"),  deck_of("plate_impact_hex20.yaml"),
+                                 deck_of("contact_patch_hex20.yaml"), deck_of("hertz_ball.yaml"),
+                                 deck_of("taylor_rods.yaml"),         deck_of("cylinders.yaml"),
+                                 deck_of("block_on_rail.yaml"),       deck_of("plate_impact_gmsh.yaml"),
+                                 deck_of("plate_impact.yaml")};
   decks[1].parts[0].elements = {16, 16, 2};
   decks[1].parts[1].elements = {32, 28, 2};
   decks[2].parts[0].elements = {80, 1, 40};
@@ -318,12 +325,20 @@ std::vector<input::Deck> lattice_decks() {
   graded20.parts[1].elements = {40, 1, 33};
   graded20.parts[1].grading = {4.0, 1.0, 1.0};
   decks[6].parts[1].formulation = input::Formulation::hex8;
+  decks[7].parts[0].elements = {6, 2};  // smaller: a 20-node block's step is an eigenvalue each
+  decks[7].parts[1].elements = {6, 6, 4};
+  decks[9].parts[0].elements = {16, 4, 2};  // the cylinders of 20-node elements too
+  decks[9].parts[1].elements = {12, 3, 2};
+  input::Deck& perturbed = decks[12];
+  perturbed.parts[0].elements = {40, 1, 30};
+  perturbed.parts[0].perturbation_fraction = 0.2;
+  perturbed.parts[1].perturbation_fraction = 0.1;
+  perturbed.parts[1].perturbation_seed = 7;
   return decks;
 }
 
 TEST(RankSetup, ColoursAndPartitionAreTheWholeModels) {
   for (const input::Deck& deck : lattice_decks()) {
-    ASSERT_TRUE(solver::sets_up_by_rank(deck));
     const solver::Model model = solver::build_model(deck);
     std::vector<int> colour;
     for (const auto& block : model.blocks) {
@@ -412,15 +427,24 @@ TEST(RankSetup, ContactFromTheFacesIsTheWholeModels) {
   }
 }
 
-// Which decks are set up rank by rank.
-TEST(RankSetup, OnlyUnperturbedBoxes) {
-  for (const char* file : {"plate_impact.yaml", "plate_impact_hex20.yaml", "contact_patch_hex20.yaml"})
-    EXPECT_TRUE(solver::sets_up_by_rank(deck_of(file))) << file;
-  for (const char* file : {"hertz_ball.yaml", "taylor_rods.yaml", "plate_impact_gmsh.yaml"})
-    EXPECT_FALSE(solver::sets_up_by_rank(deck_of(file))) << file;
-  input::Deck perturbed = deck_of("plate_impact.yaml");
-  perturbed.parts[0].perturbation_fraction = 0.1;
-  EXPECT_FALSE(solver::sets_up_by_rank(perturbed));
+// A perturbed part that inverts an element: the setup refuses it as build_mesh does,
+// in the same words.
+TEST(RankSetup, AnInvertedElementIsRefusedAsBuildMeshRefusesIt) {
+  input::Deck deck = deck_of("plate_impact.yaml");
+  deck.parts[1].perturbation_fraction = 0.45;
+  std::string whole, parts;
+  try {
+    mesh::build_mesh(deck);
+  } catch (const InputError& e) {
+    whole = e.what();
+  }
+  try {
+    solver::lattice_chunks(deck, 2, solver::Partitioning::bisection);
+  } catch (const InputError& e) {
+    parts = e.what();
+  }
+  EXPECT_NE(whole.find("inverts element"), std::string::npos) << whole;
+  EXPECT_EQ(parts, whole);
 }
 
 }  // namespace

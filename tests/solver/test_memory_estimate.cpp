@@ -143,6 +143,28 @@ TEST(MemoryEstimate, ADeckLargerThanTheAvailableMemoryIsRefused) {
   EXPECT_NO_THROW(check_mesh_size(deck, std::nullopt));
 }
 
+// On many ranks each rank here also holds the parts made whole while it sets up:
+// 100 B an 8-node element of a perturbed box (none for a regular box), and they count
+// in the check of this machine's share.
+TEST(MemoryEstimate, OnManyRanksThePartsMadeWholeCountOnEveryRankHere) {
+  input::Deck deck = deck_of({"[100, 100, 100]", "[50, 50, 50]"});
+  EXPECT_EQ(made_whole_bytes(deck), 0.0);
+  deck.parts[1].perturbation_fraction = 0.1;
+  EXPECT_EQ(made_whole_bytes(deck), 100.0 * 125000.0);
+  deck.parts[1].formulation = input::Formulation::hex20;
+  EXPECT_EQ(made_whole_bytes(deck), 304.0 * 125000.0);
+  // 4 of 8 ranks here: half the estimate, plus 4 times the part made whole (38 MB).
+  const double share = estimate_memory(deck).bytes * 4.0 / 8.0;
+  EXPECT_NO_THROW(check_mesh_size(deck, std::uint64_t(share + 4 * made_whole_bytes(deck)) + 1, {8, 4}));
+  try {
+    check_mesh_size(deck, std::uint64_t(share + 3 * made_whole_bytes(deck)), {8, 4});
+    FAIL() << "no InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find("for the parts each makes whole"), std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(MemoryEstimate, MoreNodesThan32BitIndicesAreRefusedWhateverTheMemory) {
   // 1700^3 = 4.9e9 elements and nodes: over 2^32 nodes.
   const input::Deck deck = deck_of({"[1700, 1700, 1700]"});
