@@ -203,10 +203,12 @@ void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> avail
     message += ", more than the " + std::to_string(max_nodes) + " nodes and " + std::to_string(max_elements) +
                " elements that the 32-bit indices of the mesh can number";
   if (share.ranks > 1)
-    message += "; the " + std::to_string(share.ranks_here) + " of its " + std::to_string(share.ranks) +
-               " ranks on this machine would need about " + format_bytes(need) + " of memory, " +
-               (whole_parts > 0.0 ? "of which " + format_bytes(whole_parts) + " for the parts each makes whole, " : "") +
-               format_bytes(estimate.bytes) + " in all (";
+    message +=
+        "; the " + std::to_string(share.ranks_here) + " of its " + std::to_string(share.ranks) +
+        " ranks on this machine would need about " + format_bytes(need) + " of memory, " +
+        (whole_parts > 0.0 ? "of which " + format_bytes(whole_parts) + " for the parts each makes whole, "
+                           : "") +
+        format_bytes(estimate.bytes) + " in all (";
   else
     message += "; the run would need about " + format_bytes(estimate.bytes) + " of memory (";
   message += std::string() + std::to_string(bytes_per_node) + " B per node, " +
