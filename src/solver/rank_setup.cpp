@@ -725,7 +725,8 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
     first_element += count;
     steps[2 * p] = element::critical_time_step(block, m.mesh.x_ref);
     if (block.nodes_per_element != 8)
-      steps[2 * p + 1] = element::current_time_step(block, m.mesh.x_ref, NodalVectors(m.mesh.x_ref.size())).dt;
+      steps[2 * p + 1] =
+          element::current_time_step(block, m.mesh.x_ref, NodalVectors(m.mesh.x_ref.size())).dt;
     // The whole block's colours, each keeping its index (possibly with no chunk here).
     EXDYN_ASSERT(block.chunk_begin.size() == mine.size() + 1);
     block.colours.assign(chunks.colours[std::size_t(part.index)], {});
@@ -764,7 +765,6 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
       }
   }
   run.initial_velocity = initial_velocities(lattice, d.global_node, m);
-
 
   // The output rows: a node's owner is the lowest rank of the chunks around it.
   std::vector<std::uint32_t> owned, elements(d.global_element.size());
