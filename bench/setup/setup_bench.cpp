@@ -3,9 +3,9 @@
 //   WholeModel:   build_model, as every rank of a deck set up whole does (and one
 //                 process);
 //   LatticeWalk:  the walk of every chunk that each rank set up rank by rank repeats
-//                 (centroids, colours, the bisection for 8 ranks: lattice_chunks);
+//                 (centroids, colours, the bisection for 8 ranks: setup_chunks);
 //   HaloMasses:   the lumped masses of an eighth of the nodes from the elements around
-//                 them (lattice_masses), a rank's share on 8 ranks.
+//                 them (setup_masses), a rank's share on 8 ranks.
 // Reported as elements per second of the whole model.
 #include <benchmark/benchmark.h>
 
@@ -38,7 +38,7 @@ void WholeModel(benchmark::State& state) {
 void LatticeWalk(benchmark::State& state) {
   const input::Deck deck = plates(int(state.range(0)));
   for (auto _ : state)
-    benchmark::DoNotOptimize(solver::lattice_chunks(deck, 8, solver::Partitioning::bisection));
+    benchmark::DoNotOptimize(solver::setup_chunks(deck, 8, solver::Partitioning::bisection));
   state.counters["elements/s"] = benchmark::Counter(2.0 * double(state.range(0) * state.range(0)),
                                                     benchmark::Counter::kIsIterationInvariantRate);
 }
@@ -48,7 +48,7 @@ void HaloMasses(benchmark::State& state) {
   const auto m = std::uint32_t(state.range(0));
   std::vector<std::uint32_t> nodes(2 * (m + 1) * 2 * (m + 1) / 8);
   std::iota(nodes.begin(), nodes.end(), 0u);
-  for (auto _ : state) benchmark::DoNotOptimize(solver::lattice_masses(deck, nodes));
+  for (auto _ : state) benchmark::DoNotOptimize(solver::setup_masses(deck, nodes));
   state.counters["elements/s"] = benchmark::Counter(2.0 * double(state.range(0) * state.range(0)),
                                                     benchmark::Counter::kIsIterationInvariantRate);
 }

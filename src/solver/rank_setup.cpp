@@ -1,4 +1,4 @@
-// A run's setup on many ranks from the parts' lattices (rank_setup.hpp).
+// A run's setup on many ranks, each rank building only its part (rank_setup.hpp).
 #include "solver/rank_setup.hpp"
 
 #include <algorithm>
@@ -33,7 +33,7 @@ constexpr std::uint32_t chunk_size = element::element_chunk;
 //  - made whole (`built`: a mapped or imported part, a perturbed box), its mesh alone
 //    (mesh::build_part_mesh: its node k is first_node + k) with the elements at each
 //    node, held while the setup runs.
-struct BoxPart {
+struct SetupPart {
   int index = 0;
   const input::PartOptions* options = nullptr;
   std::array<int, 3> n{};
@@ -192,14 +192,14 @@ struct BoxPart {
 // The deck's parts, with their node, element and chunk ranges. Throws the errors
 // build_mesh throws of a part made whole (a perturbed box's inverted element, an
 // imported part's file, the physical surfaces the deck names).
-struct Lattice {
-  std::vector<BoxPart> parts;
+struct SetupParts {
+  std::vector<SetupPart> list;
   std::size_t nodes = 0, elements = 0, chunks = 0;
 
-  explicit Lattice(const input::Deck& deck) {
+  explicit SetupParts(const input::Deck& deck) {
     for (std::size_t p = 0; p < deck.parts.size(); ++p) {
       const input::PartOptions& options = deck.parts[p];
-      BoxPart part;
+      SetupPart part;
       part.index = int(p);
       part.options = &options;
       part.n = options.elements;
@@ -228,17 +228,17 @@ struct Lattice {
     }
     static const mesh::PartRange box;  // no physical surfaces
     mesh::check_physical_faces(deck, [&](std::size_t p) -> const mesh::PartRange& {
-      return parts[p].built ? parts[p].built->parts[0] : box;
+      return list[p].built ? list[p].built->parts[0] : box;
     });
   }
-  void add(BoxPart part) {
+  void add(SetupPart part) {
     nodes += part.node_count;
     elements += part.element_count;
     chunks += part.chunks;
-    parts.push_back(std::move(part));
+    list.push_back(std::move(part));
   }
   // A part made whole: its mesh and the elements at each of its nodes.
-  void make_whole(const input::Deck& deck, BoxPart& part) {
+  void make_whole(const input::Deck& deck, SetupPart& part) {
     auto built = std::make_unique<mesh::Mesh>(
         mesh::build_part_mesh(deck, std::size_t(part.index), std::uint32_t(elements)));
     const mesh::PartRange& range = built->parts[0];
@@ -262,9 +262,9 @@ struct Lattice {
     part.built = std::move(built);
     add(std::move(part));
   }
-  const BoxPart& part_of_node(std::uint32_t g) const {
-    auto it = std::upper_bound(parts.begin(), parts.end(), g,
-                               [](std::uint32_t v, const BoxPart& p) { return v < p.first_node; });
+  const SetupPart& part_of_node(std::uint32_t g) const {
+    auto it = std::upper_bound(list.begin(), list.end(), g,
+                               [](std::uint32_t v, const SetupPart& p) { return v < p.first_node; });
     return *(it - 1);
   }
   // The coordinates of `ids` (global ids), m: build_mesh's bits.
@@ -276,9 +276,9 @@ struct Lattice {
     }
     return x;
   }
-  const BoxPart& part_of_element(std::size_t e) const {
-    auto it = std::upper_bound(parts.begin(), parts.end(), e,
-                               [](std::size_t v, const BoxPart& p) { return v < p.first_element; });
+  const SetupPart& part_of_element(std::size_t e) const {
+    auto it = std::upper_bound(list.begin(), list.end(), e,
+                               [](std::size_t v, const SetupPart& p) { return v < p.first_element; });
     return *(it - 1);
   }
 };
@@ -299,9 +299,9 @@ struct Chunks {
 // kept for a window of node ids only: a chunk's nodes lie within [its first element's
 // corner 0, its last element's corner 6], both ascending with the chunk, so no later
 // chunk comes back below the current one's lowest node.
-Chunks walk_chunks(const Lattice& lattice) {
+Chunks walk_chunks(const SetupParts& deck_parts) {
   Chunks chunks;
-  for (const BoxPart& part : lattice.parts) {
+  for (const SetupPart& part : deck_parts.list) {
     auto first_node = [&](std::size_t c) { return part.element_nodes(std::uint32_t(c * chunk_size))[0]; };
     auto last_node = [&](std::size_t c) {
       return part.element_nodes(
@@ -327,7 +327,7 @@ Chunks walk_chunks(const Lattice& lattice) {
       std::uint64_t taken = 0;
       for (std::uint32_t e = begin; e < end; ++e) {
         const std::array<int, 3> ijk = part.built ? std::array<int, 3>{} : part.element_ijk(e);
-        const BoxPart::ElementNodes nodes = part.built ? part.element_nodes(e) : BoxPart::ElementNodes{};
+        const SetupPart::ElementNodes nodes = part.built ? part.element_nodes(e) : SetupPart::ElementNodes{};
         for (int k = 0; k < 8; ++k) {
           const std::array<double, 3> x =
               part.built ? part.point_of(nodes[k]) : part.point(part.corner(ijk, k));
@@ -364,24 +364,24 @@ Chunks walk_chunks(const Lattice& lattice) {
   return chunks;
 }
 
-// The chunk graph of partition.cpp from the lattice, part by part and chunk by chunk:
+// The chunk graph of partition.cpp from the parts, part by part and chunk by chunk:
 // each chunk's nodes (once each), the chunks around each of them, and how many of
 // its nodes each other chunk shares. Parts share no node, so no edge joins two parts.
-ChunkGraph lattice_graph(const Lattice& lattice);
+ChunkGraph chunk_graph_of(const SetupParts& deck_parts);
 
 // The partition of the chunks over `ranks` ranks: partition_chunks' on the whole model.
-std::vector<int> partition_lattice(const Lattice& lattice, const Chunks& chunks, int ranks,
+std::vector<int> partition_parts(const SetupParts& deck_parts, const Chunks& chunks, int ranks,
                                    Partitioning partitioning) {
   if (partitioning == Partitioning::metis) {
-    check_rank_count(ranks, lattice.chunks, lattice.elements);
-    if (ranks == 1) return std::vector<int>(lattice.chunks, 0);
-    return metis_chunks(lattice_graph(lattice), chunks.weight, ranks);
+    check_rank_count(ranks, deck_parts.chunks, deck_parts.elements);
+    if (ranks == 1) return std::vector<int>(deck_parts.chunks, 0);
+    return metis_chunks(chunk_graph_of(deck_parts), chunks.weight, ranks);
   }
-  return bisect_chunks(chunks.centroid, chunks.weight, chunks.block_of, ranks, lattice.elements);
+  return bisect_chunks(chunks.centroid, chunks.weight, chunks.block_of, ranks, deck_parts.elements);
 }
 
 // The chunks (global indices) of the elements around node g, ascending.
-std::vector<std::size_t> chunks_at(const BoxPart& part, std::uint32_t g) {
+std::vector<std::size_t> chunks_at(const SetupPart& part, std::uint32_t g) {
   std::vector<std::size_t> out;
   for (const std::uint32_t e : part.elements_around(g)) {
     const std::size_t c = part.first_chunk + e / chunk_size;
@@ -390,11 +390,11 @@ std::vector<std::size_t> chunks_at(const BoxPart& part, std::uint32_t g) {
   return out;
 }
 
-ChunkGraph lattice_graph(const Lattice& lattice) {
+ChunkGraph chunk_graph_of(const SetupParts& deck_parts) {
   ChunkGraph graph;
-  graph.neighbours.resize(lattice.chunks);
-  std::vector<std::uint32_t> count(lattice.chunks, 0), nodes, touched;
-  for (const BoxPart& part : lattice.parts)
+  graph.neighbours.resize(deck_parts.chunks);
+  std::vector<std::uint32_t> count(deck_parts.chunks, 0), nodes, touched;
+  for (const SetupPart& part : deck_parts.list)
     for (std::size_t c = 0; c < part.chunks; ++c) {
       const std::size_t me = part.first_chunk + c;
       nodes.clear();
@@ -419,18 +419,18 @@ ChunkGraph lattice_graph(const Lattice& lattice) {
 // The lumped masses of `nodes` (global ids, ascending), kg: each from the elements
 // around it, in ascending order, by the family's rule (element::add_lumped_mass), so
 // every node gets one process's additions in one process's order.
-std::vector<double> masses_of(const input::Deck& deck, const Lattice& lattice,
+std::vector<double> masses_of(const input::Deck& deck, const SetupParts& deck_parts,
                               const std::vector<std::uint32_t>& nodes) {
   std::vector<std::uint32_t> elements;  // global ids
   for (const std::uint32_t g : nodes) {
-    const BoxPart& part = lattice.part_of_node(g);
+    const SetupPart& part = deck_parts.part_of_node(g);
     for (const std::uint32_t e : part.elements_around(g)) elements.push_back(part.first_element + e);
   }
   std::sort(elements.begin(), elements.end());
   elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
   std::vector<std::uint32_t> halo;  // the nodes of those elements, ascending
   for (const std::uint32_t e : elements) {
-    const BoxPart& part = lattice.part_of_element(e);
+    const SetupPart& part = deck_parts.part_of_element(e);
     for (const std::uint32_t g : part.element_nodes(e - part.first_element)) halo.push_back(g);
   }
   std::sort(halo.begin(), halo.end());
@@ -438,10 +438,10 @@ std::vector<double> masses_of(const input::Deck& deck, const Lattice& lattice,
   auto index = [&](std::uint32_t g) {
     return std::uint32_t(std::lower_bound(halo.begin(), halo.end(), g) - halo.begin());
   };
-  const NodalVectors x = lattice.points(halo);
+  const NodalVectors x = deck_parts.points(halo);
   std::vector<double> mass(halo.size(), 0.0);
   for (std::size_t first = 0; first < elements.size();) {  // a block of each part's elements
-    const BoxPart& part = lattice.part_of_element(elements[first]);
+    const SetupPart& part = deck_parts.part_of_element(elements[first]);
     std::size_t last = first;
     std::vector<std::uint32_t> connectivity;
     for (; last < elements.size() && elements[last] < part.first_element + part.element_count; ++last)
@@ -465,11 +465,11 @@ std::vector<double> masses_of(const input::Deck& deck, const Lattice& lattice,
 
 // initial_velocity's values for `nodes` (global ids) of a model of them (their
 // coordinates and fixed components), node by node.
-NodalVectors initial_velocities(const Lattice& lattice, const std::vector<std::uint32_t>& nodes,
+NodalVectors initial_velocities(const SetupParts& deck_parts, const std::vector<std::uint32_t>& nodes,
                                 const Model& m) {
   NodalVectors v(nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const input::PartOptions& options = *lattice.part_of_node(nodes[i]).options;
+    const input::PartOptions& options = *deck_parts.part_of_node(nodes[i]).options;
     for (int c = 0; c < 3; ++c) v.component(c)[i] = options.initial_velocity[std::size_t(c)];
     if (const auto& spin = options.initial_angular_velocity) {
       const input::Vec3& point = (*spin)[0];
@@ -486,11 +486,11 @@ NodalVectors initial_velocities(const Lattice& lattice, const std::vector<std::u
 }
 
 // The nodes (global ids, ascending) of the faces the contact pairs and walls name.
-std::vector<std::uint32_t> surface_nodes_of(const input::Deck& deck, const Lattice& lattice) {
+std::vector<std::uint32_t> surface_nodes_of(const input::Deck& deck, const SetupParts& deck_parts) {
   std::vector<std::uint32_t> nodes;
   auto add = [&](const std::vector<input::FaceRef>& faces) {
     for (const input::FaceRef& f : faces) {
-      const mesh::Face face = lattice.parts.at(std::size_t(f.part)).face(f);
+      const mesh::Face face = deck_parts.list.at(std::size_t(f.part)).face(f);
       nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
     }
   };
@@ -504,12 +504,12 @@ std::vector<std::uint32_t> surface_nodes_of(const input::Deck& deck, const Latti
 // The fixed components of each of `nodes` (global ids, ascending): the indices into
 // `nodes` of those on a face of a boundary condition fixing component c (build_model's
 // rule: every node of the face, mid-side nodes included).
-std::array<std::vector<std::uint32_t>, 3> fixed_of(const input::Deck& deck, const Lattice& lattice,
+std::array<std::vector<std::uint32_t>, 3> fixed_of(const input::Deck& deck, const SetupParts& deck_parts,
                                                    const std::vector<std::uint32_t>& nodes) {
   std::array<std::vector<std::uint32_t>, 3> held;  // global ids, per component
   for (const auto& bc : deck.boundary_conditions)
     for (const input::FaceRef& f : bc.faces) {
-      const mesh::Face face = lattice.parts.at(std::size_t(f.part)).face(f);
+      const mesh::Face face = deck_parts.list.at(std::size_t(f.part)).face(f);
       for (std::size_t c = 0; c < 3; ++c)
         if (bc.fix[c]) held[c].insert(held[c].end(), face.nodes.begin(), face.nodes.end());
     }
@@ -523,13 +523,13 @@ std::array<std::vector<std::uint32_t>, 3> fixed_of(const input::Deck& deck, cons
 }
 
 // The model of the contact faces alone (RankSetup::surfaces).
-Model surface_model(const input::Deck& deck, const Lattice& lattice,
+Model surface_model(const input::Deck& deck, const SetupParts& deck_parts,
                     const std::vector<std::uint32_t>& nodes) {
   Model m;
   auto index = [&](std::uint32_t g) {
     return std::uint32_t(std::lower_bound(nodes.begin(), nodes.end(), g) - nodes.begin());
   };
-  m.mesh.x_ref = lattice.points(nodes);
+  m.mesh.x_ref = deck_parts.points(nodes);
   std::vector<input::FaceRef> faces;
   for (const input::ContactOptions& pair : deck.contact) {
     faces.insert(faces.end(), pair.slave.begin(), pair.slave.end());
@@ -537,7 +537,7 @@ Model surface_model(const input::Deck& deck, const Lattice& lattice,
   }
   for (const input::RigidWallOptions& wall : deck.rigid_walls)
     faces.insert(faces.end(), wall.slave.begin(), wall.slave.end());
-  for (const BoxPart& part : lattice.parts) {
+  for (const SetupPart& part : deck_parts.list) {
     // The part's faces as a mapped or imported part has them (face_of finds them by
     // name or by physical surface), in the faces' node numbers.
     mesh::PartRange& range = m.mesh.parts.emplace_back(part.range());
@@ -564,10 +564,10 @@ Model surface_model(const input::Deck& deck, const Lattice& lattice,
       }
     }
   }
-  m.mass = masses_of(deck, lattice, nodes);
+  m.mass = masses_of(deck, deck_parts, nodes);
   m.inverse_mass.resize(m.mass.size());
   for (std::size_t i = 0; i < m.mass.size(); ++i) m.inverse_mass[i] = 1.0 / m.mass[i];
-  m.fixed_nodes = fixed_of(deck, lattice, nodes);
+  m.fixed_nodes = fixed_of(deck, deck_parts, nodes);
   return m;
 }
 
@@ -575,8 +575,8 @@ Model surface_model(const input::Deck& deck, const Lattice& lattice,
 // group_points), on every rank: each rank's own group starts (`count` elements here,
 // their global ids `global`) are candidates, and the groups start at those of the
 // candidates, in global order, that start one among them all; their points come from
-// the lattice, so every rank has the whole block's bits. Collective over comm.
-std::vector<std::array<double, 60>> whole_block_groups(const Lattice& lattice, const BoxPart& part,
+// the parts, so every rank has the whole block's bits. Collective over comm.
+std::vector<std::array<double, 60>> whole_block_groups(const SetupParts& deck_parts, const SetupPart& part,
                                                        std::uint32_t count, const std::uint32_t* connectivity,
                                                        const NodalVectors& x_ref, const std::uint32_t* global,
                                                        const mpi::Communicator& comm) {
@@ -593,7 +593,7 @@ std::vector<std::array<double, 60>> whole_block_groups(const Lattice& lattice, c
       order.push_back(std::uint32_t(nodes.size()));
       nodes.push_back(g);
     }
-  const NodalVectors points = lattice.points(nodes);
+  const NodalVectors points = deck_parts.points(nodes);
   std::vector<std::array<double, 60>> groups;
   for (const std::uint32_t c :
        element::jacobian_group_starts(formulation, std::uint32_t(candidates.size()), order.data(), points)) {
@@ -605,29 +605,29 @@ std::vector<std::array<double, 60>> whole_block_groups(const Lattice& lattice, c
 }
 
 // This rank's part of the model, its chunks chunks.rank's.
-RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, const Lattice& lattice,
+RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, const SetupParts& deck_parts,
                      const Chunks& chunks, Partitioning partitioning) {
   const int me = comm.rank;
   RankSetup setup;
-  setup.nodes = lattice.nodes;
-  setup.elements = lattice.elements;
+  setup.nodes = deck_parts.nodes;
+  setup.elements = deck_parts.elements;
 
   LocalRun& run = setup.run;
   Decomposition& d = run.decomposition;
   Model& m = run.model;
   d.comm = comm;
-  d.global_nodes = lattice.nodes;
-  d.global_elements = lattice.elements;
+  d.global_nodes = deck_parts.nodes;
+  d.global_elements = deck_parts.elements;
   d.partitioning = partitioning;
   d.set_up_by_rank = true;
 
   // This rank's chunks, elements and nodes (in ascending global order).
-  std::vector<std::vector<std::uint32_t>> my_chunks(lattice.parts.size());
-  for (const BoxPart& part : lattice.parts)
+  std::vector<std::vector<std::uint32_t>> my_chunks(deck_parts.list.size());
+  for (const SetupPart& part : deck_parts.list)
     for (std::size_t c = 0; c < part.chunks; ++c)
       if (chunks.rank[part.first_chunk + c] == me)
         my_chunks[std::size_t(part.index)].push_back(std::uint32_t(c));
-  for (const BoxPart& part : lattice.parts)
+  for (const SetupPart& part : deck_parts.list)
     for (const std::uint32_t c : my_chunks[std::size_t(part.index)])
       for (std::uint32_t e = c * chunk_size; e < std::min((c + 1) * chunk_size, part.element_count); ++e) {
         d.global_element.push_back(part.first_element + e);
@@ -648,7 +648,7 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
     std::vector<std::uint32_t> block_of(local_nodes);
     long edge_cut = 0;
     for (std::size_t i = 0; i < local_nodes; ++i) {
-      const BoxPart& part = lattice.part_of_node(d.global_node[i]);
+      const SetupPart& part = deck_parts.part_of_node(d.global_node[i]);
       const std::vector<std::size_t> around = chunks_at(part, d.global_node[i]);
       int owner = std::numeric_limits<int>::max();
       for (const std::size_t c : around) {
@@ -667,10 +667,10 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   }
 
   // The rank's mesh and blocks: its chunks of each part, in the whole model's order.
-  m.mesh.x_ref = lattice.points(d.global_node);
-  for (const BoxPart& part : lattice.parts) m.mesh.parts.push_back(part.range());
+  m.mesh.x_ref = deck_parts.points(d.global_node);
+  for (const SetupPart& part : deck_parts.list) m.mesh.parts.push_back(part.range());
   std::vector<std::size_t> first_connectivity;
-  for (const BoxPart& part : lattice.parts) {
+  for (const SetupPart& part : deck_parts.list) {
     first_connectivity.push_back(m.mesh.connectivity.size());
     for (const std::uint32_t c : my_chunks[std::size_t(part.index)])
       for (std::uint32_t e = c * chunk_size; e < std::min((c + 1) * chunk_size, part.element_count); ++e) {
@@ -681,14 +681,14 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   // Each block's stable step, and a 20-node block's step scale (ElementBlock::
   // step_scale: its family step over its corner-based step): the whole block's, each an
   // exact minimum over the ranks; the model's stable step is the least of them.
-  std::vector<double> steps(2 * lattice.parts.size(), std::numeric_limits<double>::infinity());
-  std::vector<std::size_t> block_of_part(lattice.parts.size(), ~std::size_t{0});  // ~0: none here
+  std::vector<double> steps(2 * deck_parts.list.size(), std::numeric_limits<double>::infinity());
+  std::vector<std::size_t> block_of_part(deck_parts.list.size(), ~std::size_t{0});  // ~0: none here
   // Each part's elements here, and the layout the whole block's elements allow: the
   // ranks' layouts together (a rank's elements may allow a faster one, such as a
   // cylinder's square core).
-  std::vector<std::uint32_t> part_count(lattice.parts.size(), 0);
-  std::vector<int> layout(2 * lattice.parts.size(), 1);
-  for (const BoxPart& part : lattice.parts) {
+  std::vector<std::uint32_t> part_count(deck_parts.list.size(), 0);
+  std::vector<int> layout(2 * deck_parts.list.size(), 1);
+  for (const SetupPart& part : deck_parts.list) {
     const auto p = std::size_t(part.index);
     for (const std::uint32_t c : my_chunks[p])
       part_count[p] += std::min((c + 1) * chunk_size, part.element_count) - c * chunk_size;
@@ -701,7 +701,7 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   mpi::check(MPI_Allreduce(MPI_IN_PLACE, layout.data(), int(layout.size()), MPI_INT, MPI_MIN, comm.comm),
              "MPI_Allreduce of the blocks' layouts");
   std::uint32_t first_element = 0;
-  for (const BoxPart& part : lattice.parts) {
+  for (const SetupPart& part : deck_parts.list) {
     const auto p = std::size_t(part.index);
     const auto& mine = my_chunks[p];
     const input::PartOptions& options = *part.options;
@@ -712,7 +712,7 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
     const std::uint32_t* connectivity = m.mesh.connectivity.data() + first_connectivity[p];
     element::WholeBlock whole{layout[2 * p] != 0, layout[2 * p + 1] != 0, {}};
     if (part.order == 2 && law.linear_small() && whole.parallelepipeds)  // collective: every rank
-      whole.group_points = whole_block_groups(lattice, part, count, connectivity, m.mesh.x_ref,
+      whole.group_points = whole_block_groups(deck_parts, part, count, connectivity, m.mesh.x_ref,
                                               d.global_element.data() + first_element, comm);
     if (mine.empty()) continue;
     m.blocks.push_back(element::make_element_block(
@@ -737,7 +737,7 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   mpi::check(MPI_Allreduce(MPI_IN_PLACE, steps.data(), int(steps.size()), MPI_DOUBLE, MPI_MIN, comm.comm),
              "MPI_Allreduce of the blocks' stable steps");
   setup.critical_dt = std::numeric_limits<double>::infinity();  // critical_time_step of the whole model
-  for (std::size_t p = 0; p < lattice.parts.size(); ++p) {
+  for (std::size_t p = 0; p < deck_parts.list.size(); ++p) {
     setup.critical_dt = std::min(setup.critical_dt, steps[2 * p]);
     if (block_of_part[p] != ~std::size_t{0} && m.blocks[block_of_part[p]].nodes_per_element != 8)
       m.blocks[block_of_part[p]].step_scale = steps[2 * p] / steps[2 * p + 1];
@@ -745,7 +745,7 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   split_colour_steps(my_chunks, m, d);
 
   // Masses of the rank's nodes; the owned ones count in the energies.
-  m.mass = masses_of(deck, lattice, d.global_node);
+  m.mass = masses_of(deck, deck_parts, d.global_node);
   m.inverse_mass.resize(local_nodes);
   m.counted_mass.resize(local_nodes);
   for (std::size_t i = 0; i < local_nodes; ++i) {
@@ -753,18 +753,18 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
     m.inverse_mass[i] = 1.0 / m.mass[i];
     m.counted_mass[i] = d.owned[i] != 0 ? m.mass[i] : 0.0;
   }
-  m.fixed_nodes = fixed_of(deck, lattice, d.global_node);
+  m.fixed_nodes = fixed_of(deck, deck_parts, d.global_node);
   if (!deck.loads.empty()) {  // build_model's gravity, node by node
     m.load_acceleration.resize(local_nodes);
     for (const input::LoadOptions& load : deck.loads)
       for (std::size_t i = 0; i < local_nodes; ++i) {
-        const int p = lattice.part_of_node(d.global_node[i]).index;
+        const int p = deck_parts.part_of_node(d.global_node[i]).index;
         if (!load.parts.empty() && std::find(load.parts.begin(), load.parts.end(), p) == load.parts.end())
           continue;
         for (int c = 0; c < 3; ++c) m.load_acceleration.component(c)[i] += load.gravity[std::size_t(c)];
       }
   }
-  run.initial_velocity = initial_velocities(lattice, d.global_node, m);
+  run.initial_velocity = initial_velocities(deck_parts, d.global_node, m);
 
   // The output rows: a node's owner is the lowest rank of the chunks around it.
   std::vector<std::uint32_t> owned, elements(d.global_element.size());
@@ -775,7 +775,7 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
       comm, d.global_nodes,
       [&](std::size_t g) {
         int owner = std::numeric_limits<int>::max();
-        for (const std::size_t c : chunks_at(lattice.part_of_node(std::uint32_t(g)), std::uint32_t(g)))
+        for (const std::size_t c : chunks_at(deck_parts.part_of_node(std::uint32_t(g)), std::uint32_t(g)))
           owner = std::min(owner, chunks.rank[c]);
         return owner;
       },
@@ -783,19 +783,19 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   d.element_rows = row_exchange(
       comm, d.global_elements,
       [&](std::size_t e) {
-        const BoxPart& part = lattice.part_of_element(e);
+        const SetupPart& part = deck_parts.part_of_element(e);
         return chunks.rank[part.first_chunk + (e - part.first_element) / chunk_size];
       },
       std::move(elements), d.global_element);
 
   // The contact faces: their model, and the ranks holding each of their nodes.
-  setup.surface_nodes = surface_nodes_of(deck, lattice);
-  setup.surfaces = surface_model(deck, lattice, setup.surface_nodes);
+  setup.surface_nodes = surface_nodes_of(deck, deck_parts);
+  setup.surfaces = surface_model(deck, deck_parts, setup.surface_nodes);
   run.contact_holders.resize(setup.surface_nodes.size());
   for (std::size_t k = 0; k < setup.surface_nodes.size(); ++k) {
     const std::uint32_t g = setup.surface_nodes[k];
     std::vector<int>& holders = run.contact_holders[k];
-    for (const std::size_t c : chunks_at(lattice.part_of_node(g), g)) holders.push_back(chunks.rank[c]);
+    for (const std::size_t c : chunks_at(deck_parts.part_of_node(g), g)) holders.push_back(chunks.rank[c]);
     std::sort(holders.begin(), holders.end());
     holders.erase(std::unique(holders.begin(), holders.end()), holders.end());
   }
@@ -807,14 +807,14 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
 // over the ranks holding one), and the slave points of its nodes at their pass's cost
 // per point, timed by rank 0 on the contact faces' model. Collective over comm.
 std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communicator& comm,
-                                   const Lattice& lattice, const Chunks& chunks, const RankSetup& trial) {
+                                   const SetupParts& deck_parts, const Chunks& chunks, const RankSetup& trial) {
   const double dt = time_stepping(deck.time, trial.critical_dt).dt;
   const Model& m = trial.run.model;
   const Decomposition& d = trial.run.decomposition;
-  std::vector<double> part_cost(lattice.parts.size(), std::numeric_limits<double>::infinity());
+  std::vector<double> part_cost(deck_parts.list.size(), std::numeric_limits<double>::infinity());
   const std::vector<double> block_cost = element_costs(m, dt);
   for (std::size_t b = 0; b < m.blocks.size(); ++b)
-    part_cost[std::size_t(lattice.part_of_element(d.global_element[m.blocks[b].first_element]).index)] =
+    part_cost[std::size_t(deck_parts.part_of_element(d.global_element[m.blocks[b].first_element]).index)] =
         block_cost[b];
   mpi::check(
       MPI_Allreduce(MPI_IN_PLACE, part_cost.data(), int(part_cost.size()), MPI_DOUBLE, MPI_MIN, comm.comm),
@@ -825,7 +825,7 @@ std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communica
   std::vector<double> pass_cost(passes, 0.0);
   if (comm.root())
     pass_cost = contact_costs(trial.surfaces, contact,
-                              initial_velocities(lattice, trial.surface_nodes, trial.surfaces));
+                              initial_velocities(deck_parts, trial.surface_nodes, trial.surfaces));
   if (passes > 0)
     mpi::check(MPI_Bcast(pass_cost.data(), int(passes), MPI_DOUBLE, 0, comm.comm), "MPI_Bcast of the costs");
 
@@ -835,7 +835,7 @@ std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communica
       contact, pass_cost,
       [&](std::uint32_t face_node) {  // the first chunk holding the node
         const std::uint32_t g = trial.surface_nodes[face_node];
-        return chunks_at(lattice.part_of_node(g), g).front();
+        return chunks_at(deck_parts.part_of_node(g), g).front();
       },
       cost);
   return cost;
@@ -854,35 +854,35 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Pa
   MPI_Comm_free(&here);
   check_mesh_size(deck, MachineShare{comm.size, ranks_here});
 
-  const Lattice lattice(deck);
-  Chunks chunks = walk_chunks(lattice);
-  chunks.rank = partition_lattice(lattice, chunks, comm.size, partitioning);
+  const SetupParts deck_parts(deck);
+  Chunks chunks = walk_chunks(deck_parts);
+  chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning);
   if (weigh_by_work) {  // a first setup by elements, timed, then the chunks weighed by their costs
     const std::vector<double> costs =
-        measured_costs(deck, comm, lattice, chunks, build_part(deck, comm, lattice, chunks, partitioning));
+        measured_costs(deck, comm, deck_parts, chunks, build_part(deck, comm, deck_parts, chunks, partitioning));
     weigh_by_costs(chunks.weight, costs);
-    chunks.rank = partition_lattice(lattice, chunks, comm.size, partitioning);
+    chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning);
   }
   chunks.centroid = {};
-  RankSetup setup = build_part(deck, comm, lattice, chunks, partitioning);
+  RankSetup setup = build_part(deck, comm, deck_parts, chunks, partitioning);
   setup.run.decomposition.weighed_by_work = weigh_by_work;
   return setup;
 }
 
-LatticeChunks lattice_chunks(const input::Deck& deck, int ranks, Partitioning partitioning) {
-  const Lattice lattice(deck);
-  const Chunks chunks = walk_chunks(lattice);
-  return {chunks.colour, partition_lattice(lattice, chunks, ranks, partitioning)};
+SetupChunks setup_chunks(const input::Deck& deck, int ranks, Partitioning partitioning) {
+  const SetupParts deck_parts(deck);
+  const Chunks chunks = walk_chunks(deck_parts);
+  return {chunks.colour, partition_parts(deck_parts, chunks, ranks, partitioning)};
 }
 
-std::vector<double> lattice_masses(const input::Deck& deck, const std::vector<std::uint32_t>& nodes) {
-  return masses_of(deck, Lattice(deck), nodes);
+std::vector<double> setup_masses(const input::Deck& deck, const std::vector<std::uint32_t>& nodes) {
+  return masses_of(deck, SetupParts(deck), nodes);
 }
 
 std::pair<std::vector<std::uint32_t>, Model> contact_faces_model(const input::Deck& deck) {
-  const Lattice lattice(deck);
-  std::vector<std::uint32_t> nodes = surface_nodes_of(deck, lattice);
-  Model model = surface_model(deck, lattice, nodes);
+  const SetupParts deck_parts(deck);
+  std::vector<std::uint32_t> nodes = surface_nodes_of(deck, deck_parts);
+  Model model = surface_model(deck, deck_parts, nodes);
   return {std::move(nodes), std::move(model)};
 }
 

@@ -50,11 +50,11 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Pa
 // the whole model's (tests/solver/test_decomposition.cpp): each chunk's colour in its
 // block and its rank of `ranks` (blocks one after the other); the lumped masses of
 // `nodes` (global ids, ascending); the contact faces' nodes and model.
-struct LatticeChunks {
+struct SetupChunks {
   std::vector<int> colour, rank;
 };
-LatticeChunks lattice_chunks(const input::Deck& deck, int ranks, Partitioning partitioning);
-std::vector<double> lattice_masses(const input::Deck& deck, const std::vector<std::uint32_t>& nodes);
+SetupChunks setup_chunks(const input::Deck& deck, int ranks, Partitioning partitioning);
+std::vector<double> setup_masses(const input::Deck& deck, const std::vector<std::uint32_t>& nodes);
 std::pair<std::vector<std::uint32_t>, Model> contact_faces_model(const input::Deck& deck);
 
 // A contact model built on RankSetup::surfaces, renumbered to global node ids (the

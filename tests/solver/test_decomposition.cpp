@@ -294,7 +294,7 @@ TEST(SliceBlock, TheSameBitsAtTheNodesOfItsChunksAlone) {
   }
 }
 
-// Setting up rank by rank (solver/rank_setup.hpp) walks the lattice chunk by chunk in
+// Setting up rank by rank (solver/rank_setup.hpp) walks the parts chunk by chunk in
 // place of the whole model: the colours, the partition, the masses and the contact
 // surfaces must be the whole model's, bit for bit. Decks: the plates (two parts), the
 // sliding block (two parts of other sizes, friction, gravity), the wall deck, the
@@ -304,7 +304,7 @@ TEST(SliceBlock, TheSameBitsAtTheNodesOfItsChunksAlone) {
 // 20-node elements cut twice, on a graded box), the Taylor rods and the mirror
 // cylinders (mapped cylinders of 8- and 20-node elements), the rail (20-node),
 // the plates read from a Gmsh file, and the plates perturbed.
-std::vector<input::Deck> lattice_decks() {
+std::vector<input::Deck> setup_decks() {
   std::vector<input::Deck> decks{deck_of("plate_impact.yaml"),        deck_of("sliding_block.yaml"),
                                  deck_of("oblique_impact.yaml"),      deck_of("plate_impact.yaml"),
                                  deck_of("plate_impact_hex20.yaml"),  deck_of("plate_impact_hex20.yaml"),
@@ -338,7 +338,7 @@ std::vector<input::Deck> lattice_decks() {
 }
 
 TEST(RankSetup, ColoursAndPartitionAreTheWholeModels) {
-  for (const input::Deck& deck : lattice_decks()) {
+  for (const input::Deck& deck : setup_decks()) {
     const solver::Model model = solver::build_model(deck);
     std::vector<int> colour;
     for (const auto& block : model.blocks) {
@@ -353,14 +353,14 @@ TEST(RankSetup, ColoursAndPartitionAreTheWholeModels) {
         // METIS may leave a rank without a chunk: then both refuse, with the same words.
         std::string whole_error, lattice_error;
         std::vector<int> whole_rank;
-        solver::LatticeChunks chunks;
+        solver::SetupChunks chunks;
         try {
           whole_rank = solver::partition_chunks(model, ranks, partitioning);
         } catch (const InputError& e) {
           whole_error = e.what();
         }
         try {
-          chunks = solver::lattice_chunks(deck, ranks, partitioning);
+          chunks = solver::setup_chunks(deck, ranks, partitioning);
         } catch (const InputError& e) {
           lattice_error = e.what();
         }
@@ -373,21 +373,21 @@ TEST(RankSetup, ColoursAndPartitionAreTheWholeModels) {
 }
 
 TEST(RankSetup, MassesAreTheWholeModelsBitForBit) {
-  for (const input::Deck& deck : lattice_decks()) {
+  for (const input::Deck& deck : setup_decks()) {
     const solver::Model model = solver::build_model(deck);
     std::vector<std::uint32_t> every(model.mesh.node_count()), some;
     std::iota(every.begin(), every.end(), 0u);
     for (std::uint32_t g = 0; g < every.size(); g += 7)
       some.push_back(g);  // a sparse set: halos of their own
-    EXPECT_EQ(solver::lattice_masses(deck, every), model.mass) << deck.name;
-    const std::vector<double> masses = solver::lattice_masses(deck, some);
+    EXPECT_EQ(solver::setup_masses(deck, every), model.mass) << deck.name;
+    const std::vector<double> masses = solver::setup_masses(deck, some);
     for (std::size_t k = 0; k < some.size(); ++k) ASSERT_EQ(masses[k], model.mass[some[k]]) << deck.name;
   }
 }
 
 // The contact built on the faces alone and renumbered: the whole model's surfaces.
 TEST(RankSetup, ContactFromTheFacesIsTheWholeModels) {
-  for (const input::Deck& deck : lattice_decks()) {
+  for (const input::Deck& deck : setup_decks()) {
     const solver::Model model = solver::build_model(deck);
     const double dt = solver::critical_time_step(model);
     const solver::ContactModel whole = solver::build_contact(deck, model, 0.1 * dt, dt);
@@ -439,7 +439,7 @@ TEST(RankSetup, AnInvertedElementIsRefusedAsBuildMeshRefusesIt) {
     whole = e.what();
   }
   try {
-    solver::lattice_chunks(deck, 2, solver::Partitioning::bisection);
+    solver::setup_chunks(deck, 2, solver::Partitioning::bisection);
   } catch (const InputError& e) {
     parts = e.what();
   }
