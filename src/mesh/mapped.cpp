@@ -121,9 +121,16 @@ std::vector<Block> sphere_blocks(const input::PartOptions& o) {
 }
 
 // Merges coincident points: a point within `tolerance` of one seen before gets its id.
+// Only the points of the blocks' boundaries can meet (blocks meet along whole faces),
+// so the points inside a block take new ids without entering the hash (`add`): it
+// then holds the blocks' faces, not their volume.
 class PointMerger {
  public:
   explicit PointMerger(double tolerance) : tolerance_(tolerance) {}
+  std::uint32_t add(const Point& x) {
+    points_.push_back(x);
+    return static_cast<std::uint32_t>(points_.size() - 1);
+  }
   std::uint32_t id(const Point& x) {
     const std::array<long long, 3> cell{std::llround(x[0] / tolerance_ / 8.0),
                                         std::llround(x[1] / tolerance_ / 8.0),
@@ -220,8 +227,10 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
       for (int j = 0; j < size[1]; ++j)
         for (int i = 0; i < size[0]; ++i) {
           if ((i % order) + (j % order) + (k % order) > 1) continue;
-          at(i, j, k) =
-              merger.id(to_global(block.at(double(i) / order, double(j) / order, double(k) / order)));
+          const Point x = to_global(block.at(double(i) / order, double(j) / order, double(k) / order));
+          const bool boundary = i == 0 || j == 0 || k == 0 || i == size[0] - 1 || j == size[1] - 1 ||
+                                k == size[2] - 1;
+          at(i, j, k) = boundary ? merger.id(x) : merger.add(x);
         }
     for (int k = 0; k < block.n[2]; ++k)
       for (int j = 0; j < block.n[1]; ++j)
