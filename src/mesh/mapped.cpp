@@ -228,8 +228,8 @@ void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_ind
         for (int i = 0; i < size[0]; ++i) {
           if ((i % order) + (j % order) + (k % order) > 1) continue;
           const Point x = to_global(block.at(double(i) / order, double(j) / order, double(k) / order));
-          const bool boundary = i == 0 || j == 0 || k == 0 || i == size[0] - 1 || j == size[1] - 1 ||
-                                k == size[2] - 1;
+          const bool boundary =
+              i == 0 || j == 0 || k == 0 || i == size[0] - 1 || j == size[1] - 1 || k == size[2] - 1;
           at(i, j, k) = boundary ? merger.id(x) : merger.add(x);
         }
     for (int k = 0; k < block.n[2]; ++k)
