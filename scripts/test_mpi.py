@@ -148,9 +148,12 @@ def test_equal_fields(exdyn, work, quick):
              ("plastic_wave", ["parts[0].elements=[2000, 1, 1]", "output.every=100"]),
              # the paper's setting: 20-node plates, two passes of quadrature points
              ("plate_impact_hex20", ["time.end_time=6.0e-8"]),
-             # a distorted grid: a part made whole on every rank (mesh::build_part_mesh)
+             # a distorted grid: a part made whole on every rank (mesh::build_part_mesh, as
+             # the mapped parts above, which the sanitizer build runs)
              ("plate_impact", ["parts[0].perturbation.fraction=0.2", "parts[1].perturbation.fraction=0.1",
                                "time.end_time=1.2e-7", "output.every=56"], "perturbed_plates")]
+    if quick:
+        cases = [c for c in cases if c[-1] != "perturbed_plates"]
     for deck, sets, *label in cases:
         label = label[0] if label else deck
         reference = os.path.join(work, f"{label}_1")
@@ -186,7 +189,7 @@ def test_partitions(exdyn, work):
     work timed on a first setup): every field of N ranks is one rank's, bit for bit."""
     for deck, sets in [("plate_impact_gmsh", ["output.every=112"]),
                        ("hertz_ball_gmsh", ["time.end_time=3.0e-6", "output.every=100"]),
-                       ("plate_impact", ["output.every=112"]),
+                       ("plate_impact", ["time.end_time=1.2e-7", "output.every=56"]),
                        # its contact work all on one rank when weighed by elements
                        ("contact_patch_hex20", ["time.end_time=3.0e-7"])]:
         reference = os.path.join(work, f"{deck}_partition_1")
