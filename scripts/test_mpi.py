@@ -18,9 +18,10 @@
 - SIGKILL of one rank at random moments: the file still opens, every listed step the
   same bits as the one-process run's;
 - ParaView opens a result written by 3 ranks;
-- more ranks than the mesh has chunks, and an mpirun that cannot start the ranks (more
-  ranks than slots; a host file naming a machine that cannot be reached), end with a
-  clear error and no result that looks complete.
+- more ranks than the mesh has chunks, a mesh file Gmsh cannot read (read by rank 0
+  alone), and an mpirun that cannot start the ranks (more ranks than slots; a host file
+  naming a machine that cannot be reached), end with a clear error and no result that
+  looks complete.
 
   scripts/test_mpi.py --exdyn build/release/src/app/exdyn [--quick]
 
@@ -350,6 +351,19 @@ def test_errors(exdyn, work):
         check("mpirun that cannot start 4 ranks on this machine: an error, no result",
               proc.returncode != 0 and "slots" in proc.stdout + proc.stderr
               and not os.path.exists(os.path.join(work, "no_start")), (proc.stdout + proc.stderr)[-400:])
+    # A mesh file Gmsh cannot read: read by rank 0 alone, its error is every rank's,
+    # in one process's words (exit 2, no result).
+    bad = os.path.join(work, "bad.msh")
+    with open(bad, "w") as f:
+        f.write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\ngarbage\n")
+    sets = [f"parts[0].mesh.file={bad}"]
+    code1, text1 = run(exdyn, "plate_impact_gmsh", os.path.join(work, "bad_1"), 0, sets=sets)
+    out = os.path.join(work, "bad_2")
+    code2, text2 = run(exdyn, "plate_impact_gmsh", out, 2, sets=sets)
+    message = [line for line in text1.splitlines() if line.startswith("exdyn: error:")]
+    check("a mesh file Gmsh cannot read, on 2 ranks: exit 2 with one process's message, no result",
+          code1 == 2 and code2 == 2 and len(message) == 1 and text2.count(message[0]) == 1
+          and not os.path.exists(out), text2[-400:])
     test_unreachable_host(exdyn, work)
 
 

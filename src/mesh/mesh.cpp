@@ -298,14 +298,15 @@ Mesh build_mesh(const input::Deck& deck) {
   return mesh;
 }
 
-Mesh build_part_mesh(const input::Deck& deck, std::size_t p, std::uint32_t first_element) {
+Mesh build_part_mesh(const input::Deck& deck, std::size_t p, std::uint32_t first_element,
+                     const GmshReader& read) {
   const input::PartOptions& options = deck.parts[p];
   Mesh mesh;
   if (options.geometry == input::Geometry::mesh) {
     const std::string key_path = "parts[" + std::to_string(p) + "].mesh";
     const SourceLocation where{deck.source_file, 0, 0};
-    add_imported_part(mesh, options, static_cast<int>(p),
-                      input::read_gmsh(options.mesh.path, where, key_path + ".file"), where, key_path);
+    add_imported_part(mesh, options, static_cast<int>(p), read(options.mesh.path, where, key_path + ".file"),
+                      where, key_path);
   } else if (options.geometry != input::Geometry::box) {
     add_mapped_part(mesh, options, static_cast<int>(p));
   } else {

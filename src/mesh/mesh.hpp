@@ -17,10 +17,13 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "common/errors.hpp"
 #include "common/nodal_vectors.hpp"
+#include "input/gmsh_file.hpp"
 #include "input/options.hpp"
 
 namespace exdyn::mesh {
@@ -104,8 +107,12 @@ Mesh build_mesh(const input::Deck& deck);
 // with the same bits, numbered from 0; its faces; the same checks of a perturbed or
 // imported part, an error naming element first_element + e for its element e): for a
 // rank that builds only its own elements of a part it cannot make piece by piece
-// (solver/rank_setup.hpp). An imported part's file is read again for each part.
-Mesh build_part_mesh(const input::Deck& deck, std::size_t p, std::uint32_t first_element);
+// (solver/rank_setup.hpp). An imported part's file comes from `read` (input::read_gmsh's
+// arguments and result: on many ranks, read once and sent to every rank).
+using GmshReader = std::function<input::GmshMesh(const std::string& file, const SourceLocation& where,
+                                                 const std::string& key_path)>;
+Mesh build_part_mesh(const input::Deck& deck, std::size_t p, std::uint32_t first_element,
+                     const GmshReader& read = input::read_gmsh);
 
 // Every physical surface the deck names bounds its part's volume (part_of(p): part p's
 // range), else an InputError naming the deck key; build_mesh checks it.

@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
+#include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <numeric>
 #include <stdexcept>
@@ -196,7 +199,7 @@ struct SetupParts {
   std::vector<SetupPart> list;
   std::size_t nodes = 0, elements = 0, chunks = 0;
 
-  explicit SetupParts(const input::Deck& deck) {
+  explicit SetupParts(const input::Deck& deck, const mesh::GmshReader& read = input::read_gmsh) {
     for (std::size_t p = 0; p < deck.parts.size(); ++p) {
       const input::PartOptions& options = deck.parts[p];
       SetupPart part;
@@ -207,7 +210,7 @@ struct SetupParts {
       part.nodes_per_element = part.order == 2 ? 20 : 8;
       part.first_node = std::uint32_t(nodes);
       if (options.geometry != input::Geometry::box || options.perturbation_fraction != 0.0) {
-        make_whole(deck, part);
+        make_whole(deck, part, read);
         continue;
       }
       part.node_count = std::uint32_t(std::size_t(part.n[2] + 1) * part.even_layer() +
@@ -238,9 +241,9 @@ struct SetupParts {
     list.push_back(std::move(part));
   }
   // A part made whole: its mesh and the elements at each of its nodes.
-  void make_whole(const input::Deck& deck, SetupPart& part) {
+  void make_whole(const input::Deck& deck, SetupPart& part, const mesh::GmshReader& read) {
     auto built = std::make_unique<mesh::Mesh>(
-        mesh::build_part_mesh(deck, std::size_t(part.index), std::uint32_t(elements)));
+        mesh::build_part_mesh(deck, std::size_t(part.index), std::uint32_t(elements), read));
     const mesh::PartRange& range = built->parts[0];
     part.order = range.order;
     part.nodes_per_element = range.nodes_per_element;
@@ -281,6 +284,123 @@ struct SetupParts {
                                [](std::size_t v, const SetupPart& p) { return v < p.first_element; });
     return *(it - 1);
   }
+};
+
+// A Gmsh file read once, by rank 0, and sent to every rank (MPI_Bcast of its bytes in
+// pieces of at most 1 GiB), each file once for all the parts it holds. An error of
+// rank 0's reading is every rank's: an InputError in its words (exit 2, as one process),
+// any other error a runtime_error with its text.
+class GmshOnce {
+ public:
+  explicit GmshOnce(const mpi::Communicator& comm) : comm_(comm) {}
+  input::GmshMesh operator()(const std::string& file, const SourceLocation& where,
+                             const std::string& key_path) {
+    auto known = files_.find(file);
+    if (known == files_.end()) known = files_.emplace(file, read(file, where, key_path)).first;
+    return known->second;
+  }
+  void forget() { files_.clear(); }
+
+ private:
+  input::GmshMesh read(const std::string& file, const SourceLocation& where, const std::string& key_path) {
+    input::GmshMesh mesh;
+    std::vector<char> bytes;
+    int status = 0;  // 0: read; 1: bad input; 2: another error
+    if (comm_.root()) {
+      try {
+        mesh = input::read_gmsh(file, where, key_path);
+        pack(mesh, bytes);
+      } catch (const InputError& e) {
+        status = 1, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
+      } catch (const std::exception& e) {
+        status = 2, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
+      }
+    }
+    std::uint64_t size = bytes.size();
+    mpi::check(MPI_Bcast(&status, 1, MPI_INT, 0, comm_.comm), "MPI_Bcast of a mesh file's status");
+    mpi::check(MPI_Bcast(&size, 1, MPI_UINT64_T, 0, comm_.comm), "MPI_Bcast of a mesh file's size");
+    bytes.resize(size);
+    constexpr std::uint64_t piece = std::uint64_t(1) << 30;
+    for (std::uint64_t at = 0; at < size; at += piece)
+      mpi::check(MPI_Bcast(bytes.data() + at, int(std::min(piece, size - at)), MPI_CHAR, 0, comm_.comm),
+                 "MPI_Bcast of a mesh file");
+    if (status == 1) throw InputError(std::string(bytes.begin(), bytes.end()));
+    if (status == 2) throw std::runtime_error(std::string(bytes.begin(), bytes.end()));
+    if (!comm_.root()) unpack(bytes, mesh);
+    return mesh;
+  }
+  // The mesh as bytes: each string and vector as its length (8 bytes) and its items.
+  template <class T>
+  static void put(std::vector<char>& out, const T* data, std::size_t count) {
+    const std::uint64_t n = count;
+    out.insert(out.end(), reinterpret_cast<const char*>(&n), reinterpret_cast<const char*>(&n + 1));
+    out.insert(out.end(), reinterpret_cast<const char*>(data), reinterpret_cast<const char*>(data + count));
+  }
+  template <class T>
+  static void get(const std::vector<char>& in, std::size_t& at, std::vector<T>& out) {
+    std::uint64_t n = 0;
+    std::memcpy(&n, in.data() + at, sizeof n);
+    at += sizeof n;
+    out.resize(n);
+    if (n > 0) std::memcpy(out.data(), in.data() + at, n * sizeof(T));
+    at += n * sizeof(T);
+  }
+  static void get(const std::vector<char>& in, std::size_t& at, std::string& out) {
+    std::vector<char> text;
+    get(in, at, text);
+    out.assign(text.begin(), text.end());
+  }
+  static void pack(const input::GmshMesh& mesh, std::vector<char>& out) {
+    put(out, mesh.file.data(), mesh.file.size());
+    put(out, mesh.node_tags.data(), mesh.node_tags.size());
+    put(out, mesh.coordinates.data(), mesh.coordinates.size());
+    for (const auto* groups : {&mesh.volumes, &mesh.surfaces}) {
+      const std::uint64_t count = groups->size();
+      put(out, &count, 1);
+      for (const input::GmshGroup& group : *groups) {
+        put(out, group.name.data(), group.name.size());
+        const std::uint64_t types = group.elements.size();
+        put(out, &types, 1);
+        for (const input::GmshElements& e : group.elements) {
+          const std::int64_t numbers[3] = {e.type, e.dimension, e.nodes_per_element};
+          put(out, numbers, 3);
+          put(out, e.name.data(), e.name.size());
+          put(out, e.tags.data(), e.tags.size());
+          put(out, e.nodes.data(), e.nodes.size());
+        }
+      }
+    }
+  }
+  static void unpack(const std::vector<char>& in, input::GmshMesh& mesh) {
+    std::size_t at = 0;
+    get(in, at, mesh.file);
+    get(in, at, mesh.node_tags);
+    get(in, at, mesh.coordinates);
+    for (auto* groups : {&mesh.volumes, &mesh.surfaces}) {
+      std::vector<std::uint64_t> count;
+      get(in, at, count);
+      groups->resize(count.at(0));
+      for (input::GmshGroup& group : *groups) {
+        get(in, at, group.name);
+        std::vector<std::uint64_t> types;
+        get(in, at, types);
+        group.elements.resize(types.at(0));
+        for (input::GmshElements& e : group.elements) {
+          std::vector<std::int64_t> numbers;
+          get(in, at, numbers);
+          e.type = int(numbers.at(0)), e.dimension = int(numbers.at(1)),
+          e.nodes_per_element = int(numbers.at(2));
+          get(in, at, e.name);
+          get(in, at, e.tags);
+          get(in, at, e.nodes);
+        }
+      }
+    }
+    EXDYN_ASSERT(at == in.size());
+  }
+
+  const mpi::Communicator& comm_;
+  std::map<std::string, input::GmshMesh> files_;
 };
 
 // What every rank computes of every chunk: its centroid (partition_chunks' rule),
@@ -371,7 +491,7 @@ ChunkGraph chunk_graph_of(const SetupParts& deck_parts);
 
 // The partition of the chunks over `ranks` ranks: partition_chunks' on the whole model.
 std::vector<int> partition_parts(const SetupParts& deck_parts, const Chunks& chunks, int ranks,
-                                   Partitioning partitioning) {
+                                 Partitioning partitioning) {
   if (partitioning == Partitioning::metis) {
     check_rank_count(ranks, deck_parts.chunks, deck_parts.elements);
     if (ranks == 1) return std::vector<int>(deck_parts.chunks, 0);
@@ -807,7 +927,8 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
 // over the ranks holding one), and the slave points of its nodes at their pass's cost
 // per point, timed by rank 0 on the contact faces' model. Collective over comm.
 std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communicator& comm,
-                                   const SetupParts& deck_parts, const Chunks& chunks, const RankSetup& trial) {
+                                   const SetupParts& deck_parts, const Chunks& chunks,
+                                   const RankSetup& trial) {
   const double dt = time_stepping(deck.time, trial.critical_dt).dt;
   const Model& m = trial.run.model;
   const Decomposition& d = trial.run.decomposition;
@@ -854,12 +975,14 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Pa
   MPI_Comm_free(&here);
   check_mesh_size(deck, MachineShare{comm.size, ranks_here});
 
-  const SetupParts deck_parts(deck);
+  GmshOnce gmsh(comm);
+  const SetupParts deck_parts(deck, std::ref(gmsh));
+  gmsh.forget();  // the files, once the parts are made
   Chunks chunks = walk_chunks(deck_parts);
   chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning);
   if (weigh_by_work) {  // a first setup by elements, timed, then the chunks weighed by their costs
-    const std::vector<double> costs =
-        measured_costs(deck, comm, deck_parts, chunks, build_part(deck, comm, deck_parts, chunks, partitioning));
+    const std::vector<double> costs = measured_costs(
+        deck, comm, deck_parts, chunks, build_part(deck, comm, deck_parts, chunks, partitioning));
     weigh_by_costs(chunks.weight, costs);
     chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning);
   }
