@@ -62,26 +62,28 @@ Model build_model(const input::Deck& deck) {
   return model;
 }
 
+std::array<double, 3> part_initial_velocity(const input::PartOptions& part, const std::array<double, 3>& x) {
+  std::array<double, 3> v{part.initial_velocity[0], part.initial_velocity[1], part.initial_velocity[2]};
+  // omega x (x - axis_point): a rigid rotation about the axis through axis_point.
+  if (const auto& spin = part.initial_angular_velocity) {
+    const input::Vec3& point = (*spin)[0];
+    const input::Vec3& omega = (*spin)[1];
+    const double r[3] = {x[0] - point[0], x[1] - point[1], x[2] - point[2]};
+    v[0] += omega[1] * r[2] - omega[2] * r[1];
+    v[1] += omega[2] * r[0] - omega[0] * r[2];
+    v[2] += omega[0] * r[1] - omega[1] * r[0];
+  }
+  return v;
+}
+
 NodalVectors initial_velocity(const input::Deck& deck, const Model& model) {
   NodalVectors v(model.mesh.node_count());
+  const NodalVectors& x = model.mesh.x_ref;
   for (std::size_t p = 0; p < deck.parts.size(); ++p) {
     const mesh::PartRange& range = model.mesh.parts[p];
-    for (int c = 0; c < 3; ++c) {
-      auto& component = v.component(c);
-      std::fill(component.begin() + range.first_node, component.begin() + range.first_node + range.node_count,
-                deck.parts[p].initial_velocity[c]);
-    }
-    // omega x (x - axis_point): a rigid rotation about the axis through axis_point.
-    if (const auto& spin = deck.parts[p].initial_angular_velocity) {
-      const input::Vec3& point = (*spin)[0];
-      const input::Vec3& omega = (*spin)[1];
-      for (std::size_t i = range.first_node; i < range.first_node + range.node_count; ++i) {
-        const double r[3] = {model.mesh.x_ref.x[i] - point[0], model.mesh.x_ref.y[i] - point[1],
-                             model.mesh.x_ref.z[i] - point[2]};
-        v.x[i] += omega[1] * r[2] - omega[2] * r[1];
-        v.y[i] += omega[2] * r[0] - omega[0] * r[2];
-        v.z[i] += omega[0] * r[1] - omega[1] * r[0];
-      }
+    for (std::size_t i = range.first_node; i < range.first_node + range.node_count; ++i) {
+      const std::array<double, 3> vi = part_initial_velocity(deck.parts[p], {x.x[i], x.y[i], x.z[i]});
+      v.x[i] = vi[0], v.y[i] = vi[1], v.z[i] = vi[2];
     }
   }
   apply_fixed_components(model, v);

@@ -32,6 +32,9 @@ Model build_model(const input::Deck& deck);
 // Initial velocities of every part's nodes, with the fixed components zeroed
 // (a boundary condition overrides an initial velocity).
 NodalVectors initial_velocity(const input::Deck& deck, const Model& model);
+// A part's initial velocity at the point x (m): initial_velocity plus
+// omega x (x - axis_point) of initial_angular_velocity, m/s (before the fixed components).
+std::array<double, 3> part_initial_velocity(const input::PartOptions& part, const std::array<double, 3>& x);
 
 // Sets the fixed components of a nodal vector field to zero.
 void apply_fixed_components(const Model& model, NodalVectors& field);

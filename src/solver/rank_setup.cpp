@@ -588,18 +588,11 @@ std::vector<double> masses_of(const input::Deck& deck, const SetupParts& deck_pa
 NodalVectors initial_velocities(const SetupParts& deck_parts, const std::vector<std::uint32_t>& nodes,
                                 const Model& m) {
   NodalVectors v(nodes.size());
+  const NodalVectors& x = m.mesh.x_ref;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const input::PartOptions& options = *deck_parts.part_of_node(nodes[i]).options;
-    for (int c = 0; c < 3; ++c) v.component(c)[i] = options.initial_velocity[std::size_t(c)];
-    if (const auto& spin = options.initial_angular_velocity) {
-      const input::Vec3& point = (*spin)[0];
-      const input::Vec3& omega = (*spin)[1];
-      const double r[3] = {m.mesh.x_ref.x[i] - point[0], m.mesh.x_ref.y[i] - point[1],
-                           m.mesh.x_ref.z[i] - point[2]};
-      v.x[i] += omega[1] * r[2] - omega[2] * r[1];
-      v.y[i] += omega[2] * r[0] - omega[0] * r[2];
-      v.z[i] += omega[0] * r[1] - omega[1] * r[0];
-    }
+    const std::array<double, 3> vi =
+        part_initial_velocity(*deck_parts.part_of_node(nodes[i]).options, {x.x[i], x.y[i], x.z[i]});
+    v.x[i] = vi[0], v.y[i] = vi[1], v.z[i] = vi[2];
   }
   apply_fixed_components(m, v);
   return v;
