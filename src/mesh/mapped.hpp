@@ -14,7 +14,11 @@
 // circle or the sphere to round-off.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
 
 #include "input/options.hpp"
 #include "mesh/mesh.hpp"
@@ -29,5 +33,43 @@ std::uint64_t mapped_element_count(const input::PartOptions& options);
 
 // Appends a cylinder or sphere part to the mesh, with its named faces.
 void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_index);
+
+// A cylinder or sphere part by numbers, for a rank that builds only its own elements
+// (solver/rank_setup.hpp): add_mapped_part's nodes (numbered from 0), elements and
+// faces, the same numbering and bits, each computed when asked for from the layout
+// of blocks. It holds one figure per lattice row of each block, the node ids of the
+// points on the blocks' sides and the part's faces: O(n^2) for n^3 elements.
+//
+// The numbering without the merging: each block's sides are glued to the other
+// blocks' sides they coincide with (found once from their corners), so a point on a
+// side has its appearances in the blocks that share it; add_mapped_part numbers the
+// points of the kept elements in the order of their first appearance (blocks in
+// order, each along its lattice, K then J then I). The kept elements of a block form
+// a box of its lattice (the cuts run along grid planes through the centre), the
+// element order of a block is that box's.
+class MappedLattice {
+ public:
+  MappedLattice(const input::PartOptions& options, int part_index);
+  MappedLattice(MappedLattice&&) noexcept;
+  MappedLattice& operator=(MappedLattice&&) noexcept;
+  ~MappedLattice();
+
+  std::uint32_t node_count() const;
+  std::uint32_t element_count() const;
+  int order() const;
+  int nodes_per_element() const;
+  // Element e's nodes (VTK order; nodes_per_element() of them).
+  std::array<std::uint32_t, 20> element_nodes(std::uint32_t e) const;
+  // Node k's coordinates, m.
+  std::array<double, 3> point(std::uint32_t k) const;
+  // The elements around node k, ascending.
+  std::vector<std::uint32_t> elements_around(std::uint32_t k) const;
+  // The part's named faces (PartRange::faces).
+  const std::vector<std::pair<input::PartFace, Face>>& faces() const;
+
+ private:
+  struct Layout;
+  std::unique_ptr<Layout> layout_;
+};
 
 }  // namespace exdyn::mesh

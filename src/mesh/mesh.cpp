@@ -365,23 +365,36 @@ std::vector<BoundarySegment> boundary_segments(const std::vector<std::array<std:
     for (int k = 0; k < b.segment.node_count; ++k) b.segment.nodes[std::size_t(k)] = nodes[std::size_t(f[k])];
     for (int k = 0; k < 4; ++k) b.corners[std::size_t(k)] = nodes[std::size_t(f[k])];
     std::sort(b.corners.begin(), b.corners.end());
-    // The element's length normal to this face: from the face's centroid to the
-    // opposite face's.
-    constexpr int opposite[6] = {1, 0, 4, 5, 2, 3};
-    const int* g = brick_faces[opposite[fi]];
-    double distance2 = 0.0;
-    for (int c = 0; c < 3; ++c) {
-      double here = 0.0, there = 0.0;
-      for (int k = 0; k < 4; ++k) {
-        here += coordinate(nodes[std::size_t(f[k])], c) / 4.0;
-        there += coordinate(nodes[std::size_t(g[k])], c) / 4.0;
-      }
-      distance2 += (here - there) * (here - there);
-    }
-    b.normal_length = std::sqrt(distance2);
+    std::array<std::array<double, 3>, 8> corners{};
+    for (std::size_t k = 0; k < 8; ++k)
+      for (int c = 0; c < 3; ++c) corners[k][std::size_t(c)] = coordinate(nodes[k], c);
+    b.normal_length = brick_normal_length(fi, corners);
     result.push_back(b);
   }
   return result;
+}
+
+double brick_normal_length(int face, const std::array<std::array<double, 3>, 8>& corners) {
+  constexpr int opposite[6] = {1, 0, 4, 5, 2, 3};
+  const int* f = brick_faces[face];
+  const int* g = brick_faces[opposite[face]];
+  double distance2 = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    double here = 0.0, there = 0.0;
+    for (int k = 0; k < 4; ++k) {
+      here += corners[std::size_t(f[k])][c] / 4.0;
+      there += corners[std::size_t(g[k])][c] / 4.0;
+    }
+    distance2 += (here - there) * (here - there);
+  }
+  return std::sqrt(distance2);
+}
+
+Face named_face(const std::vector<std::pair<input::PartFace, Face>>& faces, int part_index,
+                input::PartFace side) {
+  for (const auto& [name, face] : faces)
+    if (name == side) return face;
+  throw std::logic_error("face_of: part " + std::to_string(part_index) + " has no face " + input::name(side));
 }
 
 void finish_face(Face& face, double normal_length_sum) {
@@ -403,12 +416,7 @@ Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
                              std::to_string(part_index) + " has no segment");
     return face;
   }
-  if (part.lattice.empty()) {  // a mapped or imported part: its faces were built with it
-    for (const auto& [name, face] : part.faces)
-      if (name == side) return face;
-    throw std::logic_error("face_of: part " + std::to_string(part_index) + " has no face " +
-                           input::name(side));
-  }
+  if (part.lattice.empty()) return named_face(part.faces, part_index, side);  // a mapped or imported part
   return lattice_face(part.elements, part.order, side, part.normal_lengths,
                       [&](int i, int j, int k) { return part.node_at(i, j, k); });
 }

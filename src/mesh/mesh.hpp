@@ -145,6 +145,15 @@ std::vector<BoundarySegment> boundary_segments(const std::vector<std::array<std:
                                                int nodes_per_element, const NodalVectors& x,
                                                std::array<std::uint32_t, 4>* non_manifold = nullptr);
 
+// The length of a brick normal to its local face `face` (brick_faces), m: from the
+// face's centroid to the opposite face's, corner k at corners[k].
+double brick_normal_length(int face, const std::array<std::array<double, 3>, 8>& corners);
+
+// The face named `side` among a mapped or imported part's faces (PartRange::faces);
+// a logic_error naming part_index where it has none.
+Face named_face(const std::vector<std::pair<input::PartFace, Face>>& faces, int part_index,
+                input::PartFace side);
+
 // A face's nodes (every node of its segments, ascending, once) and its mean normal
 // length, from its segments and the sum of their normal lengths.
 void finish_face(Face& face, double normal_length_sum);

@@ -162,9 +162,7 @@ std::optional<std::uint64_t> available_memory(const std::string& meminfo_path) {
 double made_whole_bytes(const input::Deck& deck) {
   double bytes = 0.0;
   for (const input::PartOptions& part : deck.parts) {
-    if (part.geometry == input::Geometry::mesh ||
-        (part.geometry == input::Geometry::box && part.perturbation_fraction == 0.0))
-      continue;
+    if (part.geometry != input::Geometry::box || part.perturbation_fraction == 0.0) continue;
     const bool quadratic = input::is_quadratic(part.formulation);
     const double per_element = quadratic ? 20 * 8 + 4 * (24 + 4 + 8) : 8 * 8 + 1 * (24 + 4 + 8);
     bytes += per_element * grid_count_real(element_counts(part), 0);

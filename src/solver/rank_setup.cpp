@@ -11,11 +11,13 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 
 #include "common/errors.hpp"
 #include "element/element_family.hpp"
 #include "material/elastic.hpp"
 #include "material/material_law.hpp"
+#include "mesh/mapped.hpp"
 #include "mesh/mesh.hpp"
 #include "solver/load_balance.hpp"
 #include "solver/memory_estimate.hpp"
@@ -32,8 +34,10 @@ constexpr std::uint32_t chunk_size = element::element_chunk;
 //  - a box without perturbation, by numbers (mesh.hpp): its lattice points (I, J, K),
 //    order per element along each axis (order 2: only those with at most one odd
 //    index are nodes), are numbered in the order K, J, I; element (i, j, k) is
-//    i + nx (j + ny k) of the part; or
-//  - made whole (`built`: a mapped or imported part, a perturbed box), its mesh alone
+//    i + nx (j + ny k) of the part;
+//  - a cylinder or ball, by numbers (`mapped`: mesh::MappedLattice, its node k is
+//    first_node + k); or
+//  - made whole (`built`: an imported part, a perturbed box), its mesh alone
 //    (mesh::build_part_mesh: its node k is first_node + k) with the elements at each
 //    node, held while the setup runs.
 struct SetupPart {
@@ -42,9 +46,10 @@ struct SetupPart {
   std::array<int, 3> n{};
   int order = 1, nodes_per_element = 8;
   std::uint32_t first_node = 0, node_count = 0, first_element = 0, element_count = 0;
-  std::size_t first_chunk = 0, chunks = 0;  // the block's chunks among all blocks'
-  std::array<std::vector<double>, 3> grid;  // grid coordinates along x, y, z (mesh::box_point), m
-  std::unique_ptr<const mesh::Mesh> built;  // null: a box by numbers
+  std::size_t first_chunk = 0, chunks = 0;            // the block's chunks among all blocks'
+  std::array<std::vector<double>, 3> grid;            // grid coordinates along x, y, z (mesh::box_point), m
+  std::unique_ptr<const mesh::MappedLattice> mapped;  // null: not a cylinder or ball
+  std::unique_ptr<const mesh::Mesh> built;            // null: by numbers
   // Made whole: the part's elements at its node k, ascending, are
   // at_element[at_start[k] .. at_start[k + 1]).
   std::vector<std::uint32_t> at_start, at_element;
@@ -110,6 +115,12 @@ struct SetupPart {
   ElementNodes element_nodes(std::uint32_t e) const {
     ElementNodes nodes;
     nodes.count = nodes_per_element;
+    if (mapped) {
+      const std::array<std::uint32_t, 20> local = mapped->element_nodes(e);
+      for (int k = 0; k < nodes_per_element; ++k)
+        nodes.ids[std::size_t(k)] = first_node + local[std::size_t(k)];
+      return nodes;
+    }
     if (built) {
       const std::uint32_t* local = built->connectivity.data() + std::size_t(nodes_per_element) * e;
       for (int k = 0; k < nodes_per_element; ++k) nodes.ids[std::size_t(k)] = first_node + local[k];
@@ -121,6 +132,7 @@ struct SetupPart {
   }
   // Node g's coordinates, m.
   std::array<double, 3> point_of(std::uint32_t g) const {
+    if (mapped) return mapped->point(g - first_node);
     if (!built) return point(node_ijk(g));
     const NodalVectors& x = built->x_ref;
     const std::size_t k = g - first_node;
@@ -128,6 +140,7 @@ struct SetupPart {
   }
   // The part's elements around node g, ascending.
   std::vector<std::uint32_t> elements_around(std::uint32_t g) const {
+    if (mapped) return mapped->elements_around(g - first_node);
     if (built) {
       const std::size_t k = g - first_node;
       return {at_element.begin() + std::ptrdiff_t(at_start[k]),
@@ -139,14 +152,14 @@ struct SetupPart {
   }
   // The named face f of this part (f.part == index), in global node ids: face_of's.
   mesh::Face face(const input::FaceRef& f) const {
-    if (!built)
+    if (!built && !mapped)
       return mesh::lattice_face(
           n, order, f.side, mesh::box_normal_lengths(*options), [&](int i, int j, int k) {
             return (i % order) + (j % order) + (k % order) > 1 ? mesh::no_node : node({i, j, k});
           });
     input::FaceRef own = f;
     own.part = 0;
-    mesh::Face face = mesh::face_of(*built, own);
+    mesh::Face face = mapped ? mesh::named_face(mapped->faces(), index, f.side) : mesh::face_of(*built, own);
     for (std::uint32_t& node_id : face.nodes) node_id += first_node;
     for (mesh::FaceSegment& segment : face.segments)
       for (int k = 0; k < segment.node_count; ++k) segment.nodes[std::size_t(k)] += first_node;
@@ -209,6 +222,18 @@ struct SetupParts {
       part.order = input::is_quadratic(options.formulation) ? 2 : 1;
       part.nodes_per_element = part.order == 2 ? 20 : 8;
       part.first_node = std::uint32_t(nodes);
+      if (options.geometry == input::Geometry::cylinder || options.geometry == input::Geometry::sphere) {
+        part.mapped = std::make_unique<mesh::MappedLattice>(options, part.index);
+        part.order = part.mapped->order();
+        part.nodes_per_element = part.mapped->nodes_per_element();
+        part.node_count = part.mapped->node_count();
+        part.first_element = std::uint32_t(elements);
+        part.element_count = part.mapped->element_count();
+        part.first_chunk = chunks;
+        part.chunks = (part.element_count + chunk_size - 1) / chunk_size;
+        add(std::move(part));
+        continue;
+      }
       if (options.geometry != input::Geometry::box || options.perturbation_fraction != 0.0) {
         make_whole(deck, part, read);
         continue;
@@ -427,16 +452,29 @@ Chunks walk_chunks(const SetupParts& deck_parts) {
       return part.element_nodes(
           std::uint32_t(std::min<std::size_t>((c + 1) * chunk_size, part.element_count) - 1))[6];
     };
-    // A part made whole keeps a mask per node (its nodes in no such order).
-    const bool windowed = !part.built;
+    // A box keeps the masks of a window of nodes (above). A part made whole keeps a
+    // mask per node (its nodes in no such order); a cylinder or ball keeps those of the
+    // nodes a later chunk may touch (each with its last element, purged as the chunks
+    // pass it): a few layers of its blocks and their sides.
+    const bool windowed = !part.built && !part.mapped;
     std::size_t span = 1;
     for (std::size_t c = 0; c < part.chunks && windowed; ++c)
       span = std::max<std::size_t>(span, last_node(c) - first_node(c) + 1);
     std::size_t window = 1;
     while (window < span) window *= 2;
-    std::vector<std::uint64_t> masks(windowed ? window : part.node_count, 0);
+    std::vector<std::uint64_t> masks(windowed ? window : (part.built ? part.node_count : 0), 0);
+    struct Live {
+      std::uint64_t mask = 0;
+      std::uint32_t last_element = 0;
+    };
+    std::unordered_map<std::uint32_t, Live> live;
+    std::size_t purge_at = 1024;
     auto mask = [&](std::uint32_t g) -> std::uint64_t& {
-      return windowed ? masks[g & (window - 1)] : masks[g - part.first_node];
+      if (windowed) return masks[g & (window - 1)];
+      if (part.built) return masks[g - part.first_node];
+      const auto [it, fresh] = live.try_emplace(g);
+      if (fresh) it->second.last_element = part.elements_around(g).back();
+      return it->second.mask;
     };
     std::int64_t highest = std::int64_t(part.first_node) - 1;  // nodes above it have no mask yet
     std::size_t base = 0, colours = 0;
@@ -446,11 +484,11 @@ Chunks walk_chunks(const SetupParts& deck_parts) {
       std::array<double, 3> sum{};
       std::uint64_t taken = 0;
       for (std::uint32_t e = begin; e < end; ++e) {
-        const std::array<int, 3> ijk = part.built ? std::array<int, 3>{} : part.element_ijk(e);
-        const SetupPart::ElementNodes nodes = part.built ? part.element_nodes(e) : SetupPart::ElementNodes{};
+        const std::array<int, 3> ijk = windowed ? part.element_ijk(e) : std::array<int, 3>{};
+        const SetupPart::ElementNodes nodes = windowed ? SetupPart::ElementNodes{} : part.element_nodes(e);
         for (int k = 0; k < 8; ++k) {
           const std::array<double, 3> x =
-              part.built ? part.point_of(nodes[k]) : part.point(part.corner(ijk, k));
+              windowed ? part.point(part.corner(ijk, k)) : part.point_of(nodes[k]);
           for (std::size_t a = 0; a < 3; ++a) sum[a] += x[a];
         }
       }
@@ -465,11 +503,16 @@ Chunks walk_chunks(const SetupParts& deck_parts) {
           masks[std::size_t(g) & (window - 1)] = 0;
         highest = std::max<std::int64_t>(highest, last_node(c));
       }
+      if (live.size() >= purge_at) {  // the nodes no chunk from here on touches
+        std::erase_if(live, [&](const auto& entry) { return entry.second.last_element < begin; });
+        purge_at = std::max<std::size_t>(1024, 2 * live.size());
+      }
       for (std::uint32_t e = begin; e < end; ++e)
         for (const std::uint32_t g : part.element_nodes(e)) taken |= mask(g);
       if (taken == ~std::uint64_t{0}) {
         base += 64;
         std::fill(masks.begin(), masks.end(), std::uint64_t{0});
+        live.clear();
         taken = 0;
       }
       int colour = 0;
@@ -654,8 +697,9 @@ Model surface_model(const input::Deck& deck, const SetupParts& deck_parts,
     // The part's faces as a mapped or imported part has them (face_of finds them by
     // name or by physical surface), in the faces' node numbers.
     mesh::PartRange& range = m.mesh.parts.emplace_back(part.range());
-    range.normal_lengths =
-        part.built ? part.built->parts[0].normal_lengths : mesh::box_normal_lengths(*part.options);
+    range.normal_lengths = part.built    ? part.built->parts[0].normal_lengths
+                           : part.mapped ? std::array<double, 6>{}  // add_mapped_part sets none
+                                         : mesh::box_normal_lengths(*part.options);
     for (const input::FaceRef& f : faces) {
       if (f.part != part.index) continue;
       const bool physical = f.side == input::PartFace::physical;

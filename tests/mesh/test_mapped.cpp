@@ -256,4 +256,60 @@ TEST(MappedMesh, GradingSetsTheRatioOfTheLastElementToTheFirst) {
   EXPECT_NEAR((z[4] - z[3]) / (z[1] - z[0]), 0.2, 1e-12);
 }
 
+// A part by numbers (MappedLattice) is add_mapped_part's, bit for bit: its node and
+// element counts, each element's nodes, each node's coordinates and elements, and its
+// faces, over both orders, cuts along every axis and both ways, odd and even counts,
+// and grading.
+TEST(MappedMesh, APartByNumbersIsTheGeneratedPartBitForBit) {
+  std::vector<PartOptions> parts;
+  for (const Formulation f : formulations) {
+    parts.push_back(cylinder(3, 2, 2, f));
+    parts.push_back(sphere(3, 2, f));
+    parts.push_back(cylinder(4, 3, 2, f, {1, 0, -1}));  // axis y: cuts across x and z
+    parts.push_back(cylinder(4, 2, 3, f, {0, 0, 1}));
+    parts.push_back(sphere(4, 3, f, {1, 1, 0}));
+    parts.push_back(sphere(4, 2, f, {-1, 0, 1}));
+    parts.push_back(sphere(2, 3, f, {1, 1, 1}));
+  }
+  parts[2].grading = {1, 0.3, 2};
+  parts[4].grading = {1, 0.5, 1};
+  parts[5].axis = 2;
+  for (const PartOptions& p : parts) {
+    SCOPED_TRACE(std::string(p.geometry == Geometry::cylinder ? "cylinder " : "ball ") +
+                 std::to_string(p.elements[0]) + " " + std::to_string(p.elements[1]) + " keep " +
+                 std::to_string(p.keep[0]) + std::to_string(p.keep[1]) + std::to_string(p.keep[2]) +
+                 (p.formulation == Formulation::hex20 ? " hex20" : " hex8"));
+    const auto mesh = build(p);
+    const exdyn::mesh::MappedLattice lattice(p, 0);
+    const int width = lattice.nodes_per_element();
+    ASSERT_EQ(width, mesh.parts[0].nodes_per_element);
+    ASSERT_EQ(lattice.node_count(), mesh.node_count());
+    ASSERT_EQ(lattice.element_count(), mesh.element_count());
+    std::vector<std::vector<std::uint32_t>> around(mesh.node_count());
+    for (std::uint32_t e = 0; e < lattice.element_count(); ++e) {
+      const auto nodes = lattice.element_nodes(e);
+      for (int k = 0; k < width; ++k) {
+        ASSERT_EQ(nodes[std::size_t(k)], mesh.connectivity[std::size_t(width) * e + std::size_t(k)])
+            << "element " << e << " node " << k;
+        around[nodes[std::size_t(k)]].push_back(e);
+      }
+    }
+    for (std::uint32_t n = 0; n < lattice.node_count(); ++n) {
+      ASSERT_EQ(lattice.point(n), mesh.x_ref.at(n)) << "node " << n;
+      ASSERT_EQ(lattice.elements_around(n), around[n]) << "node " << n;
+    }
+    const auto& faces = mesh.parts[0].faces;
+    ASSERT_EQ(lattice.faces().size(), faces.size());
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const auto& [name, face] = lattice.faces()[f];
+      EXPECT_EQ(name, faces[f].first);
+      EXPECT_EQ(face.nodes, faces[f].second.nodes);
+      EXPECT_EQ(face.normal_length, faces[f].second.normal_length);
+      ASSERT_EQ(face.segments.size(), faces[f].second.segments.size());
+      for (std::size_t s = 0; s < face.segments.size(); ++s)
+        EXPECT_EQ(face.segments[s].nodes, faces[f].second.segments[s].nodes);
+    }
+  }
+}
+
 }  // namespace

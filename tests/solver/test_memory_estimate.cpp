@@ -153,6 +153,10 @@ TEST(MemoryEstimate, OnManyRanksThePartsMadeWholeCountOnEveryRankHere) {
   EXPECT_EQ(made_whole_bytes(deck), 100.0 * 125000.0);
   deck.parts[1].formulation = input::Formulation::hex20;
   EXPECT_EQ(made_whole_bytes(deck), 304.0 * 125000.0);
+  input::Deck ball = deck;  // a ball is set up by numbers: nothing made whole
+  ball.parts[1].geometry = input::Geometry::sphere;
+  ball.parts[1].perturbation_fraction = 0.0;
+  EXPECT_EQ(made_whole_bytes(ball), 0.0);
   // 4 of 8 ranks here: half the estimate, plus 4 times the part made whole (38 MB).
   const double share = estimate_memory(deck).bytes * 4.0 / 8.0;
   EXPECT_NO_THROW(check_mesh_size(deck, std::uint64_t(share + 4 * made_whole_bytes(deck)) + 1, {8, 4}));
