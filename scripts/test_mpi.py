@@ -149,8 +149,8 @@ def test_equal_fields(exdyn, work, quick):
              ("plastic_wave", ["parts[0].elements=[2000, 1, 1]", "output.every=100"]),
              # the paper's setting: 20-node plates, two passes of quadrature points
              ("plate_impact_hex20", ["time.end_time=6.0e-8"]),
-             # a distorted grid: a part made whole on every rank (mesh::build_part_mesh, as
-             # the mapped parts above, which the sanitizer build runs)
+             # a distorted grid: a part made whole on every rank (mesh::build_part_mesh;
+             # the cylinders and balls above are set up by numbers)
              ("plate_impact", ["parts[0].perturbation.fraction=0.2", "parts[1].perturbation.fraction=0.1",
                                "time.end_time=1.2e-7", "output.every=56"], "perturbed_plates")]
     if quick:

@@ -300,10 +300,10 @@ TEST(SliceBlock, TheSameBitsAtTheNodesOfItsChunksAlone) {
 // sliding block (two parts of other sizes, friction, gravity), the wall deck, the
 // plates graded and long along x (a chunk spans rows: the colours' node window wraps),
 // the plates of 20-node elements, graded, and the contact patch of 20-node elements
-// on 8-node ones (a mixed mesh); parts made whole: the Hertz ball (a mapped ball of
-// 20-node elements cut twice, on a graded box), the Taylor rods and the mirror
-// cylinders (mapped cylinders of 8- and 20-node elements), the rail (20-node),
-// the plates read from a Gmsh file, and the plates perturbed.
+// on 8-node ones (a mixed mesh); cylinders and balls by numbers: the Hertz ball (a
+// mapped ball of 20-node elements cut twice, on a graded box), the Taylor rods and the
+// mirror cylinders (mapped cylinders of 8- and 20-node elements), the rail (20-node);
+// parts made whole: the plates read from a Gmsh file, and the plates perturbed.
 std::vector<input::Deck> setup_decks() {
   std::vector<input::Deck> decks{deck_of("plate_impact.yaml"),        deck_of("sliding_block.yaml"),
                                  deck_of("oblique_impact.yaml"),      deck_of("plate_impact.yaml"),
