@@ -6,7 +6,8 @@
   the two Taylor rods (finite strain, plasticity, contact at folds), a rigid wall with
   friction, a mesh of 8- and 20-node elements (graded: many groups of equal Jacobians),
   gravity and friction between boxes, a spin with finite strain, hex8r plasticity, the
-  hex20 plate impact and perturbed plates on 1, 2 and 3 ranks (and 3 ranks x 2 threads)
+  hex20 plate impact (built and read from a Gmsh file, which rank 0 alone holds) and
+  perturbed plates on 1, 2 and 3 ranks (and 3 ranks x 2 threads)
   give every field of every step, and the mesh, bit for bit as one process (the contact
   distributed: each rank its own slave points); the history (sums over the ranks) to
   1e-12; the summary says mpi.ranks, the same contact figures and mpi.setup (every deck
@@ -149,6 +150,9 @@ def test_equal_fields(exdyn, work, quick):
              ("plastic_wave", ["parts[0].elements=[2000, 1, 1]", "output.every=100"]),
              # the paper's setting: 20-node plates, two passes of quadrature points
              ("plate_impact_hex20", ["time.end_time=6.0e-8"]),
+             # the same read from a Gmsh file: scattered by rank 0, which alone reads and
+             # holds it (each rank takes the whole blocks' groups from the ranks' starts)
+             ("plate_impact_hex20_gmsh", ["time.end_time=6.0e-8"]),
              # a distorted grid: a part made whole on every rank (mesh::build_part_mesh;
              # the cylinders and balls above are set up by numbers)
              ("plate_impact", ["parts[0].perturbation.fraction=0.2", "parts[1].perturbation.fraction=0.1",

@@ -11,6 +11,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <unordered_map>
 
 #include "common/errors.hpp"
@@ -28,6 +29,101 @@ namespace {
 
 constexpr std::uint32_t chunk_size = element::element_chunk;
 
+// Figures as bytes: each vector and string as its length (8 bytes) and its items.
+struct Packer {
+  std::vector<char> bytes;
+  template <class T>
+  void put(const T* data, std::size_t count) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const std::uint64_t n = count;
+    bytes.insert(bytes.end(), reinterpret_cast<const char*>(&n), reinterpret_cast<const char*>(&n + 1));
+    bytes.insert(bytes.end(), reinterpret_cast<const char*>(data),
+                 reinterpret_cast<const char*>(data + count));
+  }
+  template <class T>
+  void put(const std::vector<T>& values) {
+    put(values.data(), values.size());
+  }
+  template <class T>
+  void put_value(const T& value) {
+    put(&value, 1);
+  }
+};
+struct Unpacker {
+  const std::vector<char>& bytes;
+  std::size_t at = 0;
+  template <class T>
+  void get(std::vector<T>& out) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    std::uint64_t n = 0;
+    std::memcpy(&n, bytes.data() + at, sizeof n);
+    at += sizeof n;
+    out.resize(n);
+    if (n > 0) std::memcpy(out.data(), bytes.data() + at, n * sizeof(T));
+    at += n * sizeof(T);
+  }
+  template <class T>
+  T value() {
+    std::vector<T> one;
+    get(one);
+    EXDYN_ASSERT(one.size() == 1);
+    return one[0];
+  }
+};
+
+// Bytes from `from` to `to` (MPI_Send and MPI_Recv, pieces of at most 1 GiB): the
+// sender's `bytes` become the receiver's.
+constexpr std::uint64_t piece_bytes = std::uint64_t(1) << 30;
+void send_bytes(const mpi::Communicator& comm, int to, const std::vector<char>& bytes) {
+  const std::uint64_t size = bytes.size();
+  mpi::check(MPI_Send(&size, 1, MPI_UINT64_T, to, 0, comm.comm), "MPI_Send of a part's size");
+  for (std::uint64_t at = 0; at < size; at += piece_bytes)
+    mpi::check(MPI_Send(bytes.data() + at, int(std::min(piece_bytes, size - at)), MPI_CHAR, to, 0, comm.comm),
+               "MPI_Send of a part");
+}
+std::vector<char> receive_bytes(const mpi::Communicator& comm, int from) {
+  std::uint64_t size = 0;
+  mpi::check(MPI_Recv(&size, 1, MPI_UINT64_T, from, 0, comm.comm, MPI_STATUS_IGNORE),
+             "MPI_Recv of a part's size");
+  std::vector<char> bytes(size);
+  for (std::uint64_t at = 0; at < size; at += piece_bytes)
+    mpi::check(MPI_Recv(bytes.data() + at, int(std::min(piece_bytes, size - at)), MPI_CHAR, from, 0,
+                        comm.comm, MPI_STATUS_IGNORE),
+               "MPI_Recv of a part");
+  return bytes;
+}
+// Rank 0's bytes on every rank (MPI_Bcast in pieces of at most 1 GiB).
+void broadcast_bytes(const mpi::Communicator& comm, std::vector<char>& bytes) {
+  std::uint64_t size = bytes.size();
+  mpi::check(MPI_Bcast(&size, 1, MPI_UINT64_T, 0, comm.comm), "MPI_Bcast of a size");
+  bytes.resize(size);
+  for (std::uint64_t at = 0; at < size; at += piece_bytes)
+    mpi::check(MPI_Bcast(bytes.data() + at, int(std::min(piece_bytes, size - at)), MPI_CHAR, 0, comm.comm),
+               "MPI_Bcast of a part");
+}
+
+// Runs `work` on rank 0 alone; an error it throws is every rank's: an InputError in
+// its words (exit 2, as one process), any other error a runtime_error with its text.
+// Collective over comm.
+void on_rank_0(const mpi::Communicator& comm, const std::function<void()>& work) {
+  std::vector<char> text;
+  int status = 0;  // 0: done; 1: bad input; 2: another error
+  if (comm.root()) {
+    try {
+      work();
+    } catch (const InputError& e) {
+      status = 1, text.assign(e.what(), e.what() + std::strlen(e.what()));
+    } catch (const std::exception& e) {
+      status = 2, text.assign(e.what(), e.what() + std::strlen(e.what()));
+    }
+  }
+  mpi::check(MPI_Bcast(&status, 1, MPI_INT, 0, comm.comm), "MPI_Bcast of a status");
+  if (status == 0) return;
+  broadcast_bytes(comm, text);
+  if (status == 1) throw InputError(std::string(text.begin(), text.end()));
+  throw std::runtime_error(std::string(text.begin(), text.end()));
+}
+
 // A part of the deck as the setup sees it, block `index`, its nodes first_node + 0, 1,
 // ... and its elements first_element + 0, 1, ... of the whole mesh, in build_mesh's
 // order and with its bits. Either
@@ -39,7 +135,29 @@ constexpr std::uint32_t chunk_size = element::element_chunk;
 //    first_node + k); or
 //  - made whole (`built`: an imported part, a perturbed box), its mesh alone
 //    (mesh::build_part_mesh: its node k is first_node + k) with the elements at each
-//    node, held while the setup runs.
+//    node, held while the setup runs; or
+//  - scattered (an imported part on many ranks): rank 0 makes it whole, every other
+//    rank holds the part's figures and faces (`built` without nodes or elements) and
+//    its piece of it (`piece`).
+// What a rank other than 0 holds of a scattered part, in part-local ids, ascending:
+// the elements it needs (its own, and those around its nodes and around the part's
+// contact-face nodes), their nodes' coordinates, the elements around those nodes, and
+// the owners of the part's nodes among its output rows.
+struct PartPiece {
+  std::vector<std::uint32_t> elements, connectivity;
+  std::vector<std::uint32_t> nodes;
+  std::vector<double> points;  // x, y, z of each node, m
+  std::vector<std::uint32_t> around_nodes, around_start, around;
+  std::uint32_t first_row = 0;  // the node of row_owner[0]
+  std::vector<int> row_owner;
+
+  static std::size_t at(const std::vector<std::uint32_t>& list, std::uint32_t id) {
+    const auto it = std::lower_bound(list.begin(), list.end(), id);
+    EXDYN_ASSERT(it != list.end() && *it == id);  // sent: the setup asks for no other
+    return std::size_t(it - list.begin());
+  }
+};
+
 struct SetupPart {
   int index = 0;
   const input::PartOptions* options = nullptr;
@@ -50,6 +168,8 @@ struct SetupPart {
   std::array<std::vector<double>, 3> grid;            // grid coordinates along x, y, z (mesh::box_point), m
   std::unique_ptr<const mesh::MappedLattice> mapped;  // null: not a cylinder or ball
   std::unique_ptr<const mesh::Mesh> built;            // null: by numbers
+  bool scattered = false;                             // made whole by rank 0 alone
+  std::unique_ptr<const PartPiece> piece;             // a scattered part on another rank
   // Made whole: the part's elements at its node k, ascending, are
   // at_element[at_start[k] .. at_start[k + 1]).
   std::vector<std::uint32_t> at_start, at_element;
@@ -121,6 +241,12 @@ struct SetupPart {
         nodes.ids[std::size_t(k)] = first_node + local[std::size_t(k)];
       return nodes;
     }
+    if (piece) {
+      const std::uint32_t* local =
+          piece->connectivity.data() + std::size_t(nodes_per_element) * PartPiece::at(piece->elements, e);
+      for (int k = 0; k < nodes_per_element; ++k) nodes.ids[std::size_t(k)] = first_node + local[k];
+      return nodes;
+    }
     if (built) {
       const std::uint32_t* local = built->connectivity.data() + std::size_t(nodes_per_element) * e;
       for (int k = 0; k < nodes_per_element; ++k) nodes.ids[std::size_t(k)] = first_node + local[k];
@@ -133,6 +259,10 @@ struct SetupPart {
   // Node g's coordinates, m.
   std::array<double, 3> point_of(std::uint32_t g) const {
     if (mapped) return mapped->point(g - first_node);
+    if (piece) {
+      const std::size_t i = 3 * PartPiece::at(piece->nodes, g - first_node);
+      return {piece->points[i], piece->points[i + 1], piece->points[i + 2]};
+    }
     if (!built) return point(node_ijk(g));
     const NodalVectors& x = built->x_ref;
     const std::size_t k = g - first_node;
@@ -141,6 +271,11 @@ struct SetupPart {
   // The part's elements around node g, ascending.
   std::vector<std::uint32_t> elements_around(std::uint32_t g) const {
     if (mapped) return mapped->elements_around(g - first_node);
+    if (piece) {
+      const std::size_t i = PartPiece::at(piece->around_nodes, g - first_node);
+      return {piece->around.begin() + std::ptrdiff_t(piece->around_start[i]),
+              piece->around.begin() + std::ptrdiff_t(piece->around_start[i + 1])};
+    }
     if (built) {
       const std::size_t k = g - first_node;
       return {at_element.begin() + std::ptrdiff_t(at_start[k]),
@@ -212,7 +347,9 @@ struct SetupParts {
   std::vector<SetupPart> list;
   std::size_t nodes = 0, elements = 0, chunks = 0;
 
-  explicit SetupParts(const input::Deck& deck, const mesh::GmshReader& read = input::read_gmsh) {
+  // comm: on many ranks an imported part is scattered (made whole by rank 0 alone).
+  explicit SetupParts(const input::Deck& deck, const mesh::GmshReader& read = input::read_gmsh,
+                      const mpi::Communicator* comm = nullptr) {
     for (std::size_t p = 0; p < deck.parts.size(); ++p) {
       const input::PartOptions& options = deck.parts[p];
       SetupPart part;
@@ -235,7 +372,7 @@ struct SetupParts {
         continue;
       }
       if (options.geometry != input::Geometry::box || options.perturbation_fraction != 0.0) {
-        make_whole(deck, part, read);
+        make_whole(deck, part, read, comm);
         continue;
       }
       part.node_count = std::uint32_t(std::size_t(part.n[2] + 1) * part.even_layer() +
@@ -265,11 +402,27 @@ struct SetupParts {
     chunks += part.chunks;
     list.push_back(std::move(part));
   }
-  // A part made whole: its mesh and the elements at each of its nodes.
-  void make_whole(const input::Deck& deck, SetupPart& part, const mesh::GmshReader& read) {
-    auto built = std::make_unique<mesh::Mesh>(
-        mesh::build_part_mesh(deck, std::size_t(part.index), std::uint32_t(elements), read));
-    const mesh::PartRange& range = built->parts[0];
+  // A part made whole: its mesh and the elements at each of its nodes; scattered (an
+  // imported part on many ranks), by rank 0 alone, the others taking its figures and
+  // faces (an error making it is every rank's).
+  void make_whole(const input::Deck& deck, SetupPart& part, const mesh::GmshReader& read,
+                  const mpi::Communicator* comm) {
+    part.scattered =
+        comm != nullptr && comm->distributed() && part.options->geometry == input::Geometry::mesh;
+    if (!part.scattered) {
+      build_whole(deck, part, read);
+    } else {
+      on_rank_0(*comm, [&] { build_whole(deck, part, read); });
+      Packer out;
+      if (comm->root()) pack_range(part.built->parts[0], out);
+      broadcast_bytes(*comm, out.bytes);
+      if (!comm->root()) {
+        auto figures = std::make_unique<mesh::Mesh>();
+        figures->parts.push_back(unpack_range(out.bytes));
+        part.built = std::move(figures);
+      }
+    }
+    const mesh::PartRange& range = part.built->parts[0];
     part.order = range.order;
     part.nodes_per_element = range.nodes_per_element;
     part.node_count = range.node_count;
@@ -277,10 +430,16 @@ struct SetupParts {
     part.element_count = range.element_count;
     part.first_chunk = chunks;
     part.chunks = (part.element_count + chunk_size - 1) / chunk_size;
-    const auto width = std::size_t(part.nodes_per_element);
-    part.at_start.assign(std::size_t(part.node_count) + 1, 0);
+    add(std::move(part));
+  }
+  void build_whole(const input::Deck& deck, SetupPart& part, const mesh::GmshReader& read) {
+    auto built = std::make_unique<mesh::Mesh>(
+        mesh::build_part_mesh(deck, std::size_t(part.index), std::uint32_t(elements), read));
+    const auto width = std::size_t(built->parts[0].nodes_per_element);
+    const std::uint32_t node_count = built->parts[0].node_count;
+    part.at_start.assign(std::size_t(node_count) + 1, 0);
     for (const std::uint32_t k : built->connectivity) ++part.at_start[k + 1];
-    for (std::size_t k = 0; k < part.node_count; ++k) part.at_start[k + 1] += part.at_start[k];
+    for (std::size_t k = 0; k < node_count; ++k) part.at_start[k + 1] += part.at_start[k];
     part.at_element.resize(built->connectivity.size());
     std::vector<std::uint32_t> fill(part.at_start.begin(), part.at_start.end() - 1);
     for (std::size_t i = 0; i < built->connectivity.size(); ++i)  // ascending: elements in order
@@ -288,7 +447,52 @@ struct SetupParts {
     // An element uses a node once (add_imported_part refuses repeats; boxes and mapped
     // parts have none), so each list holds each element once.
     part.built = std::move(built);
-    add(std::move(part));
+  }
+  // A part's figures and faces (no lattice, nodes or elements) as bytes, and back.
+  static void pack_face(const mesh::Face& face, Packer& out) {
+    out.put(face.nodes);
+    out.put(face.segments);
+    out.put_value(face.normal_length);
+  }
+  static mesh::Face unpack_face(Unpacker& in) {
+    mesh::Face face;
+    in.get(face.nodes);
+    in.get(face.segments);
+    face.normal_length = in.value<double>();
+    return face;
+  }
+  static void pack_range(const mesh::PartRange& range, Packer& out) {
+    out.put_value(range.order);
+    out.put_value(range.nodes_per_element);
+    out.put_value(range.node_count);
+    out.put_value(range.element_count);
+    out.put(range.normal_lengths.data(), range.normal_lengths.size());
+    out.put_value(std::uint64_t(range.faces.size()));
+    for (const auto& [name, face] : range.faces) {
+      out.put_value(int(name));
+      pack_face(face, out);
+    }
+    out.put_value(std::uint64_t(range.physical_faces.size()));
+    for (const mesh::Face& face : range.physical_faces) pack_face(face, out);
+  }
+  static mesh::PartRange unpack_range(const std::vector<char>& bytes) {
+    Unpacker in{bytes};
+    mesh::PartRange range;
+    range.order = in.value<int>();
+    range.nodes_per_element = in.value<int>();
+    range.node_count = in.value<std::uint32_t>();
+    range.element_count = in.value<std::uint32_t>();
+    std::vector<double> lengths;
+    in.get(lengths);
+    std::copy(lengths.begin(), lengths.end(), range.normal_lengths.begin());
+    for (auto faces = in.value<std::uint64_t>(); faces > 0; --faces) {
+      const auto name = input::PartFace(in.value<int>());
+      range.faces.emplace_back(name, unpack_face(in));
+    }
+    for (auto faces = in.value<std::uint64_t>(); faces > 0; --faces)
+      range.physical_faces.push_back(unpack_face(in));
+    EXDYN_ASSERT(in.at == bytes.size());
+    return range;
   }
   const SetupPart& part_of_node(std::uint32_t g) const {
     auto it = std::upper_bound(list.begin(), list.end(), g,
@@ -311,123 +515,6 @@ struct SetupParts {
   }
 };
 
-// A Gmsh file read once, by rank 0, and sent to every rank (MPI_Bcast of its bytes in
-// pieces of at most 1 GiB), each file once for all the parts it holds. An error of
-// rank 0's reading is every rank's: an InputError in its words (exit 2, as one process),
-// any other error a runtime_error with its text.
-class GmshOnce {
- public:
-  explicit GmshOnce(const mpi::Communicator& comm) : comm_(comm) {}
-  input::GmshMesh operator()(const std::string& file, const SourceLocation& where,
-                             const std::string& key_path) {
-    auto known = files_.find(file);
-    if (known == files_.end()) known = files_.emplace(file, read(file, where, key_path)).first;
-    return known->second;
-  }
-  void forget() { files_.clear(); }
-
- private:
-  input::GmshMesh read(const std::string& file, const SourceLocation& where, const std::string& key_path) {
-    input::GmshMesh mesh;
-    std::vector<char> bytes;
-    int status = 0;  // 0: read; 1: bad input; 2: another error
-    if (comm_.root()) {
-      try {
-        mesh = input::read_gmsh(file, where, key_path);
-        pack(mesh, bytes);
-      } catch (const InputError& e) {
-        status = 1, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
-      } catch (const std::exception& e) {
-        status = 2, bytes.assign(e.what(), e.what() + std::strlen(e.what()));
-      }
-    }
-    std::uint64_t size = bytes.size();
-    mpi::check(MPI_Bcast(&status, 1, MPI_INT, 0, comm_.comm), "MPI_Bcast of a mesh file's status");
-    mpi::check(MPI_Bcast(&size, 1, MPI_UINT64_T, 0, comm_.comm), "MPI_Bcast of a mesh file's size");
-    bytes.resize(size);
-    constexpr std::uint64_t piece = std::uint64_t(1) << 30;
-    for (std::uint64_t at = 0; at < size; at += piece)
-      mpi::check(MPI_Bcast(bytes.data() + at, int(std::min(piece, size - at)), MPI_CHAR, 0, comm_.comm),
-                 "MPI_Bcast of a mesh file");
-    if (status == 1) throw InputError(std::string(bytes.begin(), bytes.end()));
-    if (status == 2) throw std::runtime_error(std::string(bytes.begin(), bytes.end()));
-    if (!comm_.root()) unpack(bytes, mesh);
-    return mesh;
-  }
-  // The mesh as bytes: each string and vector as its length (8 bytes) and its items.
-  template <class T>
-  static void put(std::vector<char>& out, const T* data, std::size_t count) {
-    const std::uint64_t n = count;
-    out.insert(out.end(), reinterpret_cast<const char*>(&n), reinterpret_cast<const char*>(&n + 1));
-    out.insert(out.end(), reinterpret_cast<const char*>(data), reinterpret_cast<const char*>(data + count));
-  }
-  template <class T>
-  static void get(const std::vector<char>& in, std::size_t& at, std::vector<T>& out) {
-    std::uint64_t n = 0;
-    std::memcpy(&n, in.data() + at, sizeof n);
-    at += sizeof n;
-    out.resize(n);
-    if (n > 0) std::memcpy(out.data(), in.data() + at, n * sizeof(T));
-    at += n * sizeof(T);
-  }
-  static void get(const std::vector<char>& in, std::size_t& at, std::string& out) {
-    std::vector<char> text;
-    get(in, at, text);
-    out.assign(text.begin(), text.end());
-  }
-  static void pack(const input::GmshMesh& mesh, std::vector<char>& out) {
-    put(out, mesh.file.data(), mesh.file.size());
-    put(out, mesh.node_tags.data(), mesh.node_tags.size());
-    put(out, mesh.coordinates.data(), mesh.coordinates.size());
-    for (const auto* groups : {&mesh.volumes, &mesh.surfaces}) {
-      const std::uint64_t count = groups->size();
-      put(out, &count, 1);
-      for (const input::GmshGroup& group : *groups) {
-        put(out, group.name.data(), group.name.size());
-        const std::uint64_t types = group.elements.size();
-        put(out, &types, 1);
-        for (const input::GmshElements& e : group.elements) {
-          const std::int64_t numbers[3] = {e.type, e.dimension, e.nodes_per_element};
-          put(out, numbers, 3);
-          put(out, e.name.data(), e.name.size());
-          put(out, e.tags.data(), e.tags.size());
-          put(out, e.nodes.data(), e.nodes.size());
-        }
-      }
-    }
-  }
-  static void unpack(const std::vector<char>& in, input::GmshMesh& mesh) {
-    std::size_t at = 0;
-    get(in, at, mesh.file);
-    get(in, at, mesh.node_tags);
-    get(in, at, mesh.coordinates);
-    for (auto* groups : {&mesh.volumes, &mesh.surfaces}) {
-      std::vector<std::uint64_t> count;
-      get(in, at, count);
-      groups->resize(count.at(0));
-      for (input::GmshGroup& group : *groups) {
-        get(in, at, group.name);
-        std::vector<std::uint64_t> types;
-        get(in, at, types);
-        group.elements.resize(types.at(0));
-        for (input::GmshElements& e : group.elements) {
-          std::vector<std::int64_t> numbers;
-          get(in, at, numbers);
-          e.type = int(numbers.at(0)), e.dimension = int(numbers.at(1)),
-          e.nodes_per_element = int(numbers.at(2));
-          get(in, at, e.name);
-          get(in, at, e.tags);
-          get(in, at, e.nodes);
-        }
-      }
-    }
-    EXDYN_ASSERT(at == in.size());
-  }
-
-  const mpi::Communicator& comm_;
-  std::map<std::string, input::GmshMesh> files_;
-};
-
 // What every rank computes of every chunk: its centroid (partition_chunks' rule),
 // its colour (element_block.cpp's greedy colouring) and then its rank.
 struct Chunks {
@@ -444,9 +531,8 @@ struct Chunks {
 // kept for a window of node ids only: a chunk's nodes lie within [its first element's
 // corner 0, its last element's corner 6], both ascending with the chunk, so no later
 // chunk comes back below the current one's lowest node.
-Chunks walk_chunks(const SetupParts& deck_parts) {
-  Chunks chunks;
-  for (const SetupPart& part : deck_parts.list) {
+void walk_part(const SetupPart& part, Chunks& chunks) {
+  {
     auto first_node = [&](std::size_t c) { return part.element_nodes(std::uint32_t(c * chunk_size))[0]; };
     auto last_node = [&](std::size_t c) {
       return part.element_nodes(
@@ -524,21 +610,54 @@ Chunks walk_chunks(const SetupParts& deck_parts) {
     }
     chunks.colours.push_back(colours);
   }
+}
+
+// Every part walked (walk_part); a scattered part by rank 0, which sends its chunks'
+// figures to every rank. Collective over comm where a part is scattered.
+Chunks walk_chunks(const SetupParts& deck_parts, const mpi::Communicator* comm = nullptr) {
+  Chunks chunks;
+  for (const SetupPart& part : deck_parts.list) {
+    if (!part.scattered) {
+      walk_part(part, chunks);
+      continue;
+    }
+    Chunks section;
+    Packer out;
+    if (comm->root()) {
+      walk_part(part, section);
+      out.put(section.centroid);
+      out.put(section.weight);
+      out.put(section.colour);
+      out.put(section.colours);
+    }
+    broadcast_bytes(*comm, out.bytes);
+    Unpacker in{out.bytes};
+    in.get(section.centroid);
+    in.get(section.weight);
+    in.get(section.colour);
+    in.get(section.colours);
+    chunks.centroid.insert(chunks.centroid.end(), section.centroid.begin(), section.centroid.end());
+    chunks.weight.insert(chunks.weight.end(), section.weight.begin(), section.weight.end());
+    chunks.block_of.insert(chunks.block_of.end(), part.chunks, std::uint32_t(part.index));
+    chunks.colour.insert(chunks.colour.end(), section.colour.begin(), section.colour.end());
+    chunks.colours.push_back(section.colours.at(0));
+  }
   return chunks;
 }
 
 // The chunk graph of partition.cpp from the parts, part by part and chunk by chunk:
 // each chunk's nodes (once each), the chunks around each of them, and how many of
 // its nodes each other chunk shares. Parts share no node, so no edge joins two parts.
-ChunkGraph chunk_graph_of(const SetupParts& deck_parts);
+ChunkGraph chunk_graph_of(const SetupParts& deck_parts, const mpi::Communicator* comm);
 
 // The partition of the chunks over `ranks` ranks: partition_chunks' on the whole model.
+// comm: where a part is scattered (collective over it).
 std::vector<int> partition_parts(const SetupParts& deck_parts, const Chunks& chunks, int ranks,
-                                 Partitioning partitioning) {
+                                 Partitioning partitioning, const mpi::Communicator* comm = nullptr) {
   if (partitioning == Partitioning::metis) {
     check_rank_count(ranks, deck_parts.chunks, deck_parts.elements);
     if (ranks == 1) return std::vector<int>(deck_parts.chunks, 0);
-    return metis_chunks(chunk_graph_of(deck_parts), chunks.weight, ranks);
+    return metis_chunks(chunk_graph_of(deck_parts, comm), chunks.weight, ranks);
   }
   return bisect_chunks(chunks.centroid, chunks.weight, chunks.block_of, ranks, deck_parts.elements);
 }
@@ -553,12 +672,23 @@ std::vector<std::size_t> chunks_at(const SetupPart& part, std::uint32_t g) {
   return out;
 }
 
-ChunkGraph chunk_graph_of(const SetupParts& deck_parts) {
+// A scattered part's rows come from rank 0, which holds it.
+// A node's owner: the lowest rank of the chunks around it (of a scattered part on a
+// rank other than 0, among its output rows: sent with its piece).
+int owner_of_node(const SetupPart& part, std::uint32_t g, const Chunks& chunks) {
+  if (part.piece) return part.piece->row_owner.at(g - part.first_node - part.piece->first_row);
+  int owner = std::numeric_limits<int>::max();
+  for (const std::size_t c : chunks_at(part, g)) owner = std::min(owner, chunks.rank[c]);
+  return owner;
+}
+
+ChunkGraph chunk_graph_of(const SetupParts& deck_parts, const mpi::Communicator* comm) {
   ChunkGraph graph;
   graph.neighbours.resize(deck_parts.chunks);
   std::vector<std::uint32_t> count(deck_parts.chunks, 0), nodes, touched;
-  for (const SetupPart& part : deck_parts.list)
-    for (std::size_t c = 0; c < part.chunks; ++c) {
+  for (const SetupPart& part : deck_parts.list) {
+    const bool here = !part.scattered || comm->root();
+    for (std::size_t c = 0; c < part.chunks && here; ++c) {
       const std::size_t me = part.first_chunk + c;
       nodes.clear();
       for (auto e = std::uint32_t(c * chunk_size);
@@ -576,6 +706,29 @@ ChunkGraph chunk_graph_of(const SetupParts& deck_parts) {
         count[other] = 0;
       }
     }
+    if (!part.scattered) continue;
+    Packer out;  // each chunk's neighbours and shared nodes, flat
+    std::vector<std::uint64_t> sizes;
+    std::vector<std::uint32_t> flat;  // (chunk, shared nodes) pairs
+    if (comm->root())
+      for (std::size_t c = 0; c < part.chunks; ++c) {
+        const auto& row = graph.neighbours[part.first_chunk + c];
+        sizes.push_back(row.size());
+        for (const auto& [other, shared] : row) flat.push_back(other), flat.push_back(shared);
+      }
+    out.put(sizes);
+    out.put(flat);
+    broadcast_bytes(*comm, out.bytes);
+    Unpacker in{out.bytes};
+    in.get(sizes);
+    in.get(flat);
+    std::size_t at = 0;
+    for (std::size_t c = 0; c < part.chunks; ++c) {
+      auto& row = graph.neighbours[part.first_chunk + c];
+      row.clear();
+      for (std::size_t k = 0; k < sizes[c]; ++k, at += 2) row.emplace_back(flat[at], flat[at + 1]);
+    }
+  }
   return graph;
 }
 
@@ -731,34 +884,150 @@ Model surface_model(const input::Deck& deck, const SetupParts& deck_parts,
 // The whole block's groups of equal Jacobians of a 20-node part (ElementBlock::
 // group_points), on every rank: each rank's own group starts (`count` elements here,
 // their global ids `global`) are candidates, and the groups start at those of the
-// candidates, in global order, that start one among them all; their points come from
-// the parts, so every rank has the whole block's bits. Collective over comm.
-std::vector<std::array<double, 60>> whole_block_groups(const SetupParts& deck_parts, const SetupPart& part,
-                                                       std::uint32_t count, const std::uint32_t* connectivity,
+// candidates, in global order, that start one among them all; their points come with
+// them from the ranks that hold them, so every rank has the whole block's bits.
+// Collective over comm.
+std::vector<std::array<double, 60>> whole_block_groups(const SetupPart& part, std::uint32_t count,
+                                                       const std::uint32_t* connectivity,
                                                        const NodalVectors& x_ref, const std::uint32_t* global,
                                                        const mpi::Communicator& comm) {
   const input::Formulation formulation = part.options->formulation;
+  // Each rank's group starts (global ids) with their nodes' coordinates, x of the 20,
+  // then y, then z; every rank's, rank after rank.
   std::vector<std::uint32_t> mine;
-  for (const std::uint32_t e : element::jacobian_group_starts(formulation, count, connectivity, x_ref))
+  std::vector<double> my_points;
+  for (const std::uint32_t e : element::jacobian_group_starts(formulation, count, connectivity, x_ref)) {
     mine.push_back(global[e]);
-  std::vector<std::uint32_t> candidates = mpi::all_gather_varying(comm, mine);
-  std::sort(candidates.begin(), candidates.end());
-  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-  std::vector<std::uint32_t> nodes, order;  // the candidates' nodes, and 0, 1, ... into them
-  for (const std::uint32_t e : candidates)
-    for (const std::uint32_t g : part.element_nodes(e - part.first_element)) {
-      order.push_back(std::uint32_t(nodes.size()));
-      nodes.push_back(g);
-    }
-  const NodalVectors points = deck_parts.points(nodes);
+    for (int a = 0; a < 3; ++a)
+      for (std::size_t k = 0; k < 20; ++k) my_points.push_back(x_ref.component(a)[connectivity[20 * e + k]]);
+  }
+  const std::vector<std::uint32_t> gathered = mpi::all_gather_varying(comm, mine);
+  std::vector<int> counts(std::size_t(comm.size)), offsets(std::size_t(comm.size), 0);
+  const int my_count = int(my_points.size());
+  mpi::check(MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm.comm),
+             "MPI_Allgather of the group counts");
+  for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+  std::vector<double> gathered_points(std::size_t(offsets.back() + counts.back()));
+  mpi::check(MPI_Allgatherv(my_points.data(), my_count, MPI_DOUBLE, gathered_points.data(), counts.data(),
+                            offsets.data(), MPI_DOUBLE, comm.comm),
+             "MPI_Allgatherv of the group points");
+  // The candidates in global order, once each.
+  std::vector<std::size_t> by_id(gathered.size());
+  std::iota(by_id.begin(), by_id.end(), std::size_t(0));
+  std::sort(by_id.begin(), by_id.end(),
+            [&](std::size_t a, std::size_t b) { return gathered[a] < gathered[b]; });
+  by_id.erase(std::unique(by_id.begin(), by_id.end(),
+                          [&](std::size_t a, std::size_t b) { return gathered[a] == gathered[b]; }),
+              by_id.end());
+  NodalVectors points(20 * by_id.size());
+  std::vector<std::uint32_t> order(20 * by_id.size());  // 0, 1, ... into the points
+  std::iota(order.begin(), order.end(), 0u);
+  for (std::size_t c = 0; c < by_id.size(); ++c)
+    for (int a = 0; a < 3; ++a)
+      for (std::size_t k = 0; k < 20; ++k)
+        points.component(a)[20 * c + k] = gathered_points[60 * by_id[c] + 20 * std::size_t(a) + k];
   std::vector<std::array<double, 60>> groups;
   for (const std::uint32_t c :
-       element::jacobian_group_starts(formulation, std::uint32_t(candidates.size()), order.data(), points)) {
+       element::jacobian_group_starts(formulation, std::uint32_t(by_id.size()), order.data(), points)) {
     std::array<double, 60>& group = groups.emplace_back();
     for (std::size_t k = 0; k < 20; ++k)
       for (std::size_t a = 0; a < 3; ++a) group[20 * a + k] = points.component(int(a))[20 * c + k];
   }
   return groups;
+}
+
+// Each rank's piece of each scattered part (PartPiece), sent by rank 0, which holds the
+// part whole, for the chunks' ranks of `chunks`. Collective over comm.
+void scatter_pieces(const input::Deck& deck, SetupParts& deck_parts, const Chunks& chunks,
+                    const mpi::Communicator& comm) {
+  if (std::none_of(deck_parts.list.begin(), deck_parts.list.end(),
+                   [](const SetupPart& p) { return p.scattered; }))
+    return;
+  const std::vector<std::uint32_t> surface =
+      surface_nodes_of(deck, deck_parts);  // every rank needs their elements
+  for (SetupPart& part : deck_parts.list) {
+    if (!part.scattered) continue;
+    if (!comm.root()) {
+      part.piece = nullptr;
+      const std::vector<char> bytes = receive_bytes(comm, 0);
+      Unpacker in{bytes};
+      auto piece = std::make_unique<PartPiece>();
+      in.get(piece->elements);
+      in.get(piece->connectivity);
+      in.get(piece->nodes);
+      in.get(piece->points);
+      in.get(piece->around_nodes);
+      in.get(piece->around_start);
+      in.get(piece->around);
+      piece->first_row = in.value<std::uint32_t>();
+      in.get(piece->row_owner);
+      EXDYN_ASSERT(in.at == bytes.size());
+      part.piece = std::move(piece);
+      continue;
+    }
+    const mesh::Mesh& whole = *part.built;
+    const auto width = std::size_t(part.nodes_per_element);
+    std::vector<std::uint32_t> on_faces;  // the part's contact-face nodes, part-local
+    for (const std::uint32_t g : surface)
+      if (g >= part.first_node && g < part.first_node + part.node_count)
+        on_faces.push_back(g - part.first_node);
+    for (int r = 1; r < comm.size; ++r) {
+      PartPiece piece;
+      std::vector<std::uint32_t> own;
+      for (std::size_t c = 0; c < part.chunks; ++c)
+        if (chunks.rank[part.first_chunk + c] == r)
+          for (auto e = std::uint32_t(c * chunk_size);
+               e < std::min<std::size_t>((c + 1) * chunk_size, part.element_count); ++e)
+            own.push_back(e);
+      piece.around_nodes = on_faces;
+      for (const std::uint32_t e : own)
+        piece.around_nodes.insert(piece.around_nodes.end(),
+                                  whole.connectivity.begin() + std::ptrdiff_t(width * e),
+                                  whole.connectivity.begin() + std::ptrdiff_t(width * (e + 1)));
+      std::sort(piece.around_nodes.begin(), piece.around_nodes.end());
+      piece.around_nodes.erase(std::unique(piece.around_nodes.begin(), piece.around_nodes.end()),
+                               piece.around_nodes.end());
+      piece.around_start.push_back(0);
+      for (const std::uint32_t k : piece.around_nodes) {
+        piece.around.insert(piece.around.end(), part.at_element.begin() + std::ptrdiff_t(part.at_start[k]),
+                            part.at_element.begin() + std::ptrdiff_t(part.at_start[k + 1]));
+        piece.around_start.push_back(std::uint32_t(piece.around.size()));
+      }
+      piece.elements = own;
+      piece.elements.insert(piece.elements.end(), piece.around.begin(), piece.around.end());
+      std::sort(piece.elements.begin(), piece.elements.end());
+      piece.elements.erase(std::unique(piece.elements.begin(), piece.elements.end()), piece.elements.end());
+      for (const std::uint32_t e : piece.elements)
+        piece.connectivity.insert(piece.connectivity.end(),
+                                  whole.connectivity.begin() + std::ptrdiff_t(width * e),
+                                  whole.connectivity.begin() + std::ptrdiff_t(width * (e + 1)));
+      piece.nodes = piece.connectivity;
+      std::sort(piece.nodes.begin(), piece.nodes.end());
+      piece.nodes.erase(std::unique(piece.nodes.begin(), piece.nodes.end()), piece.nodes.end());
+      for (const std::uint32_t k : piece.nodes)
+        for (int c = 0; c < 3; ++c) piece.points.push_back(whole.x_ref.component(c)[k]);
+      // Rank r's output rows, [n r / p, n (r + 1) / p) of the n nodes (row_exchange),
+      // within the part.
+      const std::size_t n = deck_parts.nodes, p = std::size_t(comm.size);
+      const std::size_t begin = std::max<std::size_t>(n * std::size_t(r) / p, part.first_node),
+                        end = std::min<std::size_t>(n * std::size_t(r + 1) / p,
+                                                    part.first_node + part.node_count);
+      piece.first_row = begin < end ? std::uint32_t(begin - part.first_node) : 0;
+      for (std::size_t g = begin; g < end; ++g)
+        piece.row_owner.push_back(owner_of_node(part, std::uint32_t(g), chunks));
+      Packer out;
+      out.put(piece.elements);
+      out.put(piece.connectivity);
+      out.put(piece.nodes);
+      out.put(piece.points);
+      out.put(piece.around_nodes);
+      out.put(piece.around_start);
+      out.put(piece.around);
+      out.put_value(piece.first_row);
+      out.put(piece.row_owner);
+      send_bytes(comm, r, out.bytes);
+    }
+  }
 }
 
 // This rank's part of the model, its chunks chunks.rank's.
@@ -869,7 +1138,7 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
     const std::uint32_t* connectivity = m.mesh.connectivity.data() + first_connectivity[p];
     element::WholeBlock whole{layout[2 * p] != 0, layout[2 * p + 1] != 0, {}};
     if (part.order == 2 && law.linear_small() && whole.parallelepipeds)  // collective: every rank
-      whole.group_points = whole_block_groups(deck_parts, part, count, connectivity, m.mesh.x_ref,
+      whole.group_points = whole_block_groups(part, count, connectivity, m.mesh.x_ref,
                                               d.global_element.data() + first_element, comm);
     if (mine.empty()) continue;
     m.blocks.push_back(element::make_element_block(
@@ -931,10 +1200,7 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   d.node_rows = row_exchange(
       comm, d.global_nodes,
       [&](std::size_t g) {
-        int owner = std::numeric_limits<int>::max();
-        for (const std::size_t c : chunks_at(deck_parts.part_of_node(std::uint32_t(g)), std::uint32_t(g)))
-          owner = std::min(owner, chunks.rank[c]);
-        return owner;
+        return owner_of_node(deck_parts.part_of_node(std::uint32_t(g)), std::uint32_t(g), chunks);
       },
       std::move(owned), d.global_node);
   d.element_rows = row_exchange(
@@ -1012,18 +1278,26 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Pa
   MPI_Comm_free(&here);
   check_mesh_size(deck, MachineShare{comm.size, ranks_here});
 
-  GmshOnce gmsh(comm);
-  const SetupParts deck_parts(deck, std::ref(gmsh));
-  gmsh.forget();  // the files, once the parts are made
-  Chunks chunks = walk_chunks(deck_parts);
-  chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning);
+  // Rank 0 reads each Gmsh file once, for all the parts it holds.
+  std::map<std::string, input::GmshMesh> files;
+  auto read = [&](const std::string& file, const SourceLocation& where, const std::string& key_path) {
+    auto known = files.find(file);
+    if (known == files.end()) known = files.emplace(file, input::read_gmsh(file, where, key_path)).first;
+    return known->second;
+  };
+  SetupParts deck_parts(deck, read, &comm);
+  files.clear();  // the files, once the parts are made
+  Chunks chunks = walk_chunks(deck_parts, &comm);
+  chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning, &comm);
   if (weigh_by_work) {  // a first setup by elements, timed, then the chunks weighed by their costs
+    scatter_pieces(deck, deck_parts, chunks, comm);
     const std::vector<double> costs = measured_costs(
         deck, comm, deck_parts, chunks, build_part(deck, comm, deck_parts, chunks, partitioning));
     weigh_by_costs(chunks.weight, costs);
-    chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning);
+    chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning, &comm);
   }
   chunks.centroid = {};
+  scatter_pieces(deck, deck_parts, chunks, comm);
   RankSetup setup = build_part(deck, comm, deck_parts, chunks, partitioning);
   setup.run.decomposition.weighed_by_work = weigh_by_work;
   return setup;
