@@ -57,43 +57,22 @@ std::uint32_t node_id(const PartRange& part, int i, int j, int k) {
   return part.node_at(part.order * i, part.order * j, part.order * k);
 }
 
-// A perturbed part must keep every element valid: at each corner of each element,
-// det[e_x, e_y, e_z] > 0 with e the grid edges from the corner towards +x, +y, +z
-// (the trilinear map's Jacobian there, times 8; m^3). Moves of at most fraction h
-// keep a plane grid valid below fraction 1/(2 sqrt 2) = 0.354, but a 3D grid is
-// certain only below 1/(2 sqrt 3) = 0.289 (sigma_min(I + E) >= 1 - ||E||_F), so every
-// perturbed part is checked here, where the error can name the deck key. (The
-// mid-edge nodes of a 20-node part sit at the middle of straight edges, so the
-// corner test covers them.)
-// `part` is part `part_index` of the deck, its first element in the whole mesh
-// `first_element` (the error names it).
+// Every element of a perturbed part checked (check_perturbed_element); `part` is part
+// `part_index` of the deck, its first element in the whole mesh `first_element` (the
+// error names it).
 void check_perturbed_part(const PartRange& part, const NodalVectors& x, const input::Deck& deck,
                           std::size_t part_index, std::uint32_t first_element) {
   const auto& n = part.elements;
-  auto edge = [&](std::uint32_t from, std::uint32_t to) -> std::array<double, 3> {
-    return {x.x[to] - x.x[from], x.y[to] - x.y[from], x.z[to] - x.z[from]};
-  };
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
-      for (int i = 0; i < n[0]; ++i)
-        for (int corner = 0; corner < 8; ++corner) {
-          const int a = i + (corner & 1), b = j + ((corner >> 1) & 1), c = k + ((corner >> 2) & 1);
-          const auto ex = edge(node_id(part, i, b, c), node_id(part, i + 1, b, c));
-          const auto ey = edge(node_id(part, a, j, c), node_id(part, a, j + 1, c));
-          const auto ez = edge(node_id(part, a, b, k), node_id(part, a, b, k + 1));
-          const double det = ex[0] * (ey[1] * ez[2] - ey[2] * ez[1]) -
-                             ex[1] * (ey[0] * ez[2] - ey[2] * ez[0]) +
-                             ex[2] * (ey[0] * ez[1] - ey[1] * ez[0]);
-          if (det > 0.0) continue;
-          const std::uint32_t element = first_element + static_cast<std::uint32_t>(i + n[0] * (j + n[1] * k));
-          throw InputError(
-              SourceLocation{deck.source_file, 0, 0},
-              "parts[" + std::to_string(part_index) + "].perturbation",
-              "the distortion inverts element " + std::to_string(element) + " (grid cell " +
-                  std::to_string(i) + ", " + std::to_string(j) + ", " + std::to_string(k) + " of part '" +
-                  deck.parts[part_index].name +
-                  "'): its corner Jacobian is not positive; use a smaller fraction or another seed");
-        }
+      for (int i = 0; i < n[0]; ++i) {
+        std::array<std::array<double, 3>, 8> corners{};
+        for (int corner = 0; corner < 8; ++corner)
+          corners[std::size_t(corner)] =
+              x.at(node_id(part, i + (corner & 1), j + ((corner >> 1) & 1), k + ((corner >> 2) & 1)));
+        check_perturbed_element(corners, deck, part_index, {i, j, k},
+                                first_element + static_cast<std::uint32_t>(i + n[0] * (j + n[1] * k)));
+      }
 }
 
 // Nodes of a part of this order with these element counts.
@@ -164,6 +143,38 @@ void add_part(Mesh& mesh, const input::PartOptions& options, int part_index) {
 }
 
 }  // namespace
+
+// A perturbed part must keep every element valid: at each corner of each element,
+// det[e_x, e_y, e_z] > 0 with e the grid edges from the corner towards +x, +y, +z
+// (the trilinear map's Jacobian there, times 8; m^3). Moves of at most fraction h
+// keep a plane grid valid below fraction 1/(2 sqrt 2) = 0.354, but a 3D grid is
+// certain only below 1/(2 sqrt 3) = 0.289 (sigma_min(I + E) >= 1 - ||E||_F), so every
+// perturbed part is checked, where the error can name the deck key. (The mid-edge
+// nodes of a 20-node part sit at the middle of straight edges, so the corner test
+// covers them.)
+void check_perturbed_element(const std::array<std::array<double, 3>, 8>& corners, const input::Deck& deck,
+                             std::size_t part_index, const std::array<int, 3>& ijk, std::uint32_t element) {
+  auto edge = [&](int from, int to) -> std::array<double, 3> {
+    const auto& a = corners[std::size_t(from)];
+    const auto& b = corners[std::size_t(to)];
+    return {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  };
+  for (int corner = 0; corner < 8; ++corner) {
+    const int low = corner & ~1, front = corner & ~2, bottom = corner & ~4;  // the edges' lower ends
+    const auto ex = edge(low, low | 1);
+    const auto ey = edge(front, front | 2);
+    const auto ez = edge(bottom, bottom | 4);
+    const double det = ex[0] * (ey[1] * ez[2] - ey[2] * ez[1]) - ex[1] * (ey[0] * ez[2] - ey[2] * ez[0]) +
+                       ex[2] * (ey[0] * ez[1] - ey[1] * ez[0]);
+    if (det > 0.0) continue;
+    throw InputError(SourceLocation{deck.source_file, 0, 0},
+                     "parts[" + std::to_string(part_index) + "].perturbation",
+                     "the distortion inverts element " + std::to_string(element) + " (grid cell " +
+                         std::to_string(ijk[0]) + ", " + std::to_string(ijk[1]) + ", " +
+                         std::to_string(ijk[2]) + " of part '" + deck.parts[part_index].name +
+                         "'): its corner Jacobian is not positive; use a smaller fraction or another seed");
+  }
+}
 
 void check_physical_faces(const input::Deck& deck,
                           const std::function<const PartRange&(std::size_t)>& part_of) {

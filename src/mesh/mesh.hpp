@@ -173,6 +173,12 @@ inline constexpr std::array<std::array<int, 3>, 20> brick_offsets{
 std::array<double, 3> box_point(const input::PartOptions& options, int part_index,
                                 const std::array<int, 3>& ijk);
 std::array<double, 6> box_normal_lengths(const input::PartOptions& options);
+// Element ijk of perturbed box part `part_index` (element `element` of the whole mesh),
+// its corner grid points corners[a + 2 b + 4 c] at (i + a, j + b, k + c): an InputError
+// naming it and the deck key where a corner Jacobian is not positive (build_mesh's
+// check of a perturbed part, element by element in (k, j, i) order).
+void check_perturbed_element(const std::array<std::array<double, 3>, 8>& corners, const input::Deck& deck,
+                             std::size_t part_index, const std::array<int, 3>& ijk, std::uint32_t element);
 // A side of a box part of n elements of this order (1 or 2), with node_at(i, j, k) the
 // node at lattice point (i, j, k) (no_node where none is): face_of's box faces.
 Face lattice_face(const std::array<int, 3>& n, int order, input::PartFace side,

@@ -159,24 +159,12 @@ std::optional<std::uint64_t> available_memory(const std::string& meminfo_path) {
   return std::nullopt;
 }
 
-double made_whole_bytes(const input::Deck& deck) {
-  double bytes = 0.0;
-  for (const input::PartOptions& part : deck.parts) {
-    if (part.geometry != input::Geometry::box || part.perturbation_fraction == 0.0) continue;
-    const bool quadratic = input::is_quadratic(part.formulation);
-    const double per_element = quadratic ? 20 * 8 + 4 * (24 + 4 + 8) : 8 * 8 + 1 * (24 + 4 + 8);
-    bytes += per_element * grid_count_real(element_counts(part), 0);
-  }
-  return bytes;
-}
-
 void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> available_bytes,
                      MachineShare share) {
   const MemoryEstimate estimate = estimate_memory(deck);
   const bool too_many_nodes = estimate.nodes > max_nodes;
   const bool too_many_elements = estimate.elements > max_elements;
-  const double whole_parts = share.ranks > 1 ? double(share.ranks_here) * made_whole_bytes(deck) : 0.0;
-  const double need = estimate.bytes * double(share.ranks_here) / double(share.ranks) + whole_parts;  // here
+  const double need = estimate.bytes * double(share.ranks_here) / double(share.ranks);  // here
   const bool too_large = available_bytes && need > double(*available_bytes);
   if (!too_many_nodes && !too_many_elements && !too_large) return;
 
@@ -201,12 +189,9 @@ void check_mesh_size(const input::Deck& deck, std::optional<std::uint64_t> avail
     message += ", more than the " + std::to_string(max_nodes) + " nodes and " + std::to_string(max_elements) +
                " elements that the 32-bit indices of the mesh can number";
   if (share.ranks > 1)
-    message +=
-        "; the " + std::to_string(share.ranks_here) + " of its " + std::to_string(share.ranks) +
-        " ranks on this machine would need about " + format_bytes(need) + " of memory, " +
-        (whole_parts > 0.0 ? "of which " + format_bytes(whole_parts) + " for the parts each makes whole, "
-                           : "") +
-        format_bytes(estimate.bytes) + " in all (";
+    message += "; the " + std::to_string(share.ranks_here) + " of its " + std::to_string(share.ranks) +
+               " ranks on this machine would need about " + format_bytes(need) + " of memory, " +
+               format_bytes(estimate.bytes) + " in all (";
   else
     message += "; the run would need about " + format_bytes(estimate.bytes) + " of memory (";
   message += std::string() + std::to_string(bytes_per_node) + " B per node, " +

@@ -57,20 +57,13 @@ std::optional<std::uint64_t> available_memory(const std::string& meminfo_path = 
 
 // The ranks of a run and how many of them share this machine: a run on many ranks
 // (solver/rank_setup.hpp) needs about the model's memory times ranks_here / ranks on
-// this machine (each rank its part and a halo of one element), and each of its ranks
-// here the meshes of the parts every rank makes whole while it sets up (perturbed
-// boxes: made_whole_bytes; an imported part is not counted, its size is known only
-// once it is read; a cylinder or ball is set up by numbers, holding O(n^2) of n^3
-// elements).
-//   a part made whole, per element: its node ids and the elements at its nodes, 8 B
-//     a node id; per node (about 1 an 8-node element, 4 a 20-node one) its coordinates
-//     24 B, its first element 4 B and its colour mask 8 B: 100 B an 8-node element,
-//     304 B a 20-node one
+// this machine (each rank its part and a halo of one element; boxes, cylinders and
+// balls are set up by numbers). An imported part is read and held whole by rank 0
+// alone while it sets up; it is not counted here, its size is known only once it is
+// read.
 struct MachineShare {
   int ranks = 1, ranks_here = 1;
 };
-
-double made_whole_bytes(const input::Deck& deck);
 
 // Throws InputError naming every part's element counts, the estimate and the
 // memory available when the mesh has more nodes than 32-bit node indices can

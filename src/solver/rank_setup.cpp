@@ -127,13 +127,13 @@ void on_rank_0(const mpi::Communicator& comm, const std::function<void()>& work)
 // A part of the deck as the setup sees it, block `index`, its nodes first_node + 0, 1,
 // ... and its elements first_element + 0, 1, ... of the whole mesh, in build_mesh's
 // order and with its bits. Either
-//  - a box without perturbation, by numbers (mesh.hpp): its lattice points (I, J, K),
+//  - a box, by numbers (mesh.hpp): its lattice points (I, J, K),
 //    order per element along each axis (order 2: only those with at most one odd
 //    index are nodes), are numbered in the order K, J, I; element (i, j, k) is
 //    i + nx (j + ny k) of the part;
 //  - a cylinder or ball, by numbers (`mapped`: mesh::MappedLattice, its node k is
 //    first_node + k); or
-//  - made whole (`built`: an imported part, a perturbed box), its mesh alone
+//  - made whole (`built`: an imported part in one process), its mesh alone
 //    (mesh::build_part_mesh: its node k is first_node + k) with the elements at each
 //    node, held while the setup runs; or
 //  - scattered (an imported part on many ranks): rank 0 makes it whole, every other
@@ -300,9 +300,19 @@ struct SetupPart {
       for (int k = 0; k < segment.node_count; ++k) segment.nodes[std::size_t(k)] += first_node;
     return face;
   }
-  // build_mesh's point: a grid point, or the middle of the edge between two.
+  // build_mesh's point: a grid point, or the middle of the edge between two (of a
+  // perturbed box, its corners moved: mesh::box_point).
   std::array<double, 3> point(const std::array<int, 3>& ijk) const {
     std::array<double, 3> x{};
+    if (options->perturbation_fraction > 0.0) {
+      std::array<int, 3> below{ijk[0] / order, ijk[1] / order, ijk[2] / order}, above = below;
+      for (std::size_t a = 0; a < 3; ++a) above[a] += ijk[a] % order;
+      const std::array<double, 3> low = mesh::box_point(*options, index, below);
+      if (above == below) return low;
+      const std::array<double, 3> high = mesh::box_point(*options, index, above);
+      for (std::size_t c = 0; c < 3; ++c) x[c] = 0.5 * (low[c] + high[c]);
+      return x;
+    }
     for (std::size_t a = 0; a < 3; ++a) {
       const std::vector<double>& line = grid[a];
       const int at = ijk[a];
@@ -371,7 +381,7 @@ struct SetupParts {
         add(std::move(part));
         continue;
       }
-      if (options.geometry != input::Geometry::box || options.perturbation_fraction != 0.0) {
+      if (options.geometry != input::Geometry::box) {
         make_whole(deck, part, read, comm);
         continue;
       }
@@ -389,12 +399,25 @@ struct SetupParts {
           part.grid[std::size_t(axis)].push_back(
               mesh::box_point(options, part.index, ijk)[std::size_t(axis)]);
         }
+      if (options.perturbation_fraction > 0.0) check_perturbed(deck, part);
       add(std::move(part));
     }
     static const mesh::PartRange box;  // no physical surfaces
     mesh::check_physical_faces(deck, [&](std::size_t p) -> const mesh::PartRange& {
       return list[p].built ? list[p].built->parts[0] : box;
     });
+  }
+  // build_mesh's check of a perturbed box, element by element (mesh::check_perturbed_element).
+  static void check_perturbed(const input::Deck& deck, const SetupPart& part) {
+    for (std::uint32_t e = 0; e < part.element_count; ++e) {
+      const std::array<int, 3> ijk = part.element_ijk(e);
+      std::array<std::array<double, 3>, 8> corners{};
+      for (int c = 0; c < 8; ++c)
+        corners[std::size_t(c)] =
+            part.point({part.order * (ijk[0] + (c & 1)), part.order * (ijk[1] + ((c >> 1) & 1)),
+                        part.order * (ijk[2] + ((c >> 2) & 1))});
+      mesh::check_perturbed_element(corners, deck, std::size_t(part.index), ijk, part.first_element + e);
+    }
   }
   void add(SetupPart part) {
     nodes += part.node_count;
