@@ -3,20 +3,20 @@
 // Every rank walks the parts chunk by chunk, keeping only a chunk's centroid and
 // colour (and for METIS the chunk graph): the partition and the colours of the whole
 // model, the same on every rank and the same as decomposition.hpp computes from a
-// whole model (localize, the reference the tests hold this to). A box without
-// perturbation is walked by numbers from its lattice, a cylinder or ball by numbers
-// from its blocks (mesh::MappedLattice); an imported part or a perturbed box is made
-// whole as a mesh of its own (mesh::build_part_mesh) and held while the setup runs (a
-// Gmsh file read once, by rank 0, and sent to every rank). Then each rank builds only
-// its own elements and their nodes, and from the elements around its nodes (a halo of
-// one element, never kept) their lumped masses, adding each node's element shares in
-// one process's order. The contact surfaces are built from the contact faces alone. A
-// block takes the whole block's layout (parallelepipeds or not) and a 20-node block
-// its groups of equal Jacobians, gathered from the ranks' group starts
-// (element::WholeBlock). No rank holds more than its part, one layer of a box's
-// lattice (of a cylinder's or ball's blocks, with their sides), one figure per chunk,
-// the contact faces and the meshes of the parts made whole: the same bits as one
-// process.
+// whole model (localize, the reference the tests hold this to). A box (perturbed or
+// not) is walked by numbers from its lattice, a cylinder or ball by numbers from its
+// blocks (mesh::MappedLattice); an imported part is scattered: rank 0 alone reads the
+// file, makes the part whole (mesh::build_part_mesh), walks it and sends each rank the
+// chunks' figures, the part's faces and its piece of the part. Then each rank builds
+// only its own elements and their nodes, and from the elements around its nodes (a
+// halo of one element, never kept) their lumped masses, adding each node's element
+// shares in one process's order. The contact surfaces are built from the contact
+// faces alone. A block takes the whole block's layout (parallelepipeds or not) and a
+// 20-node block its groups of equal Jacobians, gathered with their points from the
+// ranks' group starts (element::WholeBlock). No rank holds more than its part, one
+// layer of a box's lattice (of a cylinder's or ball's blocks, with their sides), one
+// figure per chunk and the contact faces, rank 0 also an imported part while it sets
+// up: the same bits as one process.
 #pragma once
 
 #include <cstdint>
