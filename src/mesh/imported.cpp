@@ -509,6 +509,10 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
     fail(volume_text + " has a face (corner nodes " + corners +
          ") shared by more than two elements: elements overlap or the mesh is not a manifold");
   }
+  if (boundary.empty())  // every face shared by exactly two elements: a closed body
+    fail(volume_text + " has no boundary: every face of its " + plural(elements.size(), "element") +
+         " is shared by two of them (a mesh that closes on itself, as when its nodes are repeated "
+         "periodically)");
   Face whole;
   double whole_length = 0.0;
   for (const BoundarySegment& b : boundary) {

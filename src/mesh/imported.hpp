@@ -33,7 +33,8 @@ inline constexpr std::array<int, 20> gmsh_hex20_node{0,  1, 2,  3,  4,  5,  6,  
 // hexahedra; tetrahedra, prisms, pyramids or 27-node hexahedra (each type with its
 // count); 8- and 20-node hexahedra mixed or not those of the formulation; an element
 // whose node the file lacks, that repeats a node, or whose corner Jacobian is not
-// positive (inverted or degenerate); a face shared by more than two elements.
+// positive (inverted or degenerate); a face shared by more than two elements; no face
+// on the boundary (every face shared by two elements).
 void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_index,
                        const input::GmshMesh& file, const SourceLocation& where, const std::string& key_path);
 
