@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace exdyn::mpi {
@@ -103,15 +104,16 @@ inline std::vector<double> all_gather(const Communicator& c, const double* value
 }
 
 // Every rank's `values` (any number each), rank after rank, on every rank.
-inline std::vector<std::uint32_t> all_gather_varying(const Communicator& c,
-                                                     const std::vector<std::uint32_t>& values) {
+template <class T>
+std::vector<T> all_gather_varying(const Communicator& c, const std::vector<T>& values) {
+  static_assert(std::is_same_v<T, std::uint32_t> || std::is_same_v<T, double>);
+  const MPI_Datatype type = std::is_same_v<T, double> ? MPI_DOUBLE : MPI_UINT32_T;
   const int mine = static_cast<int>(values.size());
   std::vector<int> counts(std::size_t(c.size)), offsets(std::size_t(c.size), 0);
   check(MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, c.comm), "MPI_Allgather of the counts");
   for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-  std::vector<std::uint32_t> all(std::size_t(offsets.back() + counts.back()));
-  check(MPI_Allgatherv(values.data(), mine, MPI_UINT32_T, all.data(), counts.data(), offsets.data(),
-                       MPI_UINT32_T, c.comm),
+  std::vector<T> all(std::size_t(offsets.back() + counts.back()));
+  check(MPI_Allgatherv(values.data(), mine, type, all.data(), counts.data(), offsets.data(), type, c.comm),
         "MPI_Allgatherv");
   return all;
 }

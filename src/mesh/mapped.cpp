@@ -731,11 +731,7 @@ struct MappedLattice::Layout {
   // add_mapped_part's faces: the faces of the kept elements on their block's kept box
   // that no other kept element shares, in order of element and local face.
   void find_faces(int part_index) {
-    struct Entry {
-      std::array<std::uint32_t, 4> corners;
-      std::uint64_t where;  // 6 element + local face
-    };
-    std::vector<Entry> entries;
+    std::vector<BrickFace> entries;
     for (std::size_t bi = 0; bi < blocks.size(); ++bi) {
       const LatticeBlock& b = blocks[bi];
       for (std::uint32_t local = 0; local < b.elements; ++local) {
@@ -761,7 +757,7 @@ struct MappedLattice::Layout {
               on_box = true;
           }
           if (!on_box) continue;
-          Entry entry{};
+          BrickFace entry{};
           for (std::size_t k = 0; k < 4; ++k) entry.corners[k] = node(int(bi), corner[k]);
           std::sort(entry.corners.begin(), entry.corners.end());
           entry.where = 6 * std::uint64_t(e) + std::uint64_t(f);
@@ -769,19 +765,7 @@ struct MappedLattice::Layout {
         }
       }
     }
-    std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-      return a.corners != b.corners ? a.corners < b.corners : a.where < b.where;
-    });
-    std::vector<std::uint64_t> boundary;
-    for (std::size_t i = 0; i < entries.size();) {
-      std::size_t j = i + 1;
-      while (j < entries.size() && entries[j].corners == entries[i].corners) ++j;
-      if (j - i == 1) boundary.push_back(entries[i].where);
-      i = j;
-    }
-
-    entries = {};
-    std::sort(boundary.begin(), boundary.end());
+    const std::vector<std::uint64_t> boundary = unshared_faces(std::move(entries));
     std::vector<OuterSegment> outer;
     outer.reserve(boundary.size());
     for (const std::uint64_t where_face : boundary) {

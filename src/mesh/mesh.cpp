@@ -328,39 +328,41 @@ Mesh build_part_mesh(const input::Deck& deck, std::size_t p, std::uint32_t first
   return mesh;
 }
 
-std::vector<BoundarySegment> boundary_segments(const std::vector<std::array<std::uint32_t, 20>>& elements,
-                                               int nodes_per_element, const NodalVectors& x,
-                                               std::array<std::uint32_t, 4>* non_manifold) {
-  // Every brick face by its sorted corners; equal keys are neighbours. Sorting (not
-  // hashing) keeps the result independent of the standard library.
-  struct Entry {
-    std::array<std::uint32_t, 4> corners;
-    std::uint64_t where;  // 6 element + local face
-  };
-  std::vector<Entry> entries;
-  entries.reserve(6 * elements.size());
-  for (std::size_t e = 0; e < elements.size(); ++e)
-    for (int f = 0; f < 6; ++f) {
-      Entry entry{};
-      for (int k = 0; k < 4; ++k) entry.corners[std::size_t(k)] = elements[e][std::size_t(brick_faces[f][k])];
-      std::sort(entry.corners.begin(), entry.corners.end());
-      entry.where = 6 * std::uint64_t(e) + std::uint64_t(f);
-      entries.push_back(entry);
-    }
-  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+std::vector<std::uint64_t> unshared_faces(std::vector<BrickFace> faces,
+                                          std::array<std::uint32_t, 4>* non_manifold) {
+  // Equal keys are neighbours. Sorting (not hashing) keeps the result independent of
+  // the standard library.
+  std::sort(faces.begin(), faces.end(), [](const BrickFace& a, const BrickFace& b) {
     return a.corners != b.corners ? a.corners < b.corners : a.where < b.where;
   });
   std::vector<std::uint64_t> boundary;
   if (non_manifold != nullptr) *non_manifold = {};
-  for (std::size_t i = 0; i < entries.size();) {
+  for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;
-    while (j < entries.size() && entries[j].corners == entries[i].corners) ++j;
-    if (j - i == 1) boundary.push_back(entries[i].where);
+    while (j < faces.size() && faces[j].corners == faces[i].corners) ++j;
+    if (j - i == 1) boundary.push_back(faces[i].where);
     if (j - i > 2 && non_manifold != nullptr && *non_manifold == std::array<std::uint32_t, 4>{})
-      *non_manifold = entries[i].corners;
+      *non_manifold = faces[i].corners;
     i = j;
   }
   std::sort(boundary.begin(), boundary.end());
+  return boundary;
+}
+
+std::vector<BoundarySegment> boundary_segments(const std::vector<std::array<std::uint32_t, 20>>& elements,
+                                               int nodes_per_element, const NodalVectors& x,
+                                               std::array<std::uint32_t, 4>* non_manifold) {
+  std::vector<BrickFace> faces;
+  faces.reserve(6 * elements.size());
+  for (std::size_t e = 0; e < elements.size(); ++e)
+    for (int f = 0; f < 6; ++f) {
+      BrickFace face{};
+      for (int k = 0; k < 4; ++k) face.corners[std::size_t(k)] = elements[e][std::size_t(brick_faces[f][k])];
+      std::sort(face.corners.begin(), face.corners.end());
+      face.where = 6 * std::uint64_t(e) + std::uint64_t(f);
+      faces.push_back(face);
+    }
+  const std::vector<std::uint64_t> boundary = unshared_faces(std::move(faces), non_manifold);
 
   auto coordinate = [&](std::uint32_t node, int c) {
     return c == 0 ? x.x[node] : (c == 1 ? x.y[node] : x.z[node]);

@@ -138,6 +138,18 @@ struct BoundarySegment {
   double normal_length = 0.0;            // centroid of this face to the opposite face's, m
 };
 
+// A brick face by its sorted corner nodes (a key to match faces by) and where it is:
+// 6 element + local face.
+struct BrickFace {
+  std::array<std::uint32_t, 4> corners;
+  std::uint64_t where;
+};
+// The `where` of the faces no other face of the list matches, ascending. A face matched
+// by more than one other is no manifold's: its corners go to `non_manifold` (left
+// empty when none is).
+std::vector<std::uint64_t> unshared_faces(std::vector<BrickFace> faces,
+                                          std::array<std::uint32_t, 4>* non_manifold = nullptr);
+
 // The boundary faces of bricks of `nodes_per_element` (8 or 20) nodes each, in order of
 // element and then local face. A face shared by more than two bricks is no manifold's:
 // its sorted corners are returned in `non_manifold` (left empty when none is).

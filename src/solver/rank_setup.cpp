@@ -925,15 +925,7 @@ std::vector<std::array<double, 60>> whole_block_groups(const SetupPart& part, st
       for (std::size_t k = 0; k < 20; ++k) my_points.push_back(x_ref.component(a)[connectivity[20 * e + k]]);
   }
   const std::vector<std::uint32_t> gathered = mpi::all_gather_varying(comm, mine);
-  std::vector<int> counts(std::size_t(comm.size)), offsets(std::size_t(comm.size), 0);
-  const int my_count = int(my_points.size());
-  mpi::check(MPI_Allgather(&my_count, 1, MPI_INT, counts.data(), 1, MPI_INT, comm.comm),
-             "MPI_Allgather of the group counts");
-  for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-  std::vector<double> gathered_points(std::size_t(offsets.back() + counts.back()));
-  mpi::check(MPI_Allgatherv(my_points.data(), my_count, MPI_DOUBLE, gathered_points.data(), counts.data(),
-                            offsets.data(), MPI_DOUBLE, comm.comm),
-             "MPI_Allgatherv of the group points");
+  const std::vector<double> gathered_points = mpi::all_gather_varying(comm, my_points);
   // The candidates in global order, once each.
   std::vector<std::size_t> by_id(gathered.size());
   std::iota(by_id.begin(), by_id.end(), std::size_t(0));
