@@ -410,12 +410,35 @@ Face named_face(const std::vector<std::pair<input::PartFace, Face>>& faces, int 
   throw std::logic_error("face_of: part " + std::to_string(part_index) + " has no face " + input::name(side));
 }
 
-void finish_face(Face& face, double normal_length_sum) {
-  face.normal_length = normal_length_sum / static_cast<double>(face.segments.size());
+namespace {
+
+// face.nodes: every node of its segments, ascending, once.
+void nodes_of_segments(Face& face) {
+  face.nodes.clear();
   for (const FaceSegment& segment : face.segments)
     face.nodes.insert(face.nodes.end(), segment.nodes.begin(), segment.nodes.begin() + segment.node_count);
   std::sort(face.nodes.begin(), face.nodes.end());
   face.nodes.erase(std::unique(face.nodes.begin(), face.nodes.end()), face.nodes.end());
+}
+
+}  // namespace
+
+void finish_face(Face& face, double normal_length_sum) {
+  face.normal_length = normal_length_sum / static_cast<double>(face.segments.size());
+  nodes_of_segments(face);
+}
+
+Face cut_face(const Face& whole, const KeepSegment& keep) {
+  Face face;
+  face.normal_length = whole.normal_length;
+  face.whole_segments = whole.whole_count();
+  for (std::size_t k = 0; k < whole.segments.size(); ++k)
+    if (keep(whole.segments[k])) {
+      face.segments.push_back(whole.segments[k]);
+      face.segment_index.push_back(whole.index_in_whole(k));
+    }
+  nodes_of_segments(face);
+  return face;
 }
 
 Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
@@ -424,7 +447,7 @@ Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
   const PartRange& part = mesh.parts.at(static_cast<std::size_t>(part_index));
   if (side == input::PartFace::physical) {
     const Face& face = part.physical_faces.at(static_cast<std::size_t>(reference.surface));
-    if (face.segments.empty())
+    if (face.whole_count() == 0)
       throw std::logic_error("face_of: physical surface " + std::to_string(reference.surface) + " of part " +
                              std::to_string(part_index) + " has no segment");
     return face;
@@ -436,7 +459,8 @@ Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
 
 Face lattice_face(const std::array<int, 3>& n, int order, input::PartFace side,
                   const std::array<double, 6>& normal_lengths,
-                  const std::function<std::uint32_t(int, int, int)>& node_at_lattice) {
+                  const std::function<std::uint32_t(int, int, int)>& node_at_lattice,
+                  const KeepSegment& keep) {
   // The face is the grid plane axis = fixed; (p, q) are its in-plane axes,
   // ordered so that e_p x e_q is the outward normal.
   int axis = 0, p = 0, q = 0, fixed = 0;
@@ -479,9 +503,10 @@ Face lattice_face(const std::array<int, 3>& n, int order, input::PartFace side,
   Face face;
   // The element length normal to the face: (max - min) / n, or the graded first or last one.
   face.normal_length = normal_lengths[static_cast<std::size_t>(2 * axis + (fixed == 0 ? 0 : 1))];
-  for (int b = 0; b <= order * n[q]; ++b)
-    for (int a = 0; a <= order * n[p]; ++a)
-      if (const std::uint32_t node = node_at(a, b); node != no_node) face.nodes.push_back(node);
+  if (!keep)
+    for (int b = 0; b <= order * n[q]; ++b)
+      for (int a = 0; a <= order * n[p]; ++a)
+        if (const std::uint32_t node = node_at(a, b); node != no_node) face.nodes.push_back(node);
   for (int b = 0; b < n[q]; ++b)
     for (int a = 0; a < n[p]; ++a) {
       const int a0 = order * a, b0 = order * b, a1 = a0 + order, b1 = b0 + order;
@@ -497,8 +522,15 @@ Face lattice_face(const std::array<int, 3>& n, int order, input::PartFace side,
         segment.nodes[6] = node_at(a0 + 1, b1);
         segment.nodes[7] = node_at(a0, b0 + 1);
       }
+      const auto index = static_cast<std::uint32_t>(a + n[p] * b);
+      if (keep && !keep(segment)) continue;
       face.segments.push_back(segment);
+      if (keep) face.segment_index.push_back(index);
     }
+  if (keep) {
+    face.whole_segments = std::size_t(n[p]) * std::size_t(n[q]);
+    nodes_of_segments(face);
+  }
   return face;
 }
 

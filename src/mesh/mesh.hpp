@@ -45,7 +45,22 @@ struct Face {
   std::vector<std::uint32_t> nodes;
   std::vector<FaceSegment> segments;
   double normal_length = 0.0;
+  // A face cut to some of its segments (cut_face; a rank's contact faces,
+  // solver/rank_setup.cpp): each kept segment's index in the whole face, and the whole
+  // face's segment count. Both empty for a whole face.
+  std::vector<std::uint32_t> segment_index;
+  std::size_t whole_segments = 0;
+
+  bool cut() const { return whole_segments > 0; }
+  // Segment k's index in the whole face, and the whole face's segment count.
+  std::uint32_t index_in_whole(std::size_t k) const {
+    return cut() ? segment_index[k] : static_cast<std::uint32_t>(k);
+  }
+  std::size_t whole_count() const { return cut() ? whole_segments : segments.size(); }
 };
+
+// Which segments of a face to keep (cut_face, lattice_face).
+using KeepSegment = std::function<bool(const FaceSegment&)>;
 
 struct PartRange {
   std::uint32_t first_node = 0;
@@ -170,6 +185,10 @@ Face named_face(const std::vector<std::pair<input::PartFace, Face>>& faces, int 
 // length, from its segments and the sum of their normal lengths.
 void finish_face(Face& face, double normal_length_sum);
 
+// The segments of `whole` that `keep` keeps, in its order, with their places in it
+// (Face::segment_index), its normal length and the nodes of the kept segments.
+Face cut_face(const Face& whole, const KeepSegment& keep);
+
 // Lattice offsets (along x, y, z, in units of half an element) of the nodes of a brick
 // from its lowest corner, in VTK order: the 8 corners, then for 20 nodes the mid-edge
 // points of the bottom, the top and the vertical edges.
@@ -192,10 +211,11 @@ std::array<double, 6> box_normal_lengths(const input::PartOptions& options);
 void check_perturbed_element(const std::array<std::array<double, 3>, 8>& corners, const input::Deck& deck,
                              std::size_t part_index, const std::array<int, 3>& ijk, std::uint32_t element);
 // A side of a box part of n elements of this order (1 or 2), with node_at(i, j, k) the
-// node at lattice point (i, j, k) (no_node where none is): face_of's box faces.
+// node at lattice point (i, j, k) (no_node where none is): face_of's box faces. With
+// `keep`, the face cut to the segments it keeps (cut_face's), made one segment at a time.
 Face lattice_face(const std::array<int, 3>& n, int order, input::PartFace side,
                   const std::array<double, 6>& normal_lengths,
-                  const std::function<std::uint32_t(int, int, int)>& node_at);
+                  const std::function<std::uint32_t(int, int, int)>& node_at, const KeepSegment& keep = {});
 
 // Grid fraction tau_i in [0, 1] of grid point i of n elements whose lengths change
 // geometrically from the first to the last by the ratio `grading` (last / first):

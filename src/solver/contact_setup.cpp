@@ -122,7 +122,21 @@ struct PassGeometry {
   std::vector<double> spring_area;
   double modulus = std::numeric_limits<double>::infinity();          // smallest M of the parts involved, Pa
   double smallest_length = std::numeric_limits<double>::infinity();  // m
+  PassPlace place;  // the points' and segments' places in the whole pass
 };
+
+// The node count (4 or 8) of the segments of face f: of its first, or, cut to none
+// (ContactScope), of its part's bricks.
+int face_segment_nodes(const Model& model, const input::FaceRef& f, const mesh::Face& face) {
+  if (!face.segments.empty()) return face.segments.front().node_count;
+  return model.mesh.parts.at(static_cast<std::size_t>(f.part)).order == 2 ? 8 : 4;
+}
+
+// The Gauss points along each side of a slave segment of `nodes` nodes: the deck's
+// quadrature, by default 2 on quad4 and 3 on quad8.
+int points_per_side(const input::ContactOptions& options, int nodes) {
+  return options.quadrature.value_or(nodes == 4 ? 2 : 3);
+}
 
 PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const input::ContactOptions& options,
                            const std::vector<input::FaceRef>& slave,
@@ -134,8 +148,7 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
   bool eight_node_segments = false;
   for (const auto& f : slave) {
     slave_faces.push_back(mesh::face_of(model.mesh, f));
-    for (const auto& face_segment : slave_faces.back().segments)
-      eight_node_segments = eight_node_segments || face_segment.node_count == 8;
+    eight_node_segments = eight_node_segments || face_segment_nodes(model, f, slave_faces.back()) == 8;
     s.slave_nodes.insert(s.slave_nodes.end(), slave_faces.back().nodes.begin(),
                          slave_faces.back().nodes.end());
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
@@ -151,15 +164,19 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
   std::vector<double> node_length(s.slave_nodes.size(), std::numeric_limits<double>::infinity());
   g.area.assign(s.slave_nodes.size(), 0.0);
   g.spring_area.assign(s.slave_nodes.size(), 0.0);
+  std::uint64_t first_point = 0;  // of the face, in the whole pass
   for (std::size_t i = 0; i < slave.size(); ++i) {
-    const double length = slave_faces[i].normal_length;
+    const mesh::Face& face = slave_faces[i];
+    const double length = face.normal_length;
     g.smallest_length = std::min(g.smallest_length, length);
-    for (std::uint32_t node : slave_faces[i].nodes) {
+    for (std::uint32_t node : face.nodes) {
       double& l = node_length[slave_index(node)];
       l = std::min(l, length);
     }
-    for (const auto& face_segment : slave_faces[i].segments) {
-      const contact::SegmentNodes ids = segment_nodes(face_segment);
+    const int side_points = points_per_side(options, face_segment_nodes(model, slave[i], face));
+    const auto segment_points = std::uint64_t(side_points * side_points);
+    for (std::size_t at = 0; at < face.segments.size(); ++at) {
+      const contact::SegmentNodes ids = segment_nodes(face.segments[at]);
       if (!s.quadrature) {
         const std::array<double, 8> areas = nodal_areas(x, ids);
         for (int k = 0; k < contact::node_count(ids.type); ++k)
@@ -168,8 +185,7 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
       }
       // Gauss points of the slave segment: n x n, n = quadrature (default 2 on
       // quad4, 3 on quad8), weight w_i w_j |a1 x a2| on the reference segment.
-      const int n = options.quadrature.value_or(ids.type == contact::SegmentType::quad4 ? 2 : 3);
-      const contact::GaussLegendre rule = contact::gauss_legendre(n);
+      const contact::GaussLegendre rule = contact::gauss_legendre(side_points);
       const contact::Segment segment = reference_segment(x, ids);
       const auto segment_index = static_cast<std::uint32_t>(s.slave_segments.size());
       s.slave_segments.push_back(ids);
@@ -181,6 +197,8 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
           point.weight =
               rule.weight[std::size_t(a)] * rule.weight[std::size_t(b)] * area_element(segment, point.xi);
           s.quadrature_points.push_back(point);
+          g.place.point_keys.push_back(static_cast<std::uint32_t>(
+              first_point + face.index_in_whole(at) * segment_points + std::uint64_t(b * rule.count + a)));
           s.normal_length.push_back(length);
           const std::array<double, 8> N = contact::shape_functions(ids.type, point.xi);
           double absolute_sum = 0.0;
@@ -190,11 +208,17 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
                 std::abs(N[std::size_t(k)]) * point.weight * absolute_sum;
         }
     }
+    first_point += face.whole_count() * segment_points;
   }
   if (!s.quadrature) s.normal_length = node_length;
+  std::uint32_t first_segment = 0;  // of the face, in the whole pass
   for (const auto& f : master) {
     const mesh::Face face = mesh::face_of(model.mesh, f);
-    for (const auto& face_segment : face.segments) s.segments.push_back(segment_nodes(face_segment));
+    for (std::size_t k = 0; k < face.segments.size(); ++k) {
+      s.segments.push_back(segment_nodes(face.segments[k]));
+      g.place.segment_ids.push_back(first_segment + face.index_in_whole(k));
+    }
+    first_segment += static_cast<std::uint32_t>(face.whole_count());
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
     g.smallest_length = std::min(g.smallest_length, face.normal_length);
   }
@@ -208,13 +232,23 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
   return g;
 }
 
-// The largest 1/m of the master nodes of a pass, 1/kg.
-double largest_master_inverse_mass(const Model& model, const contact::ContactSurfaces& s) {
+// The largest of a figure over the ranks (ContactScope::largest), or the figure.
+double over_ranks(const ContactScope& scope, double figure) {
+  return scope.largest ? scope.largest(figure) : figure;
+}
+
+// Whether node n's mass is this rank's (ContactScope::held).
+bool held(const ContactScope& scope, std::uint32_t n) { return !scope.held || (*scope.held)[n] != 0; }
+
+// The largest 1/m of the master nodes of a pass, 1/kg (a halo node's 1/m is 0; each
+// node is held by some rank).
+double largest_master_inverse_mass(const Model& model, const contact::ContactSurfaces& s,
+                                   const ContactScope& scope) {
   double largest = 0.0;
   for (const auto& segment : s.segments)
     for (int k = 0; k < contact::node_count(segment.type); ++k)
       largest = std::max(largest, 1.0 / model.mass[segment.nodes[std::size_t(k)]]);
-  return largest;
+  return over_ranks(scope, largest);
 }
 
 // The stiffness of each quadrature point, N/m: kappa (Pa/m) times its weight, kappa
@@ -223,9 +257,9 @@ double largest_master_inverse_mass(const Model& model, const contact::ContactSur
 // kappa a_I <= scale min(accurate, stable bound) for 1/m_I + the largest master 1/m,
 // with a_I the node's spring area (PassGeometry::spring_area).
 void quadrature_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g,
-                          double dt, double courant) {
+                          double dt, double courant, const ContactScope& scope) {
   auto& s = g.surfaces;
-  const double master_inverse_mass = largest_master_inverse_mass(model, s);
+  const double master_inverse_mass = largest_master_inverse_mass(model, s, scope);
   std::vector<double> segment_kappa(s.slave_segments.size(), std::numeric_limits<double>::infinity());
   for (std::size_t seg = 0; seg < s.slave_segments.size(); ++seg) {
     const contact::SegmentNodes& ids = s.slave_segments[seg];
@@ -257,10 +291,10 @@ void quadrature_stiffness(const input::ContactOptions& options, const Model& mod
 
 // The stiffness of each slave point of a pass, N/m (ContactSurfaces::stiffness).
 void slave_point_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g,
-                           double dt, double courant) {
+                           double dt, double courant, const ContactScope& scope) {
   auto& s = g.surfaces;
   if (s.quadrature) {
-    quadrature_stiffness(options, model, g, dt, courant);
+    quadrature_stiffness(options, model, g, dt, courant, scope);
     return;
   }
   s.stiffness.resize(s.slave_nodes.size());
@@ -294,14 +328,15 @@ void set_penalty(const input::PenaltyOptions& penalty, double dt, double critica
 // A rigid wall: its slave side as the slave side of a pass against the same faces (the
 // mirror image's), for the stiffness rule; the segments are not needed after.
 RigidWall build_wall(const input::Deck& deck, const Model& model, const input::RigidWallOptions& options,
-                     double dt, double critical_dt) {
+                     double dt, double critical_dt, const ContactScope& scope) {
   input::ContactOptions as_pair;
   as_pair.slave = as_pair.master = options.slave;
   as_pair.slave_points = options.slave_points;
   PassGeometry g = pass_geometry(deck, model, as_pair, options.slave, options.slave);
-  slave_point_stiffness(as_pair, model, g, dt, dt / critical_dt);
+  slave_point_stiffness(as_pair, model, g, dt, dt / critical_dt, scope);
   RigidWall wall;
   wall.name = options.name;
+  if (scope.held) wall.place.point_keys = std::move(g.place.point_keys);
   wall.surfaces = std::move(g.surfaces);
   wall.surfaces.segments.clear();
   wall.surfaces.edges.clear();
@@ -323,18 +358,20 @@ RigidWall build_wall(const input::Deck& deck, const Model& model, const input::R
 void refuse_unstable_stiffness(const input::Deck& deck, const Model& model, const ContactPair& pair,
                                const std::vector<PassGeometry>& geometry,
                                const input::ContactOptions& options, std::size_t index, double dt,
-                               double courant) {
+                               double courant, const ContactScope& scope) {
   // Nodes: the bound of the heaviest slave node. Quadrature points: kappa a_I for the
   // node whose bound / a_I is largest, the most favourable.
   double bound = 0.0;
   for (const auto& g : geometry) {
     const auto& pass = g.surfaces;
     for (std::size_t i = 0; i < pass.slave_nodes.size(); ++i) {
+      if (!held(scope, pass.slave_nodes[i])) continue;  // a halo node's sums are not whole here
       const double node_bound = contact::stable_stiffness_bound(dt, courant, options.penalty.damping,
                                                                 1.0 / model.mass[pass.slave_nodes[i]]);
       bound = std::max(bound, pass.quadrature ? node_bound / g.spring_area[i] : node_bound);
     }
   }
+  bound = over_ranks(scope, bound);
   if (*options.penalty.stiffness <= bound) return;
   const bool quadrature = geometry.front().surfaces.quadrature;
   const char* units = quadrature ? "Pa/m" : "N/m";
@@ -352,7 +389,8 @@ void refuse_unstable_stiffness(const input::Deck& deck, const Model& model, cons
 
 }  // namespace
 
-ContactModel build_contact(const input::Deck& deck, const Model& model, double dt, double critical_dt) {
+ContactModel build_contact(const input::Deck& deck, const Model& model, double dt, double critical_dt,
+                           const ContactScope& scope) {
   ContactModel contact;
   for (const auto& options : deck.contact) {
     ContactPair pair;
@@ -364,14 +402,17 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
       geometry.push_back(p == 0 ? pass_geometry(deck, model, options, options.slave, options.master)
                                 : pass_geometry(deck, model, options, options.master, options.slave));
       smallest_length = std::min(smallest_length, geometry.back().smallest_length);
-      slave_point_stiffness(options, model, geometry.back(), dt, dt / critical_dt);
+      slave_point_stiffness(options, model, geometry.back(), dt, dt / critical_dt, scope);
     }
     if (options.penalty.stiffness)
       refuse_unstable_stiffness(deck, model, pair, geometry, options, contact.pairs.size(), dt,
-                                dt / critical_dt);
+                                dt / critical_dt, scope);
     pair.slave_points =
         geometry.front().surfaces.quadrature ? input::SlavePoints::quadrature : input::SlavePoints::nodes;
-    for (auto& g : geometry) pair.passes.push_back(std::move(g.surfaces));
+    for (auto& g : geometry) {
+      pair.passes.push_back(std::move(g.surfaces));
+      pair.places.push_back(scope.held ? std::move(g.place) : PassPlace{});
+    }
     auto& settings = pair.settings;
     settings.project = contact::select_method(options.local_search.method);
     settings.projection.method = options.local_search.method;
@@ -392,7 +433,7 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
     contact.pairs.push_back(std::move(pair));
   }
   for (const auto& options : deck.rigid_walls) {
-    contact.walls.push_back(build_wall(deck, model, options, dt, critical_dt));
+    contact.walls.push_back(build_wall(deck, model, options, dt, critical_dt, scope));
     const auto& slave_nodes = contact.walls.back().surfaces.slave_nodes;
     contact.nodes.insert(contact.nodes.end(), slave_nodes.begin(), slave_nodes.end());
   }

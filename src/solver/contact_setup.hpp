@@ -3,6 +3,7 @@
 // search and friction settings.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,12 +14,21 @@
 
 namespace exdyn::solver {
 
+// Where a pass's slave points and master segments stand in the whole pass (one
+// process's order) when it was built on faces cut to those near one rank
+// (ContactScope): each quadrature point's index among the whole pass's points and each
+// master segment's among its segments. Empty: the pass is whole (item k is k).
+struct PassPlace {
+  std::vector<std::uint32_t> point_keys, segment_ids;
+};
+
 struct ContactPair {
   std::string name;
   input::SlavePoints slave_points = input::SlavePoints::nodes;
   contact::ContactPassSettings settings;
   std::vector<contact::ContactSurfaces> passes;  // slave -> master, and master -> slave if two_pass
   std::vector<contact::ContactPassState> states;
+  std::vector<PassPlace> places;  // of each pass (its faces cut to a rank's: ContactScope)
   // Accumulated over the run (contact.pairs.NAME of the summary).
   contact::ContactStatistics statistics;
   contact::ContactPhaseSeconds seconds;
@@ -39,6 +49,7 @@ struct RigidWall {
   std::string name;
   contact::WallPlane plane;
   contact::ContactSurfaces surfaces;  // the slave side (no segments)
+  PassPlace place;                    // its faces cut to a rank's (ContactScope)
   contact::ContactPassSettings settings;
   contact::WallState state;
   contact::ContactStatistics statistics;
@@ -59,9 +70,22 @@ struct ContactModel {
   double friction_work() const;
 };
 
+// What build_contact sees on one rank of many (rank_setup.hpp): the model's contact
+// faces cut to the segments with a node held here (mesh::Face::segment_index), the
+// nodes of the other ranks among theirs (a halo) at infinite mass. `held` marks the
+// nodes held here; every sum over a held node's segments is then complete and in one
+// process's order. `largest` gives the largest of a figure over the ranks (collective:
+// every rank asks in the same order), for the figures over a whole surface.
+struct ContactScope {
+  const std::vector<std::uint8_t>* held = nullptr;
+  std::function<double(double)> largest;
+};
+
 // dt: the step in force (s); critical_dt: the mesh's stable step without the
 // Courant factor (s), whose ratio is the Courant number the stiffness bound needs.
-ContactModel build_contact(const input::Deck& deck, const Model& model, double dt, double critical_dt);
+// scope: one rank's faces of many (each pass's places, PassPlace); none: one process.
+ContactModel build_contact(const input::Deck& deck, const Model& model, double dt, double critical_dt,
+                           const ContactScope& scope = {});
 
 // The step in force follows the deformation: the automatic stiffness of every pair
 // and wall follows it (ContactPassSettings::stiffness_growth). fall: dt^{n-1/2} / dt^{1/2}.

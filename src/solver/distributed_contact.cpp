@@ -103,13 +103,14 @@ void exchange(DistributedContact& dc, std::vector<NodeLink*>& sends, std::vector
 }
 
 // The lowest rank holding every node of a segment (one exists: the rank of the element
-// whose face it is).
+// whose face it is), or -1 where a node is not among contact_nodes (a halo segment of
+// this rank's faces: not its own).
 int segment_owner(const contact::SegmentNodes& segment, const std::vector<std::uint32_t>& contact_nodes,
                   const std::vector<std::vector<int>>& holders) {
+  for (int i = 0; i < contact::node_count(segment.type); ++i)
+    if (index_in(contact_nodes, segment.nodes[std::size_t(i)]) == contact_nodes.size()) return -1;
   const auto holders_of = [&](std::uint32_t node) -> const std::vector<int>& {
-    const std::size_t k = index_in(contact_nodes, node);
-    EXDYN_ASSERT(k < contact_nodes.size());
-    return holders[k];
+    return holders[index_in(contact_nodes, node)];
   };
   for (const int rank : holders_of(segment.nodes[0])) {
     bool all = true;
@@ -144,9 +145,10 @@ contact::SegmentNodes in_store(contact::SegmentNodes segment, const ContactStore
   return segment;
 }
 
-// This rank's share of one pass of the whole model (`whole`, global node ids).
-PassShare make_share(const contact::ContactSurfaces& whole, std::uint64_t index, int me,
-                     const std::vector<std::uint32_t>& global_node, const Model& local,
+// This rank's share of one pass (`whole`, global node ids: the whole pass, or the pass
+// on the faces near this rank with its places in the whole pass, `place`).
+PassShare make_share(const contact::ContactSurfaces& whole, const PassPlace& place, std::uint64_t index,
+                     int me, const std::vector<std::uint32_t>& global_node, const Model& local,
                      const std::vector<std::uint32_t>& contact_nodes,
                      const std::vector<std::vector<int>>& holders) {
   PassShare share;
@@ -157,9 +159,10 @@ PassShare make_share(const contact::ContactSurfaces& whole, std::uint64_t index,
   if (!whole.quadrature) {
     for (std::size_t p = 0; p < whole.slave_nodes.size(); ++p) {
       const std::uint32_t node = whole.slave_nodes[p];
-      if (holders[index_in(contact_nodes, node)].front() != me) continue;
+      const std::size_t k = index_in(contact_nodes, node);
+      if (k == contact_nodes.size() || holders[k].front() != me) continue;
       own.slave_nodes.push_back(node);
-      share.point_keys.push_back(std::uint32_t(p));
+      share.point_keys.push_back(node);  // slave nodes ascend: the order of one process
       own.stiffness.push_back(whole.stiffness[p]);
       own.normal_length.push_back(whole.normal_length[p]);
     }
@@ -175,7 +178,7 @@ PassShare make_share(const contact::ContactSurfaces& whole, std::uint64_t index,
       if (renumbered[q.segment] < 0) continue;
       q.segment = std::uint32_t(renumbered[q.segment]);
       own.quadrature_points.push_back(q);
-      share.point_keys.push_back(std::uint32_t(p));
+      share.point_keys.push_back(place.point_keys.empty() ? std::uint32_t(p) : place.point_keys[p]);
       own.stiffness.push_back(whole.stiffness[p]);
       own.normal_length.push_back(whole.normal_length[p]);
     }
@@ -188,7 +191,7 @@ PassShare make_share(const contact::ContactSurfaces& whole, std::uint64_t index,
   for (std::size_t s = 0; s < whole.segments.size(); ++s)
     if (segment_owner(whole.segments[s], contact_nodes, holders) == me) {
       own.segments.push_back(whole.segments[s]);
-      share.segment_ids.push_back(std::uint32_t(s));
+      share.segment_ids.push_back(place.segment_ids.empty() ? std::uint32_t(s) : place.segment_ids[s]);
       if (!whole.edges.empty()) own.edges.push_back(whole.edges[s]);
     }
   own.moving_nodes = own.slave_nodes;
@@ -621,16 +624,19 @@ DistributedContact distribute_contact(ContactModel& contact, const mpi::Communic
   for (const std::uint32_t g : dc.held) contact.nodes.push_back(std::uint32_t(index_in(global_node, g)));
   plan_totals(dc, global_node);
   std::uint64_t index = 0;
-  for (ContactPair& pair : contact.pairs)
-    for (contact::ContactSurfaces& surfaces : pair.passes) {
-      dc.passes.push_back(
-          make_share(surfaces, index++, comm.rank, global_node, local, contact_nodes, holders));
-      surfaces = dc.passes.back().view;
+  for (ContactPair& pair : contact.pairs) {
+    for (std::size_t p = 0; p < pair.passes.size(); ++p) {
+      dc.passes.push_back(make_share(pair.passes[p], p < pair.places.size() ? pair.places[p] : PassPlace{},
+                                     index++, comm.rank, global_node, local, contact_nodes, holders));
+      pair.passes[p] = dc.passes.back().view;
     }
+    pair.places = {};
+  }
   for (RigidWall& wall : contact.walls) {
-    dc.passes.push_back(
-        make_share(wall.surfaces, index++, comm.rank, global_node, local, contact_nodes, holders));
+    dc.passes.push_back(make_share(wall.surfaces, wall.place, index++, comm.rank, global_node, local,
+                                   contact_nodes, holders));
     wall.surfaces = dc.passes.back().view;
+    wall.place = {};
   }
   dc.local_statistics.resize(contact.pairs.size() + contact.walls.size());
   return dc;

@@ -107,10 +107,13 @@ struct DistributedContact {
   std::vector<MPI_Request> requests;
 };
 
-// This rank's share of the contact of the whole model (`contact`, global node ids):
+// This rank's share of the contact (`contact`, global node ids: of the whole model, or
+// built on the faces near this rank with the places of its items, ContactScope):
 // `contact`'s passes and walls become their views and contact.nodes the held contact
 // nodes (local ids). global_node: the rank's local -> global node ids; `local`: its
-// model; holders: the ranks holding each of contact_nodes (localize).
+// model; holders: the ranks holding each of contact_nodes (every contact-face node,
+// localize's, or those held here, RankSetup's). A slave node's key is its global id,
+// a quadrature point's its index in the whole pass.
 DistributedContact distribute_contact(ContactModel& contact, const mpi::Communicator& comm,
                                       const std::vector<std::uint32_t>& global_node, const Model& local,
                                       const std::vector<std::uint32_t>& contact_nodes,

@@ -140,9 +140,9 @@ void on_rank_0(const mpi::Communicator& comm, const std::function<void()>& work)
 //    rank holds the part's figures and faces (`built` without nodes or elements) and
 //    its piece of it (`piece`).
 // What a rank other than 0 holds of a scattered part, in part-local ids, ascending:
-// the elements it needs (its own, and those around its nodes and around the part's
-// contact-face nodes), their nodes' coordinates, the elements around those nodes, and
-// the owners of the part's nodes among its output rows.
+// the elements it needs (its own and those around their nodes: a face segment with a
+// node held here is a face of one of them), their nodes' coordinates, the elements
+// around the held nodes, and the owners of the part's nodes among its output rows.
 struct PartPiece {
   std::vector<std::uint32_t> elements, connectivity;
   std::vector<std::uint32_t> nodes;
@@ -285,19 +285,27 @@ struct SetupPart {
     const int count = elements_at(node_ijk(g), around);
     return {around.begin(), around.begin() + count};
   }
-  // The named face f of this part (f.part == index), in global node ids: face_of's.
-  mesh::Face face(const input::FaceRef& f) const {
+  // The named face f of this part (f.part == index), in global node ids: face_of's;
+  // with `keep` (given global ids), cut to the segments it keeps (mesh::cut_face).
+  mesh::Face face(const input::FaceRef& f, const mesh::KeepSegment& keep = {}) const {
     if (!built && !mapped)
       return mesh::lattice_face(
-          n, order, f.side, mesh::box_normal_lengths(*options), [&](int i, int j, int k) {
+          n, order, f.side, mesh::box_normal_lengths(*options),
+          [&](int i, int j, int k) {
             return (i % order) + (j % order) + (k % order) > 1 ? mesh::no_node : node({i, j, k});
-          });
+          },
+          keep);
+    auto to_global = [&](mesh::FaceSegment segment) {
+      for (int k = 0; k < segment.node_count; ++k) segment.nodes[std::size_t(k)] += first_node;
+      return segment;
+    };
     input::FaceRef own = f;
     own.part = 0;
     mesh::Face face = mapped ? mesh::named_face(mapped->faces(), index, f.side) : mesh::face_of(*built, own);
+    if (keep)
+      face = mesh::cut_face(face, [&](const mesh::FaceSegment& segment) { return keep(to_global(segment)); });
     for (std::uint32_t& node_id : face.nodes) node_id += first_node;
-    for (mesh::FaceSegment& segment : face.segments)
-      for (int k = 0; k < segment.node_count; ++k) segment.nodes[std::size_t(k)] += first_node;
+    for (mesh::FaceSegment& segment : face.segments) segment = to_global(segment);
     return face;
   }
   // build_mesh's point: a grid point, or the middle of the edge between two (of a
@@ -817,22 +825,6 @@ NodalVectors initial_velocities(const SetupParts& deck_parts, const std::vector<
   return v;
 }
 
-// The nodes (global ids, ascending) of the faces the contact pairs and walls name.
-std::vector<std::uint32_t> surface_nodes_of(const input::Deck& deck, const SetupParts& deck_parts) {
-  std::vector<std::uint32_t> nodes;
-  auto add = [&](const std::vector<input::FaceRef>& faces) {
-    for (const input::FaceRef& f : faces) {
-      const mesh::Face face = deck_parts.list.at(std::size_t(f.part)).face(f);
-      nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
-    }
-  };
-  for (const input::ContactOptions& pair : deck.contact) add(pair.slave), add(pair.master);
-  for (const input::RigidWallOptions& wall : deck.rigid_walls) add(wall.slave);
-  std::sort(nodes.begin(), nodes.end());
-  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
-  return nodes;
-}
-
 // The fixed components of each of `nodes` (global ids, ascending): the indices into
 // `nodes` of those on a face of a boundary condition fixing component c (build_model's
 // rule: every node of the face, mid-side nodes included).
@@ -854,14 +846,24 @@ std::array<std::vector<std::uint32_t>, 3> fixed_of(const input::Deck& deck, cons
   return fixed;
 }
 
-// The model of the contact faces alone (RankSetup::surfaces).
-Model surface_model(const input::Deck& deck, const SetupParts& deck_parts,
-                    const std::vector<std::uint32_t>& nodes) {
-  Model m;
-  auto index = [&](std::uint32_t g) {
-    return std::uint32_t(std::lower_bound(nodes.begin(), nodes.end(), g) - nodes.begin());
-  };
-  m.mesh.x_ref = deck_parts.points(nodes);
+// A rank's nodes (global ids, ascending) and its model.
+struct NearRank {
+  const std::vector<std::uint32_t>& nodes;
+  const Model& model;
+};
+
+// The contact faces alone (RankSetup::surfaces): every face the contact pairs and
+// walls name, whole, or near one rank (`near`): cut to the segments with a node the
+// rank holds (mesh::Face::segment_index), the held nodes' masses and fixed components
+// the rank's, the other nodes of those segments (a halo) at infinite mass and free.
+struct SurfaceModel {
+  std::vector<std::uint32_t> nodes;  // of the faces (global ids, ascending): node k of the model
+  Model model;
+  std::vector<std::uint8_t> held;  // near a rank: whether it holds node k
+};
+SurfaceModel surface_model(const input::Deck& deck, const SetupParts& deck_parts, const NearRank* near) {
+  SurfaceModel out;
+  Model& m = out.model;
   std::vector<input::FaceRef> faces;
   for (const input::ContactOptions& pair : deck.contact) {
     faces.insert(faces.end(), pair.slave.begin(), pair.slave.end());
@@ -869,9 +871,17 @@ Model surface_model(const input::Deck& deck, const SetupParts& deck_parts,
   }
   for (const input::RigidWallOptions& wall : deck.rigid_walls)
     faces.insert(faces.end(), wall.slave.begin(), wall.slave.end());
+  mesh::KeepSegment keep;
+  if (near)
+    keep = [&](const mesh::FaceSegment& segment) {
+      for (int k = 0; k < segment.node_count; ++k)
+        if (std::binary_search(near->nodes.begin(), near->nodes.end(), segment.nodes[std::size_t(k)]))
+          return true;
+      return false;
+    };
   for (const SetupPart& part : deck_parts.list) {
     // The part's faces as a mapped or imported part has them (face_of finds them by
-    // name or by physical surface), in the faces' node numbers.
+    // name or by physical surface), first in global ids.
     mesh::PartRange& range = m.mesh.parts.emplace_back(part.range());
     range.normal_lengths = part.built    ? part.built->parts[0].normal_lengths
                            : part.mapped ? std::array<double, 6>{}  // add_mapped_part sets none
@@ -880,15 +890,12 @@ Model surface_model(const input::Deck& deck, const SetupParts& deck_parts,
       if (f.part != part.index) continue;
       const bool physical = f.side == input::PartFace::physical;
       const auto surface = std::size_t(f.surface);
-      if (physical ? surface < range.physical_faces.size() && !range.physical_faces[surface].segments.empty()
+      if (physical ? surface < range.physical_faces.size() && range.physical_faces[surface].whole_count() > 0
                    : std::any_of(range.faces.begin(), range.faces.end(),
                                  [&](const auto& face) { return face.first == f.side; }))
         continue;
-      mesh::Face face = part.face(f);
-      for (std::uint32_t& g : face.nodes) g = index(g);
-      for (mesh::FaceSegment& segment : face.segments)
-        for (int k = 0; k < segment.node_count; ++k)
-          segment.nodes[std::size_t(k)] = index(segment.nodes[std::size_t(k)]);
+      mesh::Face face = part.face(f, keep);
+      out.nodes.insert(out.nodes.end(), face.nodes.begin(), face.nodes.end());
       if (physical) {
         if (range.physical_faces.size() <= surface) range.physical_faces.resize(surface + 1);
         range.physical_faces[surface] = std::move(face);
@@ -897,11 +904,42 @@ Model surface_model(const input::Deck& deck, const SetupParts& deck_parts,
       }
     }
   }
-  m.mass = masses_of(deck, deck_parts, nodes);
+  std::sort(out.nodes.begin(), out.nodes.end());
+  out.nodes.erase(std::unique(out.nodes.begin(), out.nodes.end()), out.nodes.end());
+  auto index = [&](std::uint32_t g) {
+    return std::uint32_t(std::lower_bound(out.nodes.begin(), out.nodes.end(), g) - out.nodes.begin());
+  };
+  auto renumber = [&](mesh::Face& face) {
+    for (std::uint32_t& g : face.nodes) g = index(g);
+    for (mesh::FaceSegment& segment : face.segments)
+      for (int k = 0; k < segment.node_count; ++k)
+        segment.nodes[std::size_t(k)] = index(segment.nodes[std::size_t(k)]);
+  };
+  for (mesh::PartRange& range : m.mesh.parts) {
+    for (auto& named : range.faces) renumber(named.second);
+    for (mesh::Face& face : range.physical_faces) renumber(face);
+  }
+  m.mesh.x_ref = deck_parts.points(out.nodes);
+  if (!near) {
+    m.mass = masses_of(deck, deck_parts, out.nodes);
+    m.fixed_nodes = fixed_of(deck, deck_parts, out.nodes);
+  } else {
+    out.held.resize(out.nodes.size());
+    m.mass.assign(out.nodes.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t k = 0; k < out.nodes.size(); ++k) {
+      const auto at = std::lower_bound(near->nodes.begin(), near->nodes.end(), out.nodes[k]);
+      if (at == near->nodes.end() || *at != out.nodes[k]) continue;
+      out.held[k] = 1;
+      m.mass[k] = near->model.mass[std::size_t(at - near->nodes.begin())];
+    }
+    for (std::size_t c = 0; c < 3; ++c)
+      for (const std::uint32_t i : near->model.fixed_nodes[c])
+        if (std::binary_search(out.nodes.begin(), out.nodes.end(), near->nodes[i]))
+          m.fixed_nodes[c].push_back(index(near->nodes[i]));
+  }
   m.inverse_mass.resize(m.mass.size());
   for (std::size_t i = 0; i < m.mass.size(); ++i) m.inverse_mass[i] = 1.0 / m.mass[i];
-  m.fixed_nodes = fixed_of(deck, deck_parts, nodes);
-  return m;
+  return out;
 }
 
 // The whole block's groups of equal Jacobians of a 20-node part (ElementBlock::
@@ -953,13 +991,10 @@ std::vector<std::array<double, 60>> whole_block_groups(const SetupPart& part, st
 
 // Each rank's piece of each scattered part (PartPiece), sent by rank 0, which holds the
 // part whole, for the chunks' ranks of `chunks`. Collective over comm.
-void scatter_pieces(const input::Deck& deck, SetupParts& deck_parts, const Chunks& chunks,
-                    const mpi::Communicator& comm) {
+void scatter_pieces(SetupParts& deck_parts, const Chunks& chunks, const mpi::Communicator& comm) {
   if (std::none_of(deck_parts.list.begin(), deck_parts.list.end(),
                    [](const SetupPart& p) { return p.scattered; }))
     return;
-  const std::vector<std::uint32_t> surface =
-      surface_nodes_of(deck, deck_parts);  // every rank needs their elements
   for (SetupPart& part : deck_parts.list) {
     if (!part.scattered) continue;
     if (!comm.root()) {
@@ -982,10 +1017,6 @@ void scatter_pieces(const input::Deck& deck, SetupParts& deck_parts, const Chunk
     }
     const mesh::Mesh& whole = *part.built;
     const auto width = std::size_t(part.nodes_per_element);
-    std::vector<std::uint32_t> on_faces;  // the part's contact-face nodes, part-local
-    for (const std::uint32_t g : surface)
-      if (g >= part.first_node && g < part.first_node + part.node_count)
-        on_faces.push_back(g - part.first_node);
     for (int r = 1; r < comm.size; ++r) {
       PartPiece piece;
       std::vector<std::uint32_t> own;
@@ -994,7 +1025,6 @@ void scatter_pieces(const input::Deck& deck, SetupParts& deck_parts, const Chunk
           for (auto e = std::uint32_t(c * chunk_size);
                e < std::min<std::size_t>((c + 1) * chunk_size, part.element_count); ++e)
             own.push_back(e);
-      piece.around_nodes = on_faces;
       for (const std::uint32_t e : own)
         piece.around_nodes.insert(piece.around_nodes.end(),
                                   whole.connectivity.begin() + std::ptrdiff_t(width * e),
@@ -1226,13 +1256,18 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
       },
       std::move(elements), d.global_element);
 
-  // The contact faces: their model, and the ranks holding each of their nodes.
-  setup.surface_nodes = surface_nodes_of(deck, deck_parts);
-  setup.surfaces = surface_model(deck, deck_parts, setup.surface_nodes);
-  run.contact_holders.resize(setup.surface_nodes.size());
+  // The contact faces near this rank: their model, and the ranks holding each of
+  // their nodes held here.
+  const NearRank near{d.global_node, m};
+  SurfaceModel surfaces = surface_model(deck, deck_parts, &near);
+  setup.surface_nodes = std::move(surfaces.nodes);
+  setup.surfaces = std::move(surfaces.model);
+  setup.surface_held = std::move(surfaces.held);
   for (std::size_t k = 0; k < setup.surface_nodes.size(); ++k) {
+    if (setup.surface_held[k] == 0) continue;
     const std::uint32_t g = setup.surface_nodes[k];
-    std::vector<int>& holders = run.contact_holders[k];
+    setup.contact_nodes.push_back(g);
+    std::vector<int>& holders = run.contact_holders.emplace_back();
     for (const std::size_t c : chunks_at(deck_parts.part_of_node(g), g)) holders.push_back(chunks.rank[c]);
     std::sort(holders.begin(), holders.end());
     holders.erase(std::unique(holders.begin(), holders.end()), holders.end());
@@ -1243,7 +1278,8 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
 // Each chunk's seconds a step (chunk_costs' figures) from a first setup of the parts:
 // its elements at their block's cost per element, timed on the ranks' parts (the least
 // over the ranks holding one), and the slave points of its nodes at their pass's cost
-// per point, timed by rank 0 on the contact faces' model. Collective over comm.
+// per point, timed on the contact faces near each rank (the least over the ranks with
+// points). Collective over comm.
 std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communicator& comm,
                                    const SetupParts& deck_parts, const Chunks& chunks,
                                    const RankSetup& trial) {
@@ -1258,25 +1294,49 @@ std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communica
   mpi::check(
       MPI_Allreduce(MPI_IN_PLACE, part_cost.data(), int(part_cost.size()), MPI_DOUBLE, MPI_MIN, comm.comm),
       "MPI_Allreduce of the element costs");
-  const ContactModel contact = build_contact(deck, trial.surfaces, dt, trial.critical_dt);  // faces' ids
-  std::size_t passes = contact.walls.size();
-  for (const ContactPair& pair : contact.pairs) passes += pair.passes.size();
-  std::vector<double> pass_cost(passes, 0.0);
-  if (comm.root())
-    pass_cost = contact_costs(trial.surfaces, contact,
-                              initial_velocities(deck_parts, trial.surface_nodes, trial.surfaces));
-  if (passes > 0)
-    mpi::check(MPI_Bcast(pass_cost.data(), int(passes), MPI_DOUBLE, 0, comm.comm), "MPI_Bcast of the costs");
+  const ContactModel contact =
+      build_contact(deck, trial.surfaces, dt, trial.critical_dt, contact_scope(trial, comm));  // faces' ids
+  std::vector<double> pass_cost = contact_costs(
+      trial.surfaces, contact, initial_velocities(deck_parts, trial.surface_nodes, trial.surfaces));
+  {
+    std::size_t k = 0;  // a rank without points of a pass has no figure for it
+    for (const ContactPair& pair : contact.pairs)
+      for (const contact::ContactSurfaces& pass : pair.passes)
+        if (pass.point_count() == 0)
+          pass_cost[k++] = std::numeric_limits<double>::infinity();
+        else
+          ++k;
+    for (const RigidWall& wall : contact.walls)
+      if (wall.surfaces.point_count() == 0)
+        pass_cost[k++] = std::numeric_limits<double>::infinity();
+      else
+        ++k;
+  }
+  if (!pass_cost.empty())
+    mpi::check(
+        MPI_Allreduce(MPI_IN_PLACE, pass_cost.data(), int(pass_cost.size()), MPI_DOUBLE, MPI_MIN, comm.comm),
+        "MPI_Allreduce of the contact costs");
+  for (double& c : pass_cost)
+    if (std::isinf(c)) c = 0.0;
 
-  std::vector<double> cost(chunks.weight.size());
-  for (std::size_t c = 0; c < cost.size(); ++c) cost[c] = part_cost[chunks.block_of[c]] * chunks.weight[c];
+  // Each point counted by one rank: the rank of the first chunk holding its node, into
+  // that chunk (the last slot takes the points counted elsewhere).
+  std::vector<double> points(chunks.weight.size() + 1, 0.0);
   add_point_costs(
       contact, pass_cost,
-      [&](std::uint32_t face_node) {  // the first chunk holding the node
+      [&](std::uint32_t face_node) {
+        if (trial.surface_held[face_node] == 0) return chunks.weight.size();
         const std::uint32_t g = trial.surface_nodes[face_node];
-        return chunks_at(deck_parts.part_of_node(g), g).front();
+        const std::size_t c = chunks_at(deck_parts.part_of_node(g), g).front();
+        return chunks.rank[c] == comm.rank ? c : chunks.weight.size();
       },
-      cost);
+      points);
+  mpi::check(
+      MPI_Allreduce(MPI_IN_PLACE, points.data(), int(chunks.weight.size()), MPI_DOUBLE, MPI_SUM, comm.comm),
+      "MPI_Allreduce of the contact costs of the chunks");
+  std::vector<double> cost(chunks.weight.size());
+  for (std::size_t c = 0; c < cost.size(); ++c)
+    cost[c] = part_cost[chunks.block_of[c]] * chunks.weight[c] + points[c];
   return cost;
 }
 
@@ -1305,14 +1365,14 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Pa
   Chunks chunks = walk_chunks(deck_parts, &comm);
   chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning, &comm);
   if (weigh_by_work) {  // a first setup by elements, timed, then the chunks weighed by their costs
-    scatter_pieces(deck, deck_parts, chunks, comm);
+    scatter_pieces(deck_parts, chunks, comm);
     const std::vector<double> costs = measured_costs(
         deck, comm, deck_parts, chunks, build_part(deck, comm, deck_parts, chunks, partitioning));
     weigh_by_costs(chunks.weight, costs);
     chunks.rank = partition_parts(deck_parts, chunks, comm.size, partitioning, &comm);
   }
   chunks.centroid = {};
-  scatter_pieces(deck, deck_parts, chunks, comm);
+  scatter_pieces(deck_parts, chunks, comm);
   RankSetup setup = build_part(deck, comm, deck_parts, chunks, partitioning);
   setup.run.decomposition.weighed_by_work = weigh_by_work;
   return setup;
@@ -1329,10 +1389,30 @@ std::vector<double> setup_masses(const input::Deck& deck, const std::vector<std:
 }
 
 std::pair<std::vector<std::uint32_t>, Model> contact_faces_model(const input::Deck& deck) {
-  const SetupParts deck_parts(deck);
-  std::vector<std::uint32_t> nodes = surface_nodes_of(deck, deck_parts);
-  Model model = surface_model(deck, deck_parts, nodes);
-  return {std::move(nodes), std::move(model)};
+  SurfaceModel whole = surface_model(deck, SetupParts(deck), nullptr);
+  return {std::move(whole.nodes), std::move(whole.model)};
+}
+
+RankSetup contact_faces_near(const input::Deck& deck, const std::vector<std::uint32_t>& nodes,
+                             const Model& model) {
+  const NearRank near{nodes, model};
+  SurfaceModel surfaces = surface_model(deck, SetupParts(deck), &near);
+  RankSetup setup;
+  setup.surface_nodes = std::move(surfaces.nodes);
+  setup.surfaces = std::move(surfaces.model);
+  setup.surface_held = std::move(surfaces.held);
+  return setup;
+}
+
+ContactScope contact_scope(const RankSetup& setup, const mpi::Communicator& comm) {
+  ContactScope scope;
+  scope.held = &setup.surface_held;
+  scope.largest = [comm](double figure) {
+    mpi::check(MPI_Allreduce(MPI_IN_PLACE, &figure, 1, MPI_DOUBLE, MPI_MAX, comm.comm),
+               "MPI_Allreduce of a contact figure");
+    return figure;
+  };
+  return scope;
 }
 
 void globalize_contact(ContactModel& contact, const std::vector<std::uint32_t>& surface_nodes) {

@@ -10,13 +10,18 @@
 // chunks' figures, the part's faces and its piece of the part. Then each rank builds
 // only its own elements and their nodes, and from the elements around its nodes (a
 // halo of one element, never kept) their lumped masses, adding each node's element
-// shares in one process's order. The contact surfaces are built from the contact
-// faces alone. A block takes the whole block's layout (parallelepipeds or not) and a
-// 20-node block its groups of equal Jacobians, gathered with their points from the
-// ranks' group starts (element::WholeBlock). No rank holds more than its part, one
-// layer of a box's lattice (of a cylinder's or ball's blocks, with their sides), one
-// figure per chunk and the contact faces, rank 0 also an imported part while it sets
-// up: the same bits as one process.
+// shares in one process's order. Each rank builds its contact from the contact faces
+// near it alone: of each face the segments with a node it holds (a box's made one at a
+// time from its lattice), with a halo of the other ranks' nodes of those segments, so
+// that every sum over a held node's segments is whole and in one process's order; the
+// figures of a whole surface (the largest inverse master mass, the stability bound of
+// a fixed stiffness) are the largest over the ranks (ContactScope). A block takes the
+// whole block's layout (parallelepipeds or not) and a 20-node block its groups of
+// equal Jacobians, gathered with their points from the ranks' group starts
+// (element::WholeBlock). No rank holds more than its part, one layer of a box's lattice
+// (of a cylinder's or ball's blocks, with their sides and faces), one figure per chunk
+// and an imported part's faces (rank 0 the part while it sets up): the same bits as
+// one process.
 #pragma once
 
 #include <cstdint>
@@ -36,12 +41,21 @@ struct RankSetup {
   LocalRun run;                         // this rank's model, velocities, decomposition, contact holders
   double critical_dt = 0.0;             // the whole model's stable step without the Courant factor, s
   std::size_t nodes = 0, elements = 0;  // of the whole model
-  // The contact faces' nodes (global ids, ascending) and a model of them alone (its
-  // node k is surface_nodes[k]: coordinates, masses, fixed components, the faces of its
-  // parts) for build_contact; globalize_contact renumbers what that builds.
+  // The contact faces near this rank (ContactScope): their nodes (global ids,
+  // ascending), a model of them alone (its node k is surface_nodes[k]: coordinates,
+  // masses, fixed components, the cut faces of its parts) for build_contact, and whether
+  // this rank holds each node; globalize_contact renumbers what build_contact builds.
   std::vector<std::uint32_t> surface_nodes;
   Model surfaces;
+  std::vector<std::uint8_t> surface_held;
+  // The contact-face nodes this rank holds (global ids, ascending), the ranks holding
+  // each in run.contact_holders (distribute_contact).
+  std::vector<std::uint32_t> contact_nodes;
 };
+
+// The scope of build_contact on RankSetup::surfaces: the held nodes, and the largest
+// of a figure over comm's ranks (MPI_Allreduce; collective).
+ContactScope contact_scope(const RankSetup& setup, const mpi::Communicator& comm);
 
 // Every rank calls it (collective over comm).
 // weigh_by_work: the chunks weighed by their measured work (load_balance.hpp), timed
@@ -52,13 +66,17 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Pa
 // The pieces of set_up_rank that need no other rank, for the tests that hold them to
 // the whole model's (tests/solver/test_decomposition.cpp): each chunk's colour in its
 // block and its rank of `ranks` (blocks one after the other); the lumped masses of
-// `nodes` (global ids, ascending); the contact faces' nodes and model.
+// `nodes` (global ids, ascending); the contact faces' nodes and model, whole, or near
+// the rank whose nodes (global ids, ascending) and model are given (RankSetup::
+// surface_nodes, surfaces and surface_held).
 struct SetupChunks {
   std::vector<int> colour, rank;
 };
 SetupChunks setup_chunks(const input::Deck& deck, int ranks, Partitioning partitioning);
 std::vector<double> setup_masses(const input::Deck& deck, const std::vector<std::uint32_t>& nodes);
 std::pair<std::vector<std::uint32_t>, Model> contact_faces_model(const input::Deck& deck);
+RankSetup contact_faces_near(const input::Deck& deck, const std::vector<std::uint32_t>& nodes,
+                             const Model& model);
 
 // A contact model built on RankSetup::surfaces, renumbered to global node ids (the
 // renumbering keeps the order, so sorted lists stay sorted).

@@ -117,9 +117,9 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
     RankSetup setup = set_up_rank(deck, comm, controls.partitioning, controls.weigh_by_work);
     critical_dt_ = setup.critical_dt;
     clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, setup.run.model, &comm);
-    contact_ = build_contact(deck, setup.surfaces, clock_->next(), critical_dt_);
+    contact_ = build_contact(deck, setup.surfaces, clock_->next(), critical_dt_, contact_scope(setup, comm));
     globalize_contact(contact_, setup.surface_nodes);
-    contact_nodes = std::move(setup.surface_nodes);
+    contact_nodes = std::move(setup.contact_nodes);
     local_ = std::move(setup.run);
     summary.nodes = static_cast<long>(setup.nodes);
     summary.elements = static_cast<long>(setup.elements);

@@ -204,16 +204,19 @@ TEST(DistributeContact, EveryPointAndSegmentBelongsToOneRankThatHoldsItsNodes) {
     for (int ranks : {2, 3, 5}) {
       if (std::size_t(ranks) > chunks) continue;
       const std::vector<solver::LocalRun> runs = parts_of(model, deck, ranks);
-      std::vector<std::vector<int>> points, segments;  // per pass, per whole-pass item: its ranks
+      // Per pass, per whole-pass item (by its key: a slave node's global id, a
+      // quadrature point's or a segment's index): the ranks that own it.
+      std::vector<std::map<std::uint32_t, int>> points, segments;
+      auto add_pass = [&](const contact::ContactSurfaces& pass) {
+        auto& keys = points.emplace_back();
+        for (std::size_t p = 0; p < pass.point_count(); ++p)
+          keys[pass.quadrature ? std::uint32_t(p) : pass.slave_nodes[p]] = 0;
+        auto& ids = segments.emplace_back();
+        for (std::size_t s = 0; s < pass.segments.size(); ++s) ids[std::uint32_t(s)] = 0;
+      };
       for (const auto& pair : whole.pairs)
-        for (const auto& pass : pair.passes) {
-          points.emplace_back(pass.point_count(), 0);
-          segments.emplace_back(pass.segments.size(), 0);
-        }
-      for (const auto& wall : whole.walls) {
-        points.emplace_back(wall.surfaces.point_count(), 0);
-        segments.emplace_back();
-      }
+        for (const auto& pass : pair.passes) add_pass(pass);
+      for (const auto& wall : whole.walls) add_pass(wall.surfaces);
       for (int r = 0; r < ranks; ++r) {
         const solver::LocalRun& run = runs[std::size_t(r)];
         solver::ContactModel mine = whole;
@@ -225,8 +228,8 @@ TEST(DistributeContact, EveryPointAndSegmentBelongsToOneRankThatHoldsItsNodes) {
         ASSERT_EQ(dc.passes.size(), points.size());
         for (std::size_t k = 0; k < dc.passes.size(); ++k) {
           const solver::PassShare& share = dc.passes[k];
-          for (const std::uint32_t p : share.point_keys) ++points[k][p];
-          for (const std::uint32_t s : share.segment_ids) ++segments[k][s];
+          for (const std::uint32_t p : share.point_keys) ++points[k].at(p);
+          for (const std::uint32_t s : share.segment_ids) ++segments[k].at(s);
           for (const std::uint32_t g : share.store.global)  // the own points' and segments' nodes
             EXPECT_TRUE(std::binary_search(run.decomposition.global_node.begin(),
                                            run.decomposition.global_node.end(), g))
@@ -234,9 +237,9 @@ TEST(DistributeContact, EveryPointAndSegmentBelongsToOneRankThatHoldsItsNodes) {
         }
       }
       for (const auto& pass : points)
-        for (const int n : pass) ASSERT_EQ(n, 1) << file << ", " << ranks << " ranks";
+        for (const auto& [key, n] : pass) ASSERT_EQ(n, 1) << file << ", " << ranks << " ranks";
       for (const auto& pass : segments)
-        for (const int n : pass) ASSERT_EQ(n, 1) << file << ", " << ranks << " ranks";
+        for (const auto& [id, n] : pass) ASSERT_EQ(n, 1) << file << ", " << ranks << " ranks";
     }
   }
 }
@@ -424,6 +427,93 @@ TEST(RankSetup, ContactFromTheFacesIsTheWholeModels) {
     ASSERT_EQ(built.walls.size(), whole.walls.size());
     for (std::size_t w = 0; w < whole.walls.size(); ++w)
       same(built.walls[w].surfaces, whole.walls[w].surfaces);
+  }
+}
+
+// Each rank's contact built on the faces near it alone (RankSetup::surfaces, ContactScope),
+// its largest figures over the ranks, is its share of the whole model's, bit for bit:
+// the same slave points with the same keys, stiffnesses and normal lengths, the same
+// segments with the same ids and edges. The ranks' largest figures are taken in two
+// rounds: each rank's asked figures, then the largest of each over the ranks.
+TEST(RankSetup, ContactNearEachRankIsItsShareOfTheWholeModels) {
+  std::vector<input::Deck> decks = setup_decks();
+  for (const char* file : {"contact_patch_hex20.yaml", "tube_impact.yaml"}) decks.push_back(deck_of(file));
+  for (const input::Deck& deck : decks) {
+    if (deck.contact.empty() && deck.rigid_walls.empty()) continue;
+    const solver::Model model = solver::build_model(deck);
+    const std::vector<std::uint32_t> contact = solver::contact_face_nodes(deck, model.mesh);
+    const double dt = solver::critical_time_step(model);
+    const solver::ContactModel whole = solver::build_contact(deck, model, 0.1 * dt, dt);
+    std::size_t chunks = 0;
+    for (const auto& block : model.blocks) chunks += block.chunk_begin.size() - 1;
+    for (int ranks : {2, 3}) {
+      if (std::size_t(ranks) > chunks) continue;
+      const std::vector<solver::LocalRun> runs = parts_of(model, deck, ranks);
+      std::vector<solver::RankSetup> near;
+      std::vector<std::vector<double>> asked(runs.size());
+      for (std::size_t r = 0; r < runs.size(); ++r) {
+        near.push_back(solver::contact_faces_near(deck, runs[r].decomposition.global_node, runs[r].model));
+        solver::ContactScope scope{&near.back().surface_held, [&](double figure) {
+                                     asked[r].push_back(figure);
+                                     return figure;
+                                   }};
+        (void)solver::build_contact(deck, near.back().surfaces, 0.1 * dt, dt, scope);
+      }
+      std::vector<double> largest(asked[0].size(), 0.0);
+      for (const auto& figures : asked) {
+        ASSERT_EQ(figures.size(), largest.size()) << deck.name;  // every rank asks as often
+        for (std::size_t k = 0; k < figures.size(); ++k) largest[k] = std::max(largest[k], figures[k]);
+      }
+      for (int r = 0; r < ranks; ++r) {
+        const solver::LocalRun& run = runs[std::size_t(r)];
+        std::size_t asked_at = 0;
+        solver::ContactScope scope{&near[std::size_t(r)].surface_held,
+                                   [&](double) { return largest.at(asked_at++); }};
+        solver::ContactModel built =
+            solver::build_contact(deck, near[std::size_t(r)].surfaces, 0.1 * dt, dt, scope);
+        solver::globalize_contact(built, near[std::size_t(r)].surface_nodes);
+        solver::ContactModel share_of_whole = whole;
+        mpi::Communicator comm;
+        comm.rank = r;
+        comm.size = ranks;
+        const solver::DistributedContact mine = solver::distribute_contact(
+            built, comm, run.decomposition.global_node, run.model, contact, run.contact_holders);
+        const solver::DistributedContact expected = solver::distribute_contact(
+            share_of_whole, comm, run.decomposition.global_node, run.model, contact, run.contact_holders);
+        ASSERT_EQ(mine.passes.size(), expected.passes.size());
+        for (std::size_t k = 0; k < mine.passes.size(); ++k) {
+          const solver::PassShare& a = mine.passes[k];
+          const solver::PassShare& b = expected.passes[k];
+          const std::string where =
+              deck.name + ", rank " + std::to_string(r) + " of " + std::to_string(ranks);
+          EXPECT_EQ(a.point_keys, b.point_keys) << where;
+          EXPECT_EQ(a.segment_ids, b.segment_ids) << where;
+          EXPECT_EQ(a.own.slave_nodes, b.own.slave_nodes) << where;
+          EXPECT_EQ(a.own.moving_nodes, b.own.moving_nodes) << where;
+          EXPECT_EQ(a.own.stiffness, b.own.stiffness) << where;
+          EXPECT_EQ(a.own.normal_length, b.own.normal_length) << where;
+          EXPECT_EQ(a.store.global, b.store.global) << where;
+          EXPECT_EQ(a.store.mass, b.store.mass) << where;
+          auto ids = [](const std::vector<contact::SegmentNodes>& list) {
+            std::vector<std::array<std::uint32_t, 8>> out;
+            for (const auto& s : list) out.push_back(s.nodes);
+            return out;
+          };
+          EXPECT_EQ(ids(a.own.slave_segments), ids(b.own.slave_segments)) << where;
+          EXPECT_EQ(ids(a.own.segments), ids(b.own.segments)) << where;
+          ASSERT_EQ(a.own.quadrature_points.size(), b.own.quadrature_points.size()) << where;
+          for (std::size_t p = 0; p < a.own.quadrature_points.size(); ++p) {
+            EXPECT_EQ(a.own.quadrature_points[p].segment, b.own.quadrature_points[p].segment) << where;
+            EXPECT_EQ(a.own.quadrature_points[p].weight, b.own.quadrature_points[p].weight) << where;
+          }
+          ASSERT_EQ(a.own.edges.size(), b.own.edges.size()) << where;
+          for (std::size_t e = 0; e < a.own.edges.size(); ++e) {
+            EXPECT_EQ(a.own.edges[e].continued, b.own.edges[e].continued) << where;
+            EXPECT_EQ(a.own.edges[e].mirror_axis, b.own.edges[e].mirror_axis) << where;
+          }
+        }
+      }
+    }
   }
 }
 
