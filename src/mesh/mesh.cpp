@@ -183,7 +183,7 @@ void check_physical_faces(const input::Deck& deck,
       const input::FaceRef& f = faces[i];
       if (f.side != input::PartFace::physical) continue;
       const PartRange& part = part_of(static_cast<std::size_t>(f.part));
-      if (!part.physical_faces[static_cast<std::size_t>(f.surface)].segments.empty()) continue;
+      if (part.physical_faces[static_cast<std::size_t>(f.surface)].whole_count() > 0) continue;
       const input::PartOptions& options = deck.parts[static_cast<std::size_t>(f.part)];
       throw InputError(SourceLocation{deck.source_file, 0, 0}, path + "[" + std::to_string(i) + "]",
                        "the face '" + input::face_name(deck, f) + "': the physical surface '" +

@@ -444,12 +444,14 @@ struct SetupParts {
       build_whole(deck, part, read);
     } else {
       on_rank_0(*comm, [&] { build_whole(deck, part, read); });
-      Packer out;
-      if (comm->root()) pack_range(part.built->parts[0], out);
+      Packer out;  // the faces cut to none: their counts (each rank's come with its piece)
+      if (comm->root()) pack_range(part.built->parts[0], out, [](const mesh::FaceSegment&) { return false; });
       broadcast_bytes(*comm, out.bytes);
       if (!comm->root()) {
         auto figures = std::make_unique<mesh::Mesh>();
-        figures->parts.push_back(unpack_range(out.bytes));
+        Unpacker in{out.bytes};
+        figures->parts.push_back(unpack_range(in));
+        EXDYN_ASSERT(in.at == out.bytes.size());
         part.built = std::move(figures);
       }
     }
@@ -479,20 +481,25 @@ struct SetupParts {
     // parts have none), so each list holds each element once.
     part.built = std::move(built);
   }
-  // A part's figures and faces (no lattice, nodes or elements) as bytes, and back.
+  // A part's figures and faces (no lattice, nodes or elements; each face cut to the
+  // segments `keep` keeps) as bytes, and back.
   static void pack_face(const mesh::Face& face, Packer& out) {
     out.put(face.nodes);
     out.put(face.segments);
     out.put_value(face.normal_length);
+    out.put(face.segment_index);
+    out.put_value(std::uint64_t(face.whole_segments));
   }
   static mesh::Face unpack_face(Unpacker& in) {
     mesh::Face face;
     in.get(face.nodes);
     in.get(face.segments);
     face.normal_length = in.value<double>();
+    in.get(face.segment_index);
+    face.whole_segments = in.value<std::uint64_t>();
     return face;
   }
-  static void pack_range(const mesh::PartRange& range, Packer& out) {
+  static void pack_range(const mesh::PartRange& range, Packer& out, const mesh::KeepSegment& keep) {
     out.put_value(range.order);
     out.put_value(range.nodes_per_element);
     out.put_value(range.node_count);
@@ -501,13 +508,12 @@ struct SetupParts {
     out.put_value(std::uint64_t(range.faces.size()));
     for (const auto& [name, face] : range.faces) {
       out.put_value(int(name));
-      pack_face(face, out);
+      pack_face(mesh::cut_face(face, keep), out);
     }
     out.put_value(std::uint64_t(range.physical_faces.size()));
-    for (const mesh::Face& face : range.physical_faces) pack_face(face, out);
+    for (const mesh::Face& face : range.physical_faces) pack_face(mesh::cut_face(face, keep), out);
   }
-  static mesh::PartRange unpack_range(const std::vector<char>& bytes) {
-    Unpacker in{bytes};
+  static mesh::PartRange unpack_range(Unpacker& in) {
     mesh::PartRange range;
     range.order = in.value<int>();
     range.nodes_per_element = in.value<int>();
@@ -522,7 +528,6 @@ struct SetupParts {
     }
     for (auto faces = in.value<std::uint64_t>(); faces > 0; --faces)
       range.physical_faces.push_back(unpack_face(in));
-    EXDYN_ASSERT(in.at == bytes.size());
     return range;
   }
   const SetupPart& part_of_node(std::uint32_t g) const {
@@ -825,15 +830,25 @@ NodalVectors initial_velocities(const SetupParts& deck_parts, const std::vector<
   return v;
 }
 
+// Keeps the face segments with a node among `nodes` (global ids, ascending).
+mesh::KeepSegment touching(const std::vector<std::uint32_t>& nodes) {
+  return [&nodes](const mesh::FaceSegment& segment) {
+    for (int k = 0; k < segment.node_count; ++k)
+      if (std::binary_search(nodes.begin(), nodes.end(), segment.nodes[std::size_t(k)])) return true;
+    return false;
+  };
+}
+
 // The fixed components of each of `nodes` (global ids, ascending): the indices into
 // `nodes` of those on a face of a boundary condition fixing component c (build_model's
-// rule: every node of the face, mid-side nodes included).
+// rule: every node of the face, mid-side nodes included), from the faces' segments
+// touching `nodes`.
 std::array<std::vector<std::uint32_t>, 3> fixed_of(const input::Deck& deck, const SetupParts& deck_parts,
                                                    const std::vector<std::uint32_t>& nodes) {
   std::array<std::vector<std::uint32_t>, 3> held;  // global ids, per component
   for (const auto& bc : deck.boundary_conditions)
     for (const input::FaceRef& f : bc.faces) {
-      const mesh::Face face = deck_parts.list.at(std::size_t(f.part)).face(f);
+      const mesh::Face face = deck_parts.list.at(std::size_t(f.part)).face(f, touching(nodes));
       for (std::size_t c = 0; c < 3; ++c)
         if (bc.fix[c]) held[c].insert(held[c].end(), face.nodes.begin(), face.nodes.end());
     }
@@ -872,13 +887,7 @@ SurfaceModel surface_model(const input::Deck& deck, const SetupParts& deck_parts
   for (const input::RigidWallOptions& wall : deck.rigid_walls)
     faces.insert(faces.end(), wall.slave.begin(), wall.slave.end());
   mesh::KeepSegment keep;
-  if (near)
-    keep = [&](const mesh::FaceSegment& segment) {
-      for (int k = 0; k < segment.node_count; ++k)
-        if (std::binary_search(near->nodes.begin(), near->nodes.end(), segment.nodes[std::size_t(k)]))
-          return true;
-      return false;
-    };
+  if (near) keep = touching(near->nodes);
   for (const SetupPart& part : deck_parts.list) {
     // The part's faces as a mapped or imported part has them (face_of finds them by
     // name or by physical surface), first in global ids.
@@ -1011,6 +1020,9 @@ void scatter_pieces(SetupParts& deck_parts, const Chunks& chunks, const mpi::Com
       in.get(piece->around);
       piece->first_row = in.value<std::uint32_t>();
       in.get(piece->row_owner);
+      auto figures = std::make_unique<mesh::Mesh>();
+      figures->parts.push_back(SetupParts::unpack_range(in));
+      part.built = std::move(figures);
       EXDYN_ASSERT(in.at == bytes.size());
       part.piece = std::move(piece);
       continue;
@@ -1070,6 +1082,8 @@ void scatter_pieces(SetupParts& deck_parts, const Chunks& chunks, const mpi::Com
       out.put(piece.around);
       out.put_value(piece.first_row);
       out.put(piece.row_owner);
+      // The part's faces cut to the segments with a node of rank r's elements.
+      SetupParts::pack_range(whole.parts[0], out, touching(piece.around_nodes));
       send_bytes(comm, r, out.bytes);
     }
   }
