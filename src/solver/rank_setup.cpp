@@ -137,8 +137,8 @@ void on_rank_0(const mpi::Communicator& comm, const std::function<void()>& work)
 //    (mesh::build_part_mesh: its node k is first_node + k) with the elements at each
 //    node, held while the setup runs; or
 //  - scattered (an imported part on many ranks): rank 0 makes it whole, every other
-//    rank holds the part's figures and faces (`built` without nodes or elements) and
-//    its piece of it (`piece`).
+//    rank holds the part's figures and its faces cut to the segments of its elements
+//    (`built` without nodes or elements) and its piece of it (`piece`).
 // What a rank other than 0 holds of a scattered part, in part-local ids, ascending:
 // the elements it needs (its own and those around their nodes: a face segment with a
 // node held here is a face of one of them), their nodes' coordinates, the elements

@@ -188,6 +188,48 @@ double smallest_relative_jacobian(const exdyn::input::Deck& deck, const exdyn::m
   return smallest;
 }
 
+// A box face made one segment at a time with `keep` (lattice_face, a rank's contact
+// faces) is the whole face cut afterwards (cut_face): the same segments, their indices
+// in the whole face, its segment count and the nodes of the kept segments; a face cut
+// twice keeps its indices in the whole face.
+TEST(Mesh, AFaceMadeCutIsTheWholeFaceCut) {
+  for (const int order : {1, 2}) {
+    const std::array<int, 3> n{3, 4, 5};
+    const std::array<double, 6> lengths{1, 2, 3, 4, 5, 6};
+    auto node_at = [&](int i, int j, int k) {
+      return (i % order) + (j % order) + (k % order) > 1
+                 ? exdyn::mesh::no_node
+                 : std::uint32_t(i + 11 * (j + 11 * k));  // any distinct ids
+    };
+    auto keep = [](const exdyn::mesh::FaceSegment& s) { return s.nodes[0] % 3 == 1 || s.nodes[2] % 7 == 0; };
+    auto keep_fewer = [](const exdyn::mesh::FaceSegment& s) { return s.nodes[1] % 2 == 0; };
+    for (const PartFace side :
+         {PartFace::xmin, PartFace::xmax, PartFace::ymin, PartFace::ymax, PartFace::zmin, PartFace::zmax}) {
+      const exdyn::mesh::Face whole = exdyn::mesh::lattice_face(n, order, side, lengths, node_at);
+      const exdyn::mesh::Face made = exdyn::mesh::lattice_face(n, order, side, lengths, node_at, keep);
+      const exdyn::mesh::Face cut = exdyn::mesh::cut_face(whole, keep);
+      EXPECT_FALSE(whole.cut());
+      ASSERT_TRUE(made.cut());
+      EXPECT_EQ(made.whole_count(), whole.segments.size());
+      EXPECT_EQ(cut.whole_count(), whole.segments.size());
+      EXPECT_GT(made.segments.size(), 0u);
+      EXPECT_LT(made.segments.size(), whole.segments.size());
+      ASSERT_EQ(made.segments.size(), cut.segments.size());
+      for (std::size_t k = 0; k < made.segments.size(); ++k) {
+        EXPECT_EQ(made.segments[k].nodes, cut.segments[k].nodes);
+        EXPECT_EQ(made.segments[k].nodes, whole.segments[made.index_in_whole(k)].nodes);
+      }
+      EXPECT_EQ(made.segment_index, cut.segment_index);
+      EXPECT_EQ(made.nodes, cut.nodes);
+      EXPECT_EQ(made.normal_length, whole.normal_length);
+      const exdyn::mesh::Face twice = exdyn::mesh::cut_face(made, keep_fewer);
+      EXPECT_EQ(twice.whole_count(), whole.segments.size());
+      for (std::size_t k = 0; k < twice.segments.size(); ++k)
+        EXPECT_EQ(twice.segments[k].nodes, whole.segments[twice.index_in_whole(k)].nodes);
+    }
+  }
+}
+
 TEST(PerturbedMesh, FractionZeroIsTheRegularGridWhateverTheSeed) {
   const auto deck = perturbed_deck(0.0, 0.0, 1);
   const auto a = exdyn::mesh::build_mesh(deck), b = exdyn::mesh::build_mesh(perturbed_deck(0.0, 0.0, 7));
