@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Two equal cylinders in plane strain (issue 12): input/cylinders.yaml measured
+"""Two equal cylinders in plane strain: input/cylinders.yaml measured
 against Hertz line contact, the mirror symmetry of two passes, and spurious forces.
 
     /usr/bin/python3 scripts/cylinders_study.py [--exdyn PATH] [--out DIR]

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The Hertz impact study (issue 12): input/hertz_ball.yaml over three meshes, 8- and
+"""The Hertz impact study: input/hertz_ball.yaml over three meshes, 8- and
 20-node bricks, slave nodes and slave quadrature points, against Hertz theory.
 
     /usr/bin/python3 scripts/hertz_study.py [--jobs 2] [--levels coarse,medium,fine]

@@ -1,4 +1,4 @@
-"""Accuracy measures of a plate impact result (issue 5), against the exact values of
+"""Accuracy measures of a plate impact result, against the exact values of
 ../shared/reference/plate-impact.md. Importable; docs/results.md defines each measure.
 
 A result is read from NAME.h5 (the last written step). Each plate is a structured

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Test of scripts/batch_plate_impact.py on a small grid (issue 5): meshes 10 and 20 per
+"""Test of scripts/batch_plate_impact.py on a small grid: meshes 10 and 20 per
 plate side, two local search methods, hex8; seconds.
 
     /usr/bin/python3 scripts/test_batch_plate_impact.py --exdyn PATH [--keep DIR]

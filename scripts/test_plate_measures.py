@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Test of scripts/plate_measures.py on synthetic plate impact results with known errors
-(issue 5). Builds, with h5py, a two-plate contact result and a one-plate reference result
+"""Test of scripts/plate_measures.py on synthetic plate impact results with known errors.
+Builds, with h5py, a two-plate contact result and a one-plate reference result
 in the layout of ../shared/spec/output.md, with a step profile along z = 0 whose plateau
 error, front shift, sigma_z error, mirror asymmetry and difference from the reference are
 chosen here, and checks that every measure returns them.

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Stability tests through the executable (issue 6, docs/stability.md): the run-time
+"""Stability tests through the executable (docs/stability.md): the run-time
 guards, interrupted runs, and results that survive SIGKILL.
 
     /usr/bin/python3 scripts/test_stability.py --exdyn PATH [--kills N] [--write-kills N] [--keep DIR]

@@ -1,4 +1,4 @@
-"""Pictures of a plate impact result with ParaView (issue 5). Needs X: run it through
+"""Pictures of a plate impact result with ParaView. Needs X: run it through
 ../shared/tools/paraview/run_pvpython.sh, which starts xvfb.
 
     run_pvpython.sh scripts/paraview/plate_pictures.py RESULT.xmf --out-dir DIR \

@@ -205,7 +205,7 @@ double patch_worst(const std::vector<exdyn::input::Override>& overrides, int upp
   return worst;
 }
 
-// Issue 11: with quadrature points every interface element within 1 % of rho c1 v0;
+// With quadrature points every interface element within 1 % of rho c1 v0;
 // the slave-node variant beside it, and matching faces for what non-matching costs.
 TEST(ContactPatchHex20, QuadraturePointsCarryThePlaneWaveAcrossNonMatchingFaces) {
   const double non_matching = patch_worst({}, 3);
