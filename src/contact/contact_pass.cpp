@@ -5,22 +5,11 @@
 #include <limits>
 
 #include "common/timer.hpp"
+#include "contact/mortar_pass.hpp"
 #include "contact/penalty.hpp"
 #include "contact/slave_points.hpp"
 
 namespace exdyn::contact {
-
-namespace {
-
-Segment current_segment(const SegmentNodes& ids, const NodalVectors& x_ref, const NodalVectors& u) {
-  Segment segment;
-  segment.type = ids.type;
-  for (int i = 0; i < node_count(ids.type); ++i)
-    segment.nodes[std::size_t(i)] = current_position(x_ref, u, ids.nodes[std::size_t(i)]);
-  return segment;
-}
-
-}  // namespace
 
 double largest_motion_since_build(const ContactSurfaces& surfaces, const ContactPassState& state,
                                   const NodalVectors& x_ref, const NodalVectors& u) {
@@ -157,6 +146,11 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
                       const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,
                       std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds,
                       RecordSink* records, bool search_when_moved) {
+  if (surfaces.mortar) {
+    run_mortar_pass(surfaces, settings, state, x_ref, u, v, mass, force, gap, statistics, seconds, records,
+                    search_when_moved);
+    return;
+  }
   const std::size_t n_points = surfaces.point_count();
   {
     ScopedTimer timer(seconds.global_search);
@@ -220,7 +214,10 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
           ++saddle_points;
           continue;
         }
-        if (r.stationary != StationaryKind::minimum || !r.inside) continue;
+        if (r.stationary != StationaryKind::minimum) continue;
+        if (!r.inside && !(surfaces.own_segment && std::abs(r.xi[0]) <= 1.0 + own_segment_reach &&
+                           std::abs(r.xi[1]) <= 1.0 + own_segment_reach))
+          continue;
         if (r.distance < best_distance) best_distance = r.distance, best = c;
       }
       auto& contact = state.contacts[p];
@@ -322,7 +319,12 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       state.pair_stiffness[p] = k;
       k /= settings.pass_count;
       const double slave_mass = surfaces.quadrature ? 1.0 / slave_inverse_mass : mass[slave.nodes[0]];
-      const double c = damping_coefficient(settings.damping_ratio, k, slave_mass, 1.0 / master_inverse_mass);
+      // A mortar point's dashpot: on the reduced mass per area of its segments times its
+      // weight, so that a uniform approach gives a uniform traction.
+      const double c =
+          surfaces.point_mass.empty()
+              ? damping_coefficient(settings.damping_ratio, k, slave_mass, 1.0 / master_inverse_mass)
+              : settings.damping_ratio * 2.0 * std::sqrt(k * surfaces.point_mass[p]);
       state.force_magnitude[p] = normal_force(k, c, contact.gap, normal_velocity);
       if (friction && !(state.force_magnitude[p] > 0.0)) state.anchors[p] = Anchor{};
       if (friction && state.force_magnitude[p] > 0.0) {

@@ -22,6 +22,7 @@
 #include "contact/edge_contact.hpp"
 #include "contact/friction.hpp"
 #include "contact/local_search.hpp"
+#include "contact/mortar.hpp"
 
 namespace exdyn::contact {
 
@@ -34,7 +35,10 @@ struct QuadraturePoint {
 
 // The geometry of a pass, fixed for the run (global node ids).
 struct ContactSurfaces {
-  bool quadrature = false;                         // the slave points: Gauss points (true) or nodes
+  bool quadrature = false;  // the slave points: Gauss points (true) or nodes
+  // Mortar (mortar_pass.hpp): the slave points are made each step, the points of the
+  // pieces where the slave segments overlap the master segments; `quadrature` is false.
+  bool mortar = false;
   std::vector<std::uint32_t> slave_nodes;          // every node of the slave faces, unique, sorted
   std::vector<SegmentNodes> slave_segments;        // the slave faces' segments (quadrature only)
   std::vector<QuadraturePoint> quadrature_points;  // quadrature only: the slave points
@@ -50,8 +54,25 @@ struct ContactSurfaces {
   std::vector<SegmentEdges> edges;
   std::vector<std::uint32_t> moving_nodes;  // slave and master nodes (for the rebuild test), unique
 
+  // Mortar: per slave segment its pressure per length kappa (Pa/m, capped as the
+  // quadrature points' are), its element length normal to the face (m) and the mean
+  // tributary area per mass of its nodes (m^2/kg); per master segment the same mean
+  // (the penalty of docs/contact.md, "Mortar"); the points of the rule on each triangle.
+  std::vector<double> segment_kappa, segment_length, slave_area_per_mass, master_area_per_mass;
+  int triangle_points = 3;
+
+  // The points of a mortar piece (a pass over this step's mortar points, mortar_pass.hpp):
+  // each point's one candidate is the master segment of its piece, and a converged
+  // minimum counts there even a little outside it (|xi_a| <= 1 + own_segment_reach),
+  // where the pieces' straight edges cut a curved master's; its dashpot acts on the
+  // reduced mass point_mass[p] (kg).
+  bool own_segment = false;
+  std::vector<double> point_mass;
+
   std::size_t point_count() const { return quadrature ? quadrature_points.size() : slave_nodes.size(); }
 };
+
+inline constexpr double own_segment_reach = 0.25;
 
 struct ContactPassSettings {
   ProjectFn project = nullptr;  // chosen once from the deck's method
@@ -78,6 +99,25 @@ struct ContactPassSettings {
   double margin = 0.0;           // extra capture: rebuild once a node has moved margin / 2, m
   double cell_size = 0.0;        // bucket cell edge, m (<= 0: automatic)
   FrictionLaw friction;          // not enabled: frictionless
+};
+
+// What a mortar pass keeps (mortar_pass.hpp): the (slave segment, master segment) pairs
+// of its global search and this step's points, run as the quadrature points of a view.
+struct MortarState {
+  std::vector<CandidatePair> pairs;      // point: the slave segment; sorted by slave segment, then master
+  std::vector<std::size_t> pair_begin;   // slave segment s's pairs: [pair_begin[s], pair_begin[s + 1])
+  NodalVectors centres;                  // each slave segment's y(0, 0), m
+  std::vector<std::size_t> point_begin;  // slave segment s's points: [point_begin[s], point_begin[s + 1])
+  ContactSurfaces view;                  // this step's points, as Gauss points of the slave segments
+  // Each point's piece (slave segment, master segment, its place among the pair's
+  // points): a point of the same piece at the next step takes its friction anchor.
+  struct Identity {
+    std::uint32_t slave = 0, master = 0, index = 0;
+    auto operator<=>(const Identity&) const = default;
+  };
+  std::vector<Identity> identity, previous_identity;
+  std::vector<Anchor> previous_anchors;
+  std::vector<std::uint64_t> point_keys;  // records (many processes): each point's key
 };
 
 // What the pass keeps from step to step.
@@ -117,6 +157,7 @@ struct ContactPassState {
     Vec3 normal{};
   };
   std::vector<Contact> contacts;
+  MortarState mortar;  // a mortar pass's (ContactSurfaces::mortar)
 };
 
 struct ContactStatistics {
@@ -132,6 +173,7 @@ struct ContactStatistics {
 };
 
 struct ContactPhaseSeconds {
+  double segmentation = 0.0;  // mortar: cutting the slave segments into pieces
   double global_search = 0.0;
   double local_search = 0.0;
   double forces = 0.0;
@@ -153,7 +195,7 @@ struct ForceRecord {
 
 struct RecordSink {
   std::uint64_t pass = 0;
-  const std::vector<std::uint32_t>* point_keys = nullptr;  // each slave point's index in the whole surface
+  const std::vector<std::uint64_t>* point_keys = nullptr;  // each slave point's index in the whole surface
   std::vector<ForceRecord> records;
 
   std::uint64_t key(std::size_t p, int slot) const {

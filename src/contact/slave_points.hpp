@@ -15,6 +15,15 @@ inline Vec3 current_position(const NodalVectors& x_ref, const NodalVectors& u, s
   return {x_ref.x[node] + u.x[node], x_ref.y[node] + u.y[node], x_ref.z[node] + u.z[node]};
 }
 
+// A segment at the current configuration x = x_ref + u (m).
+inline Segment current_segment(const SegmentNodes& ids, const NodalVectors& x_ref, const NodalVectors& u) {
+  Segment segment;
+  segment.type = ids.type;
+  for (int i = 0; i < node_count(ids.type); ++i)
+    segment.nodes[std::size_t(i)] = current_position(x_ref, u, ids.nodes[std::size_t(i)]);
+  return segment;
+}
+
 // The current position of every slave point into `points` (m): a slave node's, or a
 // Gauss point's y(xi) = sum N_I(xi) y_I on its slave segment.
 inline void update_slave_points(const ContactSurfaces& surfaces, const NodalVectors& x_ref,

@@ -1,5 +1,6 @@
 // The deck's contact pairs (penalty, global and local search settings, friction), its
 // rigid walls and its loads.
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
@@ -109,8 +110,15 @@ std::vector<RigidWallOptions> DeckValidator::rigid_walls(const YAML::Node& node,
           0.0))
       fail(normal, child_path(wall_path, "normal"), "expected a non-zero normal, got " + describe(normal));
     wall.slave = face_list(required(entry, wall_path, "slave"), child_path(wall_path, "slave"), parts);
-    if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined())
+    if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined()) {
       wall.slave_points = slave_points(points, child_path(wall_path, "slave_points"));
+      // Mortar cuts slave segments by master segments; a wall has none, and on its
+      // plane the Gauss points of the slave segments are already exact.
+      if (wall.slave_points == SlavePoints::mortar)
+        fail(points, child_path(wall_path, "slave_points"),
+             "expected auto, nodes or quadrature: a rigid wall has no segments to cut the slave segments "
+             "by (mortar); against its plane the slave segments' Gauss points (quadrature) are exact");
+    }
     if (const YAML::Node friction_node = optional(entry, "friction"); friction_node.IsDefined())
       wall.friction = friction(friction_node, child_path(wall_path, "friction"));
     if (const YAML::Node velocity = optional(entry, "velocity"); velocity.IsDefined())
@@ -201,13 +209,23 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
       pair.slave_points = slave_points(points, child_path(pair_path, "slave_points"));
     // Accepted with slave_points: nodes too (unused there), so that batch runs can
     // switch the slave points with --set alone.
+    // With mortar, the points of the rule on each triangle of a piece.
     if (const YAML::Node quadrature = optional(entry, "quadrature"); quadrature.IsDefined()) {
       const std::string quadrature_path = child_path(pair_path, "quadrature");
-      const std::string expected = "an integer from 1 to " + std::to_string(max_quadrature) +
-                                   " (Gauss points per direction on each slave segment)";
-      pair.quadrature = integer_where(quadrature, quadrature_path, expected, 1);
-      if (*pair.quadrature > max_quadrature)
-        fail(quadrature, quadrature_path, "expected " + expected + ", got " + describe(quadrature));
+      if (pair.slave_points == SlavePoints::mortar) {
+        const std::string expected =
+            "1, 3, 6 or 7 (with slave_points: mortar, the points of the rule on each triangle of a piece)";
+        pair.quadrature = integer_where(quadrature, quadrature_path, expected, 1);
+        if (std::find(mortar_triangle_points.begin(), mortar_triangle_points.end(), *pair.quadrature) ==
+            mortar_triangle_points.end())
+          fail(quadrature, quadrature_path, "expected " + expected + ", got " + describe(quadrature));
+      } else {
+        const std::string expected = "an integer from 1 to " + std::to_string(max_quadrature) +
+                                     " (Gauss points per direction on each slave segment)";
+        pair.quadrature = integer_where(quadrature, quadrature_path, expected, 1);
+        if (*pair.quadrature > max_quadrature)
+          fail(quadrature, quadrature_path, "expected " + expected + ", got " + describe(quadrature));
+      }
     }
     if (const YAML::Node penalty_node = optional(entry, "penalty"); penalty_node.IsDefined())
       pair.penalty = penalty(penalty_node, child_path(pair_path, "penalty"));

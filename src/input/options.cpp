@@ -55,6 +55,8 @@ const char* name(SlavePoints points) {
       return "nodes";
     case SlavePoints::quadrature:
       return "quadrature";
+    case SlavePoints::mortar:
+      return "mortar";
   }
   return "?";
 }

@@ -182,7 +182,15 @@ enum class SlavePoints {
   automatic,   // `auto`: quadrature on 8-node slave segments, nodes on 4-node ones
   nodes,       // each slave node
   quadrature,  // each Gauss point of each slave segment (pre-discretization penalty)
+  mortar,      // segment to segment: the Gauss points of the pieces where slave and master overlap
 };
+
+// The points of a triangle rule on each piece of a mortar segmentation: 1, 3, 6 or 7
+// (exact to degree 1, 2, 4, 5). By default the least that integrates the consistent
+// forces of a uniform pressure on flat faces exactly on both sides: the shape functions
+// are of degree 2 on 4-node segments (3 points) and 3 on 8-node ones (6 points).
+inline constexpr std::array<int, 4> mortar_triangle_points{1, 3, 6, 7};
+constexpr int mortar_default_triangle_points(bool eight_node_segments) { return eight_node_segments ? 6 : 3; }
 
 // Coulomb friction (docs/contact.md, "Friction"): mu = mu_d + (mu_s - mu_d) exp(-d |v_slip|).
 struct FrictionOptions {
@@ -200,7 +208,9 @@ struct ContactOptions {
   bool two_pass = true;
   SlavePoints slave_points = SlavePoints::automatic;
   // Gauss points per direction on each slave segment (slave_points: quadrature),
-  // 1 to max_quadrature; unset: 2 on 4-node and 3 on 8-node segments.
+  // 1 to max_quadrature; unset: 2 on 4-node and 3 on 8-node segments. With
+  // slave_points: mortar, the points of the rule on each triangle of a piece
+  // (mortar_triangle_points); unset: 3 where both sides have 4-node segments, else 6.
   std::optional<int> quadrature;
   PenaltyOptions penalty;
   GlobalSearchOptions search;

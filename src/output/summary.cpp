@@ -28,6 +28,7 @@ Json to_json(const RunSummary& s) {
   phases["element_forces"] = number(s.phase_seconds.element_forces);
   phases["contact_global_search"] = number(s.phase_seconds.contact_global_search);
   phases["contact_local_search"] = number(s.phase_seconds.contact_local_search);
+  phases["contact_segmentation"] = number(s.phase_seconds.contact_segmentation);
   phases["contact_forces"] = number(s.phase_seconds.contact_forces);
   phases["time_integration"] = number(s.phase_seconds.time_integration);
   phases["output"] = number(s.phase_seconds.output);
@@ -59,6 +60,7 @@ Json to_json(const RunSummary& s) {
     json["slave_points"] = pair.slave_points;
     json["method"] = pair.method;
     json["local_search_seconds"] = number(pair.local_search_seconds);
+    json["segmentation_seconds"] = number(pair.segmentation_seconds);
     json["max_force"] = number(pair.max_force);
     json["friction_work"] = number(pair.friction_work);
     pairs[pair.name] = std::move(json);

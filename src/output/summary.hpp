@@ -11,6 +11,7 @@ struct PhaseSeconds {
   double element_forces = 0.0;
   double contact_global_search = 0.0;
   double contact_local_search = 0.0;
+  double contact_segmentation = 0.0;  // mortar: cutting slave segments into pieces
   double contact_forces = 0.0;
   double time_integration = 0.0;
   double output = 0.0;
@@ -44,6 +45,7 @@ struct ContactPairSummary {
   std::string method;        // the local search method
   ContactFigures figures;
   double local_search_seconds = 0.0;  // wall time of the pair's local search, s
+  double segmentation_seconds = 0.0;  // mortar: wall time of its segmentation, s
   double max_force = 0.0;             // largest |total force on the slave side| over the steps, N
   double friction_work = 0.0;         // dissipated by its friction, J
 };

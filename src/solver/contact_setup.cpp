@@ -133,9 +133,40 @@ int face_segment_nodes(const Model& model, const input::FaceRef& f, const mesh::
 }
 
 // The Gauss points along each side of a slave segment of `nodes` nodes: the deck's
-// quadrature, by default 2 on quad4 and 3 on quad8.
+// quadrature, by default 2 on quad4 and 3 on quad8. Mortar takes the default for its
+// spring areas (its `quadrature` is the points of a triangle).
 int points_per_side(const input::ContactOptions& options, int nodes) {
-  return options.quadrature.value_or(nodes == 4 ? 2 : 3);
+  const int default_points = nodes == 4 ? 2 : 3;
+  return options.slave_points == input::SlavePoints::mortar ? default_points
+                                                            : options.quadrature.value_or(default_points);
+}
+
+// The spring area of each of `nodes` (sorted) over `segments` (m^2): the sum over the
+// n x n Gauss points of the segments at each node of |N_I| w sum_J |N_J|, n as
+// points_per_side. What a node's springs act over, for the caps of penalty.hpp.
+std::vector<double> spring_areas(const input::ContactOptions& options, const NodalVectors& x,
+                                 const std::vector<contact::SegmentNodes>& segments,
+                                 const std::vector<std::uint32_t>& nodes) {
+  std::vector<double> area(nodes.size(), 0.0);
+  for (const contact::SegmentNodes& ids : segments) {
+    const contact::GaussLegendre rule =
+        contact::gauss_legendre(points_per_side(options, contact::node_count(ids.type)));
+    const contact::Segment segment = reference_segment(x, ids);
+    for (int b = 0; b < rule.count; ++b)
+      for (int a = 0; a < rule.count; ++a) {
+        const contact::Xi xi{rule.abscissa[std::size_t(a)], rule.abscissa[std::size_t(b)]};
+        const double weight =
+            rule.weight[std::size_t(a)] * rule.weight[std::size_t(b)] * area_element(segment, xi);
+        const std::array<double, 8> N = contact::shape_functions(ids.type, xi);
+        double absolute_sum = 0.0;
+        for (int k = 0; k < contact::node_count(ids.type); ++k) absolute_sum += std::abs(N[std::size_t(k)]);
+        for (int k = 0; k < contact::node_count(ids.type); ++k) {
+          const auto at = std::lower_bound(nodes.begin(), nodes.end(), ids.nodes[std::size_t(k)]);
+          area[std::size_t(at - nodes.begin())] += std::abs(N[std::size_t(k)]) * weight * absolute_sum;
+        }
+      }
+  }
+  return area;
 }
 
 PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const input::ContactOptions& options,
@@ -153,8 +184,9 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
                          slave_faces.back().nodes.end());
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
   }
-  s.quadrature = input::resolved_slave_points(options.slave_points, eight_node_segments) ==
-                 input::SlavePoints::quadrature;
+  const input::SlavePoints points = input::resolved_slave_points(options.slave_points, eight_node_segments);
+  s.quadrature = points == input::SlavePoints::quadrature;
+  s.mortar = points == input::SlavePoints::mortar;
   std::sort(s.slave_nodes.begin(), s.slave_nodes.end());
   s.slave_nodes.erase(std::unique(s.slave_nodes.begin(), s.slave_nodes.end()), s.slave_nodes.end());
   auto slave_index = [&](std::uint32_t node) {
@@ -177,6 +209,12 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
     const auto segment_points = std::uint64_t(side_points * side_points);
     for (std::size_t at = 0; at < face.segments.size(); ++at) {
       const contact::SegmentNodes ids = segment_nodes(face.segments[at]);
+      if (s.mortar) {  // the points are made each step; a segment's key is its index
+        s.slave_segments.push_back(ids);
+        s.segment_length.push_back(length);
+        g.place.point_keys.push_back(static_cast<std::uint32_t>(first_point + face.index_in_whole(at)));
+        continue;
+      }
       if (!s.quadrature) {
         const std::array<double, 8> areas = nodal_areas(x, ids);
         for (int k = 0; k < contact::node_count(ids.type); ++k)
@@ -208,12 +246,14 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
                 std::abs(N[std::size_t(k)]) * point.weight * absolute_sum;
         }
     }
-    first_point += face.whole_count() * segment_points;
+    first_point += face.whole_count() * (s.mortar ? 1 : segment_points);
   }
-  if (!s.quadrature) s.normal_length = node_length;
+  if (s.mortar) g.spring_area = spring_areas(options, x, s.slave_segments, s.slave_nodes);
+  if (!s.quadrature && !s.mortar) s.normal_length = node_length;
   std::uint32_t first_segment = 0;  // of the face, in the whole pass
   for (const auto& f : master) {
     const mesh::Face face = mesh::face_of(model.mesh, f);
+    eight_node_segments = eight_node_segments || face_segment_nodes(model, f, face) == 8;
     for (std::size_t k = 0; k < face.segments.size(); ++k) {
       s.segments.push_back(segment_nodes(face.segments[k]));
       g.place.segment_ids.push_back(first_segment + face.index_in_whole(k));
@@ -222,6 +262,10 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
     g.smallest_length = std::min(g.smallest_length, face.normal_length);
   }
+  // Mortar's triangle rule: the deck's, or by the faces of both sides.
+  if (s.mortar)
+    s.triangle_points =
+        options.quadrature.value_or(input::mortar_default_triangle_points(eight_node_segments));
   s.edges = segment_edges(model, s.segments);
   s.moving_nodes = s.slave_nodes;
   for (const auto& segment : s.segments)
@@ -289,12 +333,75 @@ void quadrature_stiffness(const input::ContactOptions& options, const Model& mod
   }
 }
 
+// Mortar (docs/contact.md, "Mortar"): per slave segment kappa (Pa/m), the deck's fixed
+// value or the automatic 8 M / L capped like the quadrature points' but per unit area,
+// so that it is the same on every segment of a uniform layer however the face is cut:
+// kappa <= scale min(accurate, stable bound) for the inverse mass per area
+// a_I / m_I + max_J a_J / m_J (m^2/kg) of each slave node I, J over the master nodes,
+// a the spring areas; and the mean a / m of each slave and master segment's nodes, which
+// sets the dashpot's reduced mass per area.
+void mortar_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g, double dt,
+                      double courant, const ContactScope& scope) {
+  auto& s = g.surfaces;
+  std::vector<std::uint32_t> master_nodes;
+  for (const contact::SegmentNodes& ids : s.segments)
+    master_nodes.insert(master_nodes.end(), ids.nodes.begin(),
+                        ids.nodes.begin() + contact::node_count(ids.type));
+  std::sort(master_nodes.begin(), master_nodes.end());
+  master_nodes.erase(std::unique(master_nodes.begin(), master_nodes.end()), master_nodes.end());
+  const std::vector<double> master_area = spring_areas(options, model.mesh.x_ref, s.segments, master_nodes);
+  // a / m of a node (a halo node's mass is infinite: 0; its own rank has its figure).
+  auto area_per_mass = [&](const std::vector<std::uint32_t>& nodes, const std::vector<double>& area,
+                           std::uint32_t node) {
+    const auto at = std::size_t(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
+    return area[at] / model.mass[node];
+  };
+  double largest_master = 0.0;
+  for (std::size_t i = 0; i < master_nodes.size(); ++i)
+    largest_master = std::max(largest_master, master_area[i] / model.mass[master_nodes[i]]);
+  largest_master = over_ranks(scope, largest_master);
+  auto segment_mean = [&](const contact::SegmentNodes& ids, const std::vector<std::uint32_t>& nodes,
+                          const std::vector<double>& area) {
+    double sum = 0.0;
+    for (int k = 0; k < contact::node_count(ids.type); ++k)
+      sum += area_per_mass(nodes, area, ids.nodes[std::size_t(k)]);
+    return sum / contact::node_count(ids.type);
+  };
+  s.master_area_per_mass.clear();
+  for (const contact::SegmentNodes& ids : s.segments)
+    s.master_area_per_mass.push_back(segment_mean(ids, master_nodes, master_area));
+  s.slave_area_per_mass.clear();
+  s.segment_kappa.clear();
+  for (std::size_t seg = 0; seg < s.slave_segments.size(); ++seg) {
+    const contact::SegmentNodes& ids = s.slave_segments[seg];
+    s.slave_area_per_mass.push_back(segment_mean(ids, s.slave_nodes, g.spring_area));
+    double cap = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < contact::node_count(ids.type); ++k) {
+      const double inverse =
+          area_per_mass(s.slave_nodes, g.spring_area, ids.nodes[std::size_t(k)]) + largest_master;
+      cap = std::min(
+          cap, options.penalty.scale *
+                   std::min(contact::accurate_stiffness_bound(dt, inverse),
+                            contact::stable_stiffness_bound(dt, courant, options.penalty.damping, inverse)));
+    }
+    s.segment_kappa.push_back(options.penalty.stiffness
+                                  ? *options.penalty.stiffness
+                                  : std::min(options.penalty.scale * contact::automatic_pressure_stiffness(
+                                                                         g.modulus, s.segment_length[seg]),
+                                             cap));
+  }
+}
+
 // The stiffness of each slave point of a pass, N/m (ContactSurfaces::stiffness).
 void slave_point_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g,
                            double dt, double courant, const ContactScope& scope) {
   auto& s = g.surfaces;
   if (s.quadrature) {
     quadrature_stiffness(options, model, g, dt, courant, scope);
+    return;
+  }
+  if (s.mortar) {
+    mortar_stiffness(options, model, g, dt, courant, scope);
     return;
   }
   s.stiffness.resize(s.slave_nodes.size());
@@ -368,12 +475,12 @@ void refuse_unstable_stiffness(const input::Deck& deck, const Model& model, cons
       if (!held(scope, pass.slave_nodes[i])) continue;  // a halo node's sums are not whole here
       const double node_bound = contact::stable_stiffness_bound(dt, courant, options.penalty.damping,
                                                                 1.0 / model.mass[pass.slave_nodes[i]]);
-      bound = std::max(bound, pass.quadrature ? node_bound / g.spring_area[i] : node_bound);
+      bound = std::max(bound, pass.quadrature || pass.mortar ? node_bound / g.spring_area[i] : node_bound);
     }
   }
   bound = over_ranks(scope, bound);
   if (*options.penalty.stiffness <= bound) return;
-  const bool quadrature = geometry.front().surfaces.quadrature;
+  const bool quadrature = geometry.front().surfaces.quadrature || geometry.front().surfaces.mortar;
   const char* units = quadrature ? "Pa/m" : "N/m";
   char text[440];
   std::snprintf(
@@ -407,8 +514,9 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
     if (options.penalty.stiffness)
       refuse_unstable_stiffness(deck, model, pair, geometry, options, contact.pairs.size(), dt,
                                 dt / critical_dt, scope);
-    pair.slave_points =
-        geometry.front().surfaces.quadrature ? input::SlavePoints::quadrature : input::SlavePoints::nodes;
+    pair.slave_points = geometry.front().surfaces.mortar       ? input::SlavePoints::mortar
+                        : geometry.front().surfaces.quadrature ? input::SlavePoints::quadrature
+                                                               : input::SlavePoints::nodes;
     for (auto& g : geometry) {
       pair.passes.push_back(std::move(g.surfaces));
       pair.places.push_back(scope.held ? std::move(g.place) : PassPlace{});

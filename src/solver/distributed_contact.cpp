@@ -34,6 +34,7 @@ struct SegmentPayload {
   std::uint32_t id = 0;
   contact::SegmentNodes nodes;
   contact::SegmentEdges edges;
+  double area_per_mass = 0.0;  // mortar: the mean a / m of its nodes (ContactSurfaces), m^2/kg
 };
 // A node the receiver does not hold: its owner and its data at the search.
 struct NodePayload {
@@ -156,7 +157,23 @@ PassShare make_share(const contact::ContactSurfaces& whole, const PassPlace& pla
   share.edges = !whole.edges.empty();
   contact::ContactSurfaces& own = share.own;
   own.quadrature = whole.quadrature;
-  if (!whole.quadrature) {
+  own.mortar = whole.mortar;
+  own.triangle_points = whole.triangle_points;
+  if (whole.mortar) {  // its slave segments, each keyed by its index in the whole pass
+    for (std::size_t s = 0; s < whole.slave_segments.size(); ++s) {
+      if (segment_owner(whole.slave_segments[s], contact_nodes, holders) != me) continue;
+      own.slave_segments.push_back(whole.slave_segments[s]);
+      share.point_keys.push_back(place.point_keys.empty() ? std::uint64_t(s) : place.point_keys[s]);
+      own.segment_kappa.push_back(whole.segment_kappa[s]);
+      own.segment_length.push_back(whole.segment_length[s]);
+      own.slave_area_per_mass.push_back(whole.slave_area_per_mass[s]);
+      own.slave_nodes.insert(
+          own.slave_nodes.end(), whole.slave_segments[s].nodes.begin(),
+          whole.slave_segments[s].nodes.begin() + contact::node_count(whole.slave_segments[s].type));
+    }
+    std::sort(own.slave_nodes.begin(), own.slave_nodes.end());
+    own.slave_nodes.erase(std::unique(own.slave_nodes.begin(), own.slave_nodes.end()), own.slave_nodes.end());
+  } else if (!whole.quadrature) {
     for (std::size_t p = 0; p < whole.slave_nodes.size(); ++p) {
       const std::uint32_t node = whole.slave_nodes[p];
       const std::size_t k = index_in(contact_nodes, node);
@@ -193,6 +210,7 @@ PassShare make_share(const contact::ContactSurfaces& whole, const PassPlace& pla
       own.segments.push_back(whole.segments[s]);
       share.segment_ids.push_back(place.segment_ids.empty() ? std::uint32_t(s) : place.segment_ids[s]);
       if (!whole.edges.empty()) own.edges.push_back(whole.edges[s]);
+      if (whole.mortar) own.master_area_per_mass.push_back(whole.master_area_per_mass[s]);
     }
   own.moving_nodes = own.slave_nodes;
   for (const contact::SegmentNodes& s : own.segments)
@@ -297,9 +315,17 @@ contact::Box point_box(const PassShare& share, const contact::ContactPassState& 
     const double c[3] = {x.x, x.y, x.z};
     for (int k = 0; k < 3; ++k) box.lo[k] = std::min(box.lo[k], c[k]), box.hi[k] = std::max(box.hi[k], c[k]);
   };
-  NodalVectors points;
-  contact::update_slave_points(share.view, share.store.x_ref, share.store.u, points);
-  for (std::size_t p = 0; p < points.size(); ++p) add({points.x[p], points.y[p], points.z[p]});
+  if (share.view.mortar) {  // every point of its slave segments, wherever the pieces fall
+    for (const contact::SegmentNodes& ids : share.view.slave_segments) {
+      const contact::SegmentBox b =
+          contact::segment_box(contact::current_segment(ids, share.store.x_ref, share.store.u));
+      add(b.lo), add(b.hi);
+    }
+  } else {
+    NodalVectors points;
+    contact::update_slave_points(share.view, share.store.x_ref, share.store.u, points);
+    for (std::size_t p = 0; p < points.size(); ++p) add({points.x[p], points.y[p], points.z[p]});
+  }
   for (const contact::Anchor& anchor : state.anchors) {
     if (anchor.segment < 0) continue;
     const contact::SegmentNodes& ids = share.view.segments[std::size_t(anchor.segment)];
@@ -361,8 +387,9 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
     for (std::size_t i = 0; i < own_boxes.size(); ++i) {
       if (!overlap(own_boxes[i], theirs)) continue;
       const contact::SegmentNodes& s = share.own.segments[i];
-      segments_out[r].push_back(
-          {share.segment_ids[i], s, share.own.edges.empty() ? contact::SegmentEdges{} : share.own.edges[i]});
+      segments_out[r].push_back({share.segment_ids[i], s,
+                                 share.own.edges.empty() ? contact::SegmentEdges{} : share.own.edges[i],
+                                 share.own.mortar ? share.own.master_area_per_mass[i] : 0.0});
       for (int k = 0; k < contact::node_count(s.type); ++k) {
         const std::uint32_t g = s.nodes[std::size_t(k)];
         const std::vector<int>& h = dc.holders[index_in(dc.held, g)];
@@ -395,6 +422,7 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
   std::vector<std::uint32_t> known;
   std::vector<contact::SegmentNodes> known_segments;  // global node ids
   std::vector<contact::SegmentEdges> known_edges;
+  std::vector<double> known_area_per_mass;
   for (std::size_t i = 0, j = 0; i < share.segment_ids.size() || j < ghosts.size();) {
     const bool own =
         j == ghosts.size() || (i < share.segment_ids.size() && share.segment_ids[i] < ghosts[j].id);
@@ -402,11 +430,13 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
       known.push_back(share.segment_ids[i]);
       known_segments.push_back(share.own.segments[i]);
       known_edges.push_back(share.own.edges.empty() ? contact::SegmentEdges{} : share.own.edges[i]);
+      known_area_per_mass.push_back(share.own.mortar ? share.own.master_area_per_mass[i] : 0.0);
       ++i;
     } else {
       known.push_back(ghosts[j].id);
       known_segments.push_back(ghosts[j].nodes);
       known_edges.push_back(ghosts[j].edges);
+      known_area_per_mass.push_back(ghosts[j].area_per_mass);
       ++j;
     }
   }
@@ -486,6 +516,7 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
   for (const contact::SegmentNodes& g : known_segments) view.segments.push_back(in_store(g, s));
   view.edges.clear();
   if (share.edges) view.edges = known_edges;
+  if (view.mortar) view.master_area_per_mass = known_area_per_mass;
   auto renumber = [&](std::uint32_t old) -> std::int64_t {
     const std::size_t k = index_in(share.known, old_known[old]);
     return k < share.known.size() ? std::int64_t(k) : -1;
@@ -504,6 +535,22 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
     if (anchor.segment < 0) continue;
     anchor.segment = renumber(std::uint32_t(anchor.segment));
     EXDYN_ASSERT(anchor.segment >= 0);  // its point lies in this rank's box: the segment came
+  }
+  // Mortar: the pieces of the last step name their master segments in the new view (a
+  // piece whose segment did not come is not a piece again: it keeps no anchor).
+  {
+    auto& pieces = state.mortar.identity;
+    const bool anchors = state.anchors.size() == pieces.size();
+    std::size_t kept_pieces = 0;
+    for (std::size_t p = 0; p < pieces.size(); ++p) {
+      const std::int64_t k = renumber(pieces[p].master);
+      if (k < 0) continue;
+      pieces[kept_pieces] = {pieces[p].slave, std::uint32_t(k), pieces[p].index};
+      if (anchors) state.anchors[kept_pieces] = state.anchors[p];
+      ++kept_pieces;
+    }
+    pieces.resize(kept_pieces);
+    if (anchors) state.anchors.resize(kept_pieces);
   }
   state.built = false;
   share.ghost_segments = ghosts.size();
@@ -736,7 +783,7 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
   add_records(dc, out, global_node, force, gap);
   ContactShareFigures now;
   for (const PassShare& share : dc.passes) {
-    now.points += double(share.own.point_count());
+    now.points += double(share.own.mortar ? share.own.slave_segments.size() : share.own.point_count());
     now.segments += double(share.view.segments.size());
     now.ghost_segments += double(share.ghost_segments);
     now.ghost_nodes += double(share.ghost_nodes);

@@ -59,7 +59,7 @@ struct PassShare {
   bool edges = false;       // the pass has contact at folds (ContactSurfaces::edges)
   // This rank's slave points and segments (global node ids).
   contact::ContactSurfaces own;
-  std::vector<std::uint32_t> point_keys;   // each own point's index in the whole pass
+  std::vector<std::uint64_t> point_keys;   // each own point's index in the whole pass
   std::vector<std::uint32_t> segment_ids;  // each own segment's index in the whole pass
   // From the last candidate search: the view the pass runs on (store node ids; its
   // segments: own and ghost, by ascending index in the whole pass) and the traffic.

@@ -163,7 +163,7 @@ void summarise_contact(const ContactModel& contact, const contact::ContactStatis
                        output::RunSummary& summary) {
   static_cast<output::ContactFigures&>(summary.contact) = contact_figures(statistics);
   summary.contact.pairs.resize(contact.pairs.size());
-  double global_search = 0.0, local_search = 0.0, forces = 0.0;
+  double global_search = 0.0, local_search = 0.0, segmentation = 0.0, forces = 0.0;
   for (std::size_t k = 0; k < contact.pairs.size(); ++k) {
     const ContactPair& pair = contact.pairs[k];
     output::ContactPairSummary& out = summary.contact.pairs[k];
@@ -172,11 +172,13 @@ void summarise_contact(const ContactModel& contact, const contact::ContactStatis
     out.method = std::string(contact::name(pair.settings.projection.method));
     out.figures = contact_figures(pair.statistics);
     out.local_search_seconds = pair.seconds.local_search;
+    out.segmentation_seconds = pair.seconds.segmentation;
     out.max_force = pair.max_force;
     out.friction_work = 0.0;
     for (const auto& state : pair.states) out.friction_work += state.friction_work;
     global_search += pair.seconds.global_search;
     local_search += pair.seconds.local_search;
+    segmentation += pair.seconds.segmentation;
     forces += pair.seconds.forces;
   }
   summary.contact.walls.resize(contact.walls.size());
@@ -193,6 +195,7 @@ void summarise_contact(const ContactModel& contact, const contact::ContactStatis
   }
   summary.phase_seconds.contact_global_search = global_search;
   summary.phase_seconds.contact_local_search = local_search;
+  summary.phase_seconds.contact_segmentation = segmentation;
   summary.phase_seconds.contact_forces = forces;
 }
 

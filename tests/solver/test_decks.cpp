@@ -41,7 +41,8 @@ struct DeckRun : exdyn::testing::DeckRun {
 // test_large_deformation.cpp (the
 // full Taylor meshes: scripts/taylor_study.py); sliding_block.yaml, oblique_impact.yaml,
 // block_on_rail.yaml: test_friction.cpp; plate_impact_gmsh.yaml, plate_impact_hex20_gmsh.yaml,
-// hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp.
+// hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp; contact_patch_mortar.yaml:
+// test_mortar_contact.cpp.
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "wave_bar.yaml",
                                           "shear_wave.yaml",
@@ -54,6 +55,7 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "inverting_bar.yaml",
                                           "plate_impact_hex20.yaml",
                                           "contact_patch_hex20.yaml",
+                                          "contact_patch_mortar.yaml",
                                           "hertz_ball.yaml",
                                           "cylinders.yaml",
                                           "spinning_block.yaml",

@@ -206,11 +206,12 @@ TEST(DistributeContact, EveryPointAndSegmentBelongsToOneRankThatHoldsItsNodes) {
       const std::vector<solver::LocalRun> runs = parts_of(model, deck, ranks);
       // Per pass, per whole-pass item (by its key: a slave node's global id, a
       // quadrature point's or a segment's index): the ranks that own it.
-      std::vector<std::map<std::uint32_t, int>> points, segments;
+      std::vector<std::map<std::uint64_t, int>> points;
+      std::vector<std::map<std::uint32_t, int>> segments;
       auto add_pass = [&](const contact::ContactSurfaces& pass) {
         auto& keys = points.emplace_back();
         for (std::size_t p = 0; p < pass.point_count(); ++p)
-          keys[pass.quadrature ? std::uint32_t(p) : pass.slave_nodes[p]] = 0;
+          keys[pass.quadrature ? std::uint64_t(p) : pass.slave_nodes[p]] = 0;
         auto& ids = segments.emplace_back();
         for (std::size_t s = 0; s < pass.segments.size(); ++s) ids[std::uint32_t(s)] = 0;
       };
@@ -228,7 +229,7 @@ TEST(DistributeContact, EveryPointAndSegmentBelongsToOneRankThatHoldsItsNodes) {
         ASSERT_EQ(dc.passes.size(), points.size());
         for (std::size_t k = 0; k < dc.passes.size(); ++k) {
           const solver::PassShare& share = dc.passes[k];
-          for (const std::uint32_t p : share.point_keys) ++points[k].at(p);
+          for (const std::uint64_t p : share.point_keys) ++points[k].at(p);
           for (const std::uint32_t s : share.segment_ids) ++segments[k].at(s);
           for (const std::uint32_t g : share.store.global)  // the own points' and segments' nodes
             EXPECT_TRUE(std::binary_search(run.decomposition.global_node.begin(),

@@ -1,0 +1,181 @@
+#include "contact/mortar_pass.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "common/errors.hpp"
+#include "common/timer.hpp"
+#include "contact/slave_points.hpp"
+
+namespace exdyn::contact {
+
+namespace {
+
+// Global search of segment pairs. A point x of slave segment s within the search distance
+// d of master segment m now was within d + margin of it at the search (no node has moved
+// more than margin / 2 since), and s's centre within R of x, R the largest extent of a
+// slave segment (the diagonal of its box) at the search: so the centre lay in m's box
+// inflated by d + margin + R.
+void search_segment_pairs(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                          ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u) {
+  MortarState& m = state.mortar;
+  const std::size_t n_slave = surfaces.slave_segments.size();
+  m.centres.resize(n_slave);
+  for (std::size_t s = 0; s < n_slave; ++s) {
+    const Vec3 c = position(current_segment(surfaces.slave_segments[s], x_ref, u), Xi{0.0, 0.0});
+    m.centres.x[s] = c.x, m.centres.y[s] = c.y, m.centres.z[s] = c.z;
+  }
+  double extent = 0.0;
+  for (const SegmentNodes& ids : surfaces.slave_segments) {
+    const SegmentBox box = segment_box(current_segment(ids, x_ref, u));
+    extent = std::max(extent, norm(box.hi - box.lo));
+  }
+  segment_boxes(
+      [&](std::uint32_t node) {
+        return std::array<double, 3>{x_ref.x[node] + u.x[node], x_ref.y[node] + u.y[node],
+                                     x_ref.z[node] + u.z[node]};
+      },
+      surfaces.segments, settings.search_distance + settings.margin + extent, state.boxes);
+  bucket_search(m.centres, state.boxes, settings.cell_size, state.workspace, m.pairs);
+  m.pair_begin.assign(surfaces.slave_segments.size() + 1, 0);
+  for (const CandidatePair& pair : m.pairs) ++m.pair_begin[pair.point + 1];
+  for (std::size_t s = 0; s < surfaces.slave_segments.size(); ++s) m.pair_begin[s + 1] += m.pair_begin[s];
+
+  state.moving_at_build.resize(surfaces.moving_nodes.size());
+  for (std::size_t i = 0; i < surfaces.moving_nodes.size(); ++i) {
+    const Vec3 x = current_position(x_ref, u, surfaces.moving_nodes[i]);
+    state.moving_at_build.x[i] = x.x;
+    state.moving_at_build.y[i] = x.y;
+    state.moving_at_build.z[i] = x.z;
+  }
+  state.built = true;
+  ++state.rebuilds;
+  // The view's segments are the pass's (they change only where a search is asked for).
+  m.view.slave_segments = surfaces.slave_segments;
+  m.view.segments = surfaces.segments;
+}
+
+// The points of slave segment s on its candidates, in their order, into out (count returned).
+template <class Sink>
+void segment_points(const ContactSurfaces& surfaces, const MortarState& m, const TriangleRule& rule,
+                    double capture, const NodalVectors& x_ref, const NodalVectors& u, std::size_t s,
+                    Sink&& sink) {
+  const Segment slave = current_segment(surfaces.slave_segments[s], x_ref, u);
+  std::array<MortarPoint, max_mortar_points_per_pair> points;
+  for (std::size_t c = m.pair_begin[s]; c < m.pair_begin[s + 1]; ++c) {
+    const std::uint32_t master = m.pairs[c].segment;
+    const int count = mortar_points(slave, current_segment(surfaces.segments[master], x_ref, u), rule,
+                                    capture, points.data());
+    for (int k = 0; k < count; ++k) sink(master, std::uint32_t(k), points[std::size_t(k)]);
+  }
+}
+
+// This step's points as the view's quadrature points, each with its one candidate (its
+// piece's master segment, from where the plane's projection met it: the starting point
+// of `previous`), its stiffness kappa w, length and dashpot mass; then the friction
+// anchors of the last step's points that are points of the same pieces again.
+void make_points(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                 ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u) {
+  MortarState& m = state.mortar;
+  ContactSurfaces& view = m.view;
+  const std::size_t n_slave = surfaces.slave_segments.size();
+  const TriangleRule rule = triangle_rule(surfaces.triangle_points);
+  const double capture = settings.search_distance + settings.margin;
+  // Count, then fill: each segment's points land in their place, the same on any
+  // number of threads.
+  m.point_begin.assign(n_slave + 1, 0);
+  const auto segments = static_cast<std::ptrdiff_t>(n_slave);
+#pragma omp parallel for schedule(dynamic, 16) if (segments >= 256)
+  for (std::ptrdiff_t k = 0; k < segments; ++k) {
+    std::size_t count = 0;
+    segment_points(surfaces, m, rule, capture, x_ref, u, std::size_t(k),
+                   [&count](std::uint32_t, std::uint32_t, const MortarPoint&) { ++count; });
+    m.point_begin[std::size_t(k) + 1] = count;
+  }
+  for (std::size_t s = 0; s < n_slave; ++s) m.point_begin[s + 1] += m.point_begin[s];
+  const std::size_t n_points = m.point_begin[n_slave];
+  view.quadrature = true;
+  view.own_segment = true;
+  view.quadrature_points.resize(n_points);
+  view.stiffness.resize(n_points);
+  view.normal_length.resize(n_points);
+  view.point_mass.resize(n_points);
+  std::swap(m.identity, m.previous_identity);
+  m.identity.resize(n_points);
+  state.candidates.resize(n_points);
+  state.previous_xi.resize(n_points);
+#pragma omp parallel for schedule(dynamic, 16) if (segments >= 256)
+  for (std::ptrdiff_t k = 0; k < segments; ++k) {
+    const auto s = std::size_t(k);
+    std::size_t p = m.point_begin[s];
+    segment_points(surfaces, m, rule, capture, x_ref, u, s,
+                   [&](std::uint32_t master, std::uint32_t index, const MortarPoint& point) {
+                     view.quadrature_points[p] = {std::uint32_t(s), point.slave_xi, point.weight};
+                     view.stiffness[p] = surfaces.segment_kappa[s] * point.weight;
+                     view.normal_length[p] = surfaces.segment_length[s];
+                     // The dashpot's reduced mass: mu w, 1 / mu = 1 / mu_s + 1 / mu_m.
+                     view.point_mass[p] = point.weight / (surfaces.slave_area_per_mass[s] +
+                                                          surfaces.master_area_per_mass[master]);
+                     m.identity[p] = {std::uint32_t(s), master, index};
+                     state.candidates[p] = {std::uint32_t(p), master};
+                     state.previous_xi[p] = point.master_xi;
+                     ++p;
+                   });
+  }
+  state.point_begin.resize(n_points + 1);
+  for (std::size_t p = 0; p <= n_points; ++p) state.point_begin[p] = p;
+
+  if (!settings.friction.enabled) return;
+  // Both lists of pieces ascend: a merge.
+  std::swap(state.anchors, m.previous_anchors);
+  state.anchors.assign(n_points, Anchor{});
+  std::size_t old = 0;
+  for (std::size_t p = 0; p < n_points; ++p) {
+    while (old < m.previous_identity.size() && m.previous_identity[old] < m.identity[p]) ++old;
+    if (old < m.previous_identity.size() && m.previous_identity[old] == m.identity[p] &&
+        old < m.previous_anchors.size())
+      state.anchors[p] = m.previous_anchors[old];
+  }
+}
+
+}  // namespace
+
+void run_mortar_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                     ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u,
+                     const NodalVectors& v, const std::vector<double>& mass, NodalVectors& force,
+                     std::vector<double>& gap, ContactStatistics& statistics, ContactPhaseSeconds& seconds,
+                     RecordSink* records, bool search_when_moved) {
+  MortarState& m = state.mortar;
+  {
+    ScopedTimer timer(seconds.global_search);
+    if (search_when_moved ? largest_motion_since_build(surfaces, state, x_ref, u) > 0.5 * settings.margin
+                          : !state.built)
+      search_segment_pairs(surfaces, settings, state, x_ref, u);
+  }
+  {
+    ScopedTimer timer(seconds.segmentation);
+    make_points(surfaces, settings, state, x_ref, u);
+  }
+  if (records == nullptr) {
+    run_contact_pass(m.view, settings, state, x_ref, u, v, mass, force, gap, statistics, seconds, nullptr,
+                     false);
+    return;
+  }
+  // A point's record key: its slave segment's, then its place among the segment's points.
+  const std::vector<std::uint64_t>* segment_keys = records->point_keys;
+  m.point_keys.resize(m.identity.size());
+  for (std::size_t s = 0; s + 1 < m.point_begin.size(); ++s)
+    for (std::size_t p = m.point_begin[s]; p < m.point_begin[s + 1]; ++p) {
+      const std::uint64_t place = p - m.point_begin[s];
+      EXDYN_ASSERT(place < (std::uint64_t(1) << mortar_key_bits));
+      m.point_keys[p] = (*segment_keys)[s] << mortar_key_bits | place;
+    }
+  records->point_keys = &m.point_keys;
+  run_contact_pass(m.view, settings, state, x_ref, u, v, mass, force, gap, statistics, seconds, records,
+                   false);
+  records->point_keys = segment_keys;
+}
+
+}  // namespace exdyn::contact
