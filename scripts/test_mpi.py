@@ -7,7 +7,8 @@
   friction, a mesh of 8- and 20-node elements (graded: many groups of equal Jacobians),
   gravity and friction between boxes, a spin with finite strain, hex8r plasticity, the
   hex20 plate impact (built and read from a Gmsh file, which rank 0 alone holds) and
-  perturbed plates on 1, 2 and 3 ranks (and 3 ranks x 2 threads)
+  perturbed plates, mortar contact (with friction; and on the Hertz ball's curved 8-node
+  segments) on 1, 2 and 3 ranks (and 3 ranks x 2 threads)
   give every field of every step, and the mesh, bit for bit as one process (the contact
   distributed: each rank its own slave points); the history (sums over the ranks) to
   1e-12; the summary says mpi.ranks, the same contact figures and mpi.setup (every deck
@@ -156,7 +157,15 @@ def test_equal_fields(exdyn, work, quick):
              # a distorted grid: a part made whole on every rank (mesh::build_part_mesh;
              # the cylinders and balls above are set up by numbers)
              ("plate_impact", ["parts[0].perturbation.fraction=0.2", "parts[1].perturbation.fraction=0.1",
-                               "time.end_time=1.2e-7", "output.every=56"], "perturbed_plates")]
+                               "time.end_time=1.2e-7", "output.every=56"], "perturbed_plates"),
+             # mortar: pieces cut on each rank from its own slave segments and the ghost
+             # master segments; friction with a sliding start (anchors kept by piece)
+             ("contact_patch_mortar", ["contact[0].friction={coefficient: 0.3}", "output.every=8",
+                                       "parts[1].initial_velocity=[0.3, 0.1, -1.0]"], "mortar_patch"),
+             # mortar on curved 8-node segments, one pass
+             ("hertz_ball", ["contact[0].slave_points=mortar", "contact[0].penalty={scale: 1.0}",
+                             "time.end_time=3.0e-6" if quick else "time.end_time=1.2e-5", "output.every=100"],
+              "mortar_hertz")]
     if quick:
         cases = [c for c in cases if c[-1] != "perturbed_plates"]
     for deck, sets, *label in cases:

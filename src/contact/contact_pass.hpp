@@ -103,10 +103,20 @@ struct ContactPassSettings {
 
 // What a mortar pass keeps (mortar_pass.hpp): the (slave segment, master segment) pairs
 // of its global search and this step's points, run as the quadrature points of a view.
+// Slave segments cut together by one thread (mortar_pass.hpp).
+inline constexpr std::size_t mortar_chunk = 64;
+
 struct MortarState {
-  std::vector<CandidatePair> pairs;      // point: the slave segment; sorted by slave segment, then master
-  std::vector<std::size_t> pair_begin;   // slave segment s's pairs: [pair_begin[s], pair_begin[s + 1])
-  NodalVectors centres;                  // each slave segment's y(0, 0), m
+  std::vector<CandidatePair> pairs;     // point: the slave segment; sorted by slave segment, then master
+  std::vector<std::size_t> pair_begin;  // slave segment s's pairs: [pair_begin[s], pair_begin[s + 1])
+  NodalVectors centres;                 // each slave segment's y(0, 0) at the search, m
+  std::vector<Box> slave_boxes, master_boxes;  // at the search (scratch)
+  // This step's points of each chunk of mortar_chunk slave segments, with their piece.
+  struct Piece {
+    MortarPoint point;
+    std::uint32_t master = 0, index = 0;  // the master segment, the point's place among the pair's
+  };
+  std::vector<std::vector<Piece>> chunk_points;
   std::vector<std::size_t> point_begin;  // slave segment s's points: [point_begin[s], point_begin[s + 1])
   ContactSurfaces view;                  // this step's points, as Gauss points of the slave segments
   // Each point's piece (slave segment, master segment, its place among the pair's

@@ -4,11 +4,12 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "contact/quadrature.hpp"
 
 namespace exdyn::contact {
 
-TriangleRule triangle_rule(int points) {
-  TriangleRule rule;
+PieceRule piece_rule(int points) {
+  PieceRule rule;
   auto add = [&rule](double a, double b, double c, double weight) {
     rule.point[std::size_t(rule.count)] = {a, b, c};
     rule.weight[std::size_t(rule.count)] = weight;
@@ -25,15 +26,19 @@ TriangleRule triangle_rule(int points) {
   switch (points) {
     case 1:
       add(third, third, third, 1.0);
+      rule.quad_side = 1;
       break;
     case 3:
       orbit(1.0 / 6.0, third);
+      rule.quad_side = 2;
       break;
     case 6:
       orbit(0.44594849091596488632, 0.22338158967801146570);
       orbit(0.091576213509770743460, 0.10995174365532186764);
+      rule.quad_side = 3;
       break;
     case 7:
+      rule.quad_side = 3;
       add(third, third, third, 0.225);
       orbit((6.0 - root15) / 21.0, (155.0 - root15) / 1200.0);
       orbit((6.0 + root15) / 21.0, (155.0 + root15) / 1200.0);
@@ -97,46 +102,61 @@ Polygon clip_convex(const Polygon& subject, const Polygon& clip) {
   return out;
 }
 
-Facet segment_facet(const Segment& segment, int k) {
-  Facet facet;
-  const auto& y = segment.nodes;
-  if (segment.type == SegmentType::quad4) {
-    facet.corner = {y[0], y[1], y[2], y[3]};
-    return facet;
+Polygon corners_only(const Polygon& polygon) {
+  Polygon out = polygon;
+  double size = 0.0;  // the largest extent of the polygon
+  for (int i = 0; i < polygon.count; ++i)
+    for (int j = i + 1; j < polygon.count; ++j) {
+      const Vec2 d = minus(polygon.vertex[std::size_t(i)], polygon.vertex[std::size_t(j)]);
+      size = std::max(size, std::abs(d.x) + std::abs(d.y));
+    }
+  const double tolerance = 1.0e-12 * size;
+  for (bool removed = true; removed && out.count >= 3;) {
+    removed = false;
+    for (int i = 0; i < out.count; ++i) {
+      const Vec2 a = out.vertex[std::size_t((i + out.count - 1) % out.count)], b = out.vertex[std::size_t(i)],
+                 c = out.vertex[std::size_t((i + 1) % out.count)];
+      const Vec2 in = minus(b, a), next = minus(c, b);
+      const double in_length = std::abs(in.x) + std::abs(in.y),
+                   next_length = std::abs(next.x) + std::abs(next.y);
+      // b repeats a, or lies on the line from a to c (the triangle a b c has no height at b).
+      if (in_length <= tolerance || std::abs(cross2(in, next)) <= tolerance * (in_length + next_length)) {
+        for (int k = i; k + 1 < out.count; ++k) out.vertex[std::size_t(k)] = out.vertex[std::size_t(k + 1)];
+        --out.count;
+        removed = true;
+        break;
+      }
+    }
   }
-  // The quarters of a quad8 through its nodes and its centre y(0, 0), counter-clockwise.
-  const Vec3 centre = 0.5 * (y[4] + y[5] + y[6] + y[7]) - 0.25 * (y[0] + y[1] + y[2] + y[3]);
-  facet.half = 0.5;
-  switch (k) {
-    case 0:
-      facet.corner = {y[0], y[4], centre, y[7]}, facet.center = {-0.5, -0.5};
-      break;
-    case 1:
-      facet.corner = {y[4], y[1], y[5], centre}, facet.center = {0.5, -0.5};
-      break;
-    case 2:
-      facet.corner = {centre, y[5], y[2], y[6]}, facet.center = {0.5, 0.5};
-      break;
-    default:
-      facet.corner = {y[7], centre, y[6], y[3]}, facet.center = {-0.5, 0.5};
+  return out;
+}
+
+Bilinear::Bilinear(const std::array<Vec2, 4>& p)
+    : c0{0.25 * (p[0].x + p[1].x + p[2].x + p[3].x), 0.25 * (p[0].y + p[1].y + p[2].y + p[3].y)},
+      c1{0.25 * (p[1].x + p[2].x - p[0].x - p[3].x), 0.25 * (p[1].y + p[2].y - p[0].y - p[3].y)},
+      c2{0.25 * (p[2].x + p[3].x - p[0].x - p[1].x), 0.25 * (p[2].y + p[3].y - p[0].y - p[1].y)},
+      c3{0.25 * (p[0].x + p[2].x - p[1].x - p[3].x), 0.25 * (p[0].y + p[2].y - p[1].y - p[3].y)} {}
+
+bool Bilinear::inverse(Vec2 q, double& s, double& t) const {
+  s = t = 0.0;
+  for (int k = 0; k < 20; ++k) {
+    const Vec2 r{c0.x + c1.x * s + c2.x * t + c3.x * s * t - q.x,
+                 c0.y + c1.y * s + c2.y * t + c3.y * s * t - q.y};
+    const Vec2 a = ds(t), b = dt(s);
+    const double det = cross2(a, b);
+    if (!(std::abs(det) > 0.0)) return false;
+    const double step_s = (r.x * b.y - r.y * b.x) / det, step_t = (a.x * r.y - a.y * r.x) / det;
+    s -= step_s, t -= step_t;
+    if (std::abs(step_s) + std::abs(step_t) <= 1.0e-14 * (1.0 + std::abs(s) + std::abs(t))) return true;
   }
-  return facet;
+  return false;
 }
 
 namespace {
 
-// The plane of a facet: its centre, the unit normal of its diagonals and a basis of it.
-struct Plane {
-  Vec3 origin, normal, e1, e2;
-  Vec2 project(Vec3 x) const {
-    const Vec3 d = x - origin;
-    return {dot(d, e1), dot(d, e2)};
-  }
-};
-
-Plane facet_plane(const Facet& f) {
-  Plane plane;
-  const auto& p = f.corner;
+// The plane through the mean of 4 corners (counter-clockwise), normal to their diagonals.
+FacetPlane facet_plane(const std::array<Vec3, 8>& p) {
+  FacetPlane plane;
   plane.origin = 0.25 * (p[0] + p[1] + p[2] + p[3]);
   const Vec3 n = cross(p[2] - p[0], p[3] - p[1]);
   plane.normal = (1.0 / norm(n)) * n;
@@ -147,144 +167,111 @@ Plane facet_plane(const Facet& f) {
   return plane;
 }
 
-// The bilinear map q(s, t) = c0 + c1 s + c2 t + c3 s t of 4 corners of the plane.
-struct Bilinear {
-  Vec2 c0, c1, c2, c3;
-  explicit Bilinear(const std::array<Vec2, 4>& p)
-      : c0{0.25 * (p[0].x + p[1].x + p[2].x + p[3].x), 0.25 * (p[0].y + p[1].y + p[2].y + p[3].y)},
-        c1{0.25 * (p[1].x + p[2].x - p[0].x - p[3].x), 0.25 * (p[1].y + p[2].y - p[0].y - p[3].y)},
-        c2{0.25 * (p[2].x + p[3].x - p[0].x - p[1].x), 0.25 * (p[2].y + p[3].y - p[0].y - p[1].y)},
-        c3{0.25 * (p[0].x + p[2].x - p[1].x - p[3].x), 0.25 * (p[0].y + p[2].y - p[1].y - p[3].y)} {}
-  // dq/ds and dq/dt at (s, t).
-  Vec2 ds(double t) const { return {c1.x + c3.x * t, c1.y + c3.y * t}; }
-  Vec2 dt(double s) const { return {c2.x + c3.x * s, c2.y + c3.y * s}; }
-  // (s, t) with q(s, t) = q by Newton from the centre (exact in one step on a
-  // parallelogram); false where it does not settle.
-  bool inverse(Vec2 q, double& s, double& t) const {
-    s = t = 0.0;
-    for (int k = 0; k < 20; ++k) {
-      const Vec2 r{c0.x + c1.x * s + c2.x * t + c3.x * s * t - q.x,
-                   c0.y + c1.y * s + c2.y * t + c3.y * s * t - q.y};
-      const Vec2 a = ds(t), b = dt(s);
-      const double det = cross2(a, b);
-      if (!(std::abs(det) > 0.0)) return false;
-      const double step_s = (r.x * b.y - r.y * b.x) / det, step_t = (a.x * r.y - a.y * r.x) / det;
-      s -= step_s, t -= step_t;
-      if (std::abs(step_s) + std::abs(step_t) <= 1.0e-14 * (1.0 + std::abs(s) + std::abs(t))) return true;
-    }
-    return false;
-  }
-};
-
-Vec3 bilinear_point(const Facet& f, double s, double t) {
-  const auto& p = f.corner;
-  return 0.25 * ((1 - s) * (1 - t) * p[0] + (1 + s) * (1 - t) * p[1] + (1 + s) * (1 + t) * p[2] +
-                 (1 - s) * (1 + t) * p[3]);
-}
-
-struct Box2 {
-  Vec2 lo, hi;
-};
-Box2 box_of(const Polygon& polygon) {
-  Box2 box{polygon.vertex[0], polygon.vertex[0]};
+void box_of(const Polygon& polygon, Vec2& lo, Vec2& hi) {
+  lo = hi = polygon.vertex[0];
   for (int i = 1; i < polygon.count; ++i) {
     const Vec2 v = polygon.vertex[std::size_t(i)];
-    box.lo = {std::min(box.lo.x, v.x), std::min(box.lo.y, v.y)};
-    box.hi = {std::max(box.hi.x, v.x), std::max(box.hi.y, v.y)};
+    lo = {std::min(lo.x, v.x), std::min(lo.y, v.y)};
+    hi = {std::max(hi.x, v.x), std::max(hi.y, v.y)};
   }
-  return box;
-}
-
-// |a1 x a2| at xi of the slave segment, m^2 per unit xi1 xi2.
-template <int Terms>
-double area_element(const Surface<Terms>& surface, Xi xi) {
-  const SurfacePoint p = evaluate(surface, xi);
-  return norm(cross(p.a1, p.a2));
-}
-
-template <int SlaveTerms>
-int pair_points(const Segment& slave, const Segment& master, const TriangleRule& rule, double capture,
-                MortarPoint* out) {
-  const Surface<SlaveTerms> surface = make_surface<SlaveTerms>(slave);
-  int count = 0;
-  for (int fs = 0; fs < facet_count(slave.type); ++fs) {
-    const Facet sf = segment_facet(slave, fs);
-    const Plane plane = facet_plane(sf);
-    Polygon slave_polygon;
-    slave_polygon.count = 4;
-    std::array<Vec2, 4> slave_corners;
-    for (int i = 0; i < 4; ++i)
-      slave_corners[std::size_t(i)] = slave_polygon.vertex[std::size_t(i)] =
-          plane.project(sf.corner[std::size_t(i)]);
-    const Bilinear slave_map(slave_corners);
-    const double slave_area = signed_area(slave_polygon);
-    if (!(slave_area > 0.0)) continue;
-    const Box2 slave_box = box_of(slave_polygon);
-    for (int fm = 0; fm < facet_count(master.type); ++fm) {
-      const Facet mf = segment_facet(master, fm);
-      const auto& m = mf.corner;
-      if (!(dot(cross(m[2] - m[0], m[3] - m[1]), plane.normal) < 0.0)) continue;  // not facing
-      // Seen along the slave normal the master's corners run clockwise: reversed.
-      std::array<Vec2, 4> master_corners;
-      for (int i = 0; i < 4; ++i) master_corners[std::size_t(i)] = plane.project(m[std::size_t(i)]);
-      Polygon master_polygon;
-      master_polygon.count = 4;
-      for (int i = 0; i < 4; ++i)
-        master_polygon.vertex[std::size_t(i)] = master_corners[std::size_t((4 - i) % 4)];
-      const Box2 master_box = box_of(master_polygon);
-      if (master_box.hi.x < slave_box.lo.x || slave_box.hi.x < master_box.lo.x ||
-          master_box.hi.y < slave_box.lo.y || slave_box.hi.y < master_box.lo.y)
-        continue;
-      Polygon piece;
-      if (is_convex(master_polygon))
-        piece = clip_convex(slave_polygon, master_polygon);
-      else if (is_convex(slave_polygon))
-        piece = clip_convex(master_polygon, slave_polygon);
-      else
-        continue;
-      const double tiny = 1.0e-12 * slave_area;
-      if (piece.count < 3 || !(signed_area(piece) > tiny)) continue;
-      const Bilinear master_map(master_corners);
-      // The planes' distance along the slave normal at the piece's centre: beyond the
-      // capture distance the piece is not a contact (and not looked for).
-      Vec2 centre{};
-      for (int i = 0; i < piece.count; ++i)
-        centre = {centre.x + piece.vertex[std::size_t(i)].x / piece.count,
-                  centre.y + piece.vertex[std::size_t(i)].y / piece.count};
-      double s = 0, t = 0, sm = 0, tm = 0;
-      if (!slave_map.inverse(centre, s, t) || !master_map.inverse(centre, sm, tm)) continue;
-      if (std::abs(dot(bilinear_point(mf, sm, tm) - bilinear_point(sf, s, t), plane.normal)) > capture)
-        continue;
-      const Vec2 v0 = piece.vertex[0];
-      for (int i = 1; i + 1 < piece.count; ++i) {
-        const Vec2 v1 = piece.vertex[std::size_t(i)], v2 = piece.vertex[std::size_t(i + 1)];
-        const double area = 0.5 * cross2(minus(v1, v0), minus(v2, v0));
-        if (!(area > tiny)) continue;
-        for (int g = 0; g < rule.count; ++g) {
-          const auto& l = rule.point[std::size_t(g)];
-          const Vec2 q{l[0] * v0.x + l[1] * v1.x + l[2] * v2.x, l[0] * v0.y + l[1] * v1.y + l[2] * v2.y};
-          if (!slave_map.inverse(q, s, t) || !master_map.inverse(q, sm, tm)) continue;
-          const double plane_jacobian = std::abs(cross2(slave_map.ds(t), slave_map.dt(s)));
-          MortarPoint point;
-          point.slave_xi = {sf.center[0] + sf.half * s, sf.center[1] + sf.half * t};
-          point.master_xi = {mf.center[0] + mf.half * sm, mf.center[1] + mf.half * tm};
-          point.weight = rule.weight[std::size_t(g)] * area * area_element(surface, point.slave_xi) *
-                         sf.half * sf.half / plane_jacobian;
-          EXDYN_ASSERT(count < max_mortar_points_per_pair);
-          out[count++] = point;
-        }
-      }
-    }
-  }
-  return count;
 }
 
 }  // namespace
 
-int mortar_points(const Segment& slave, const Segment& master, const TriangleRule& rule, double capture,
+SlaveFacet slave_facet(const Segment& slave) {
+  SlaveFacet out;
+  if (slave.type == SegmentType::quad4) {
+    const Surface<4> bilinear = make_surface<4>(slave);
+    for (int i = 0; i < 4; ++i) out.surface.c[std::size_t(i)] = bilinear.c[std::size_t(i)];
+  } else {
+    out.surface = make_surface<8>(slave);
+  }
+  out.plane = facet_plane(slave.nodes);
+  out.polygon.count = 4;
+  std::array<Vec2, 4> corners;
+  for (int i = 0; i < 4; ++i)
+    corners[std::size_t(i)] = out.polygon.vertex[std::size_t(i)] =
+        out.plane.project(slave.nodes[std::size_t(i)]);
+  out.map = Bilinear(corners);
+  out.area = signed_area(out.polygon);
+  out.valid = out.area > 0.0;
+  if (out.valid) box_of(out.polygon, out.lo, out.hi);
+  return out;
+}
+
+int mortar_points(const SlaveFacet& slave, const Segment& master, const PieceRule& rule, double reach,
                   MortarPoint* out) {
-  return slave.type == SegmentType::quad4 ? pair_points<4>(slave, master, rule, capture, out)
-                                          : pair_points<8>(slave, master, rule, capture, out);
+  if (!slave.valid) return 0;
+  const FacetPlane& plane = slave.plane;
+  const auto& m = master.nodes;
+  if (!(dot(cross(m[2] - m[0], m[3] - m[1]), plane.normal) < 0.0)) return 0;  // not facing
+  std::array<Vec2, 4> master_corners;
+  for (int i = 0; i < 4; ++i) master_corners[std::size_t(i)] = plane.project(m[std::size_t(i)]);
+  // Seen along the slave normal the master's corners run clockwise: reversed.
+  Polygon master_polygon;
+  master_polygon.count = 4;
+  for (int i = 0; i < 4; ++i)
+    master_polygon.vertex[std::size_t(i)] = master_corners[std::size_t((4 - i) % 4)];
+  Vec2 lo, hi;
+  box_of(master_polygon, lo, hi);
+  if (hi.x < slave.lo.x || slave.hi.x < lo.x || hi.y < slave.lo.y || slave.hi.y < lo.y) return 0;
+  Polygon piece;
+  if (is_convex(master_polygon))
+    piece = clip_convex(slave.polygon, master_polygon);
+  else if (is_convex(slave.polygon))
+    piece = clip_convex(master_polygon, slave.polygon);
+  else
+    return 0;
+  piece = corners_only(piece);
+  const double tiny = 1.0e-12 * slave.area;
+  if (piece.count < 3 || !(signed_area(piece) > tiny)) return 0;
+  const Bilinear master_map(master_corners);
+  // The surfaces' distance along the slave normal at the piece's centre: beyond `reach`
+  // the piece is not a contact (and not looked for).
+  Vec2 centre{0.0, 0.0};
+  for (int i = 0; i < piece.count; ++i)
+    centre = {centre.x + piece.vertex[std::size_t(i)].x / piece.count,
+              centre.y + piece.vertex[std::size_t(i)].y / piece.count};
+  double s = 0, t = 0, sm = 0, tm = 0;
+  if (!slave.map.inverse(centre, s, t) || !master_map.inverse(centre, sm, tm)) return 0;
+  if (std::abs(dot(position(master, Xi{sm, tm}) - position(slave.surface, Xi{s, t}), plane.normal)) > reach)
+    return 0;
+  int count = 0;
+  // A point q of the plane with weight w dq (m^2): onto the slave's xi, and its weight on
+  // the slave surface.
+  auto add = [&](Vec2 q, double weight) {
+    if (!slave.map.inverse(q, s, t) || !master_map.inverse(q, sm, tm)) return;
+    const SurfacePoint y = evaluate(slave.surface, Xi{s, t});
+    MortarPoint& point = out[count++];
+    point.slave_xi = {s, t};
+    point.master_xi = {sm, tm};
+    point.weight = weight * norm(cross(y.a1, y.a2)) / std::abs(cross2(slave.map.ds(t), slave.map.dt(s)));
+  };
+  if (piece.count == 4) {  // Gauss points of its bilinear map
+    const Bilinear map({piece.vertex[0], piece.vertex[1], piece.vertex[2], piece.vertex[3]});
+    const GaussLegendre g = gauss_legendre(rule.quad_side);
+    for (int j = 0; j < g.count; ++j)
+      for (int i = 0; i < g.count; ++i) {
+        const double a = g.abscissa[std::size_t(i)], b = g.abscissa[std::size_t(j)];
+        const Vec2 q{map.c0.x + map.c1.x * a + map.c2.x * b + map.c3.x * a * b,
+                     map.c0.y + map.c1.y * a + map.c2.y * b + map.c3.y * a * b};
+        add(q, g.weight[std::size_t(i)] * g.weight[std::size_t(j)] * std::abs(cross2(map.ds(b), map.dt(a))));
+      }
+    return count;
+  }
+  // A fan of triangles from the mean of the corners.
+  const Vec2 v0 = centre;
+  for (int i = 0; i < piece.count; ++i) {
+    const Vec2 v1 = piece.vertex[std::size_t(i)], v2 = piece.vertex[std::size_t((i + 1) % piece.count)];
+    const double area = 0.5 * cross2(minus(v1, v0), minus(v2, v0));
+    if (!(area > tiny)) continue;
+    for (int k = 0; k < rule.count; ++k) {
+      const auto& l = rule.point[std::size_t(k)];
+      add({l[0] * v0.x + l[1] * v1.x + l[2] * v2.x, l[0] * v0.y + l[1] * v1.y + l[2] * v2.y},
+          rule.weight[std::size_t(k)] * area);
+    }
+  }
+  return count;
 }
 
 }  // namespace exdyn::contact

@@ -2,17 +2,18 @@
 // the pieces where it overlaps a master segment, with the points of a triangle rule
 // on each piece (Puso and Laursen 2004; docs/contact.md, "Mortar").
 //
-// Each segment is one flat facet (quad4: its corners) or four (quad8: the corners of
-// the quarters xi in [-1,0]^2 ... [0,1]^2, points of the curved surface). A slave
-// facet and a master facet facing it are projected onto the slave facet's plane (its
-// centre, the normal of its diagonals); the master polygon clips the slave polygon
-// (Sutherland-Hodgman); the piece is cut into a fan of triangles; each rule point q of
-// the plane goes back to the slave facet by the inverse of its bilinear map, and so to
-// the segment's xi. Its weight makes the sum an integral over the true slave surface:
-//   w = w_rule A_triangle |a1 x a2|(xi) h^2 / |det dq/d(s,t)|      (m^2)
-// (h = 1 on quad4, 1/2 on a quad8 quarter). On flat faces both maps are affine: the
-// pieces are the exact overlaps, and a rule of degree >= that of N_slave N_master
-// integrates the consistent forces of a uniform pressure exactly.
+// A slave segment and a master segment facing it are projected onto the slave's plane
+// (through the mean of its corners, normal to its diagonals); the master's corner
+// polygon clips the slave's (Sutherland-Hodgman); the piece is cut into a fan of
+// triangles; each rule point q of the plane goes back to the slave's xi by the inverse
+// of the bilinear map of its projected corners. On an 8-node segment xi is then a point
+// of the curved surface: the weight makes the sum an integral over the true slave
+// surface whatever its curvature,
+//   w = w_rule |det dq/d(rule's coordinates)| |a1 x a2|(xi) / |det dq/dxi|      (m^2),
+// and only the pieces' edges are the corners' chords. On flat faces the maps are affine
+// (the mid-side nodes of a flat 8-node segment at its edges' midpoints): the pieces are
+// the exact overlaps, and a rule of degree >= that of the shape functions integrates the
+// consistent forces of a uniform pressure on both sides exactly.
 #pragma once
 
 #include <array>
@@ -21,26 +22,35 @@
 
 namespace exdyn::contact {
 
-// A rule on a triangle: barycentric points and weights that sum to 1 (times the area).
-struct TriangleRule {
-  int count = 0;
+// The rule of a piece: on a triangle, barycentric points and weights that sum to 1
+// (times the area); a piece of four corners instead takes the n x n Gauss rule of its
+// bilinear map, n = quad_side, of at least the triangle rule's degree. Both rules are
+// the same under every symmetry of their shape, so a piece gets the same points
+// whichever of its corners comes first (mirror-image scenes, mirror-image points).
+struct PieceRule {
+  int count = 0;  // points on a triangle
   std::array<std::array<double, 3>, 7> point{};
   std::array<double, 7> weight{};
+  int quad_side = 1;
 };
 
-// The rule of 1, 3, 6 or 7 points: exact for polynomials of degree 1, 2, 4 and 5
-// (centroid; Strang and Fix; Dunavant; Radon). Any other count is a broken invariant.
-TriangleRule triangle_rule(int points);
+// The rule of 1, 3, 6 or 7 points a triangle: exact for polynomials of degree 1, 2, 4 and
+// 5 (centroid; Strang and Fix; Dunavant; Radon); on four corners 1, 2, 3 and 3 Gauss
+// points a side (degree 1, 3, 5 and 5 in each direction). Any other count is a broken
+// invariant.
+PieceRule piece_rule(int triangle_points);
 
+// A point of a plane (no default value: the polygons below are made on every cut, and
+// only their first `count` vertices are ever read).
 struct Vec2 {
-  double x = 0.0, y = 0.0;
+  double x, y;
 };
 
 // A polygon of the plane, counter-clockwise. Two convex quadrilaterals overlap in at
 // most 8 vertices; clipping works on up to 16.
 struct Polygon {
   int count = 0;
-  std::array<Vec2, 16> vertex{};
+  std::array<Vec2, 16> vertex;
 };
 
 // The signed area (m^2): > 0 counter-clockwise.
@@ -52,34 +62,69 @@ bool is_convex(const Polygon& polygon);
 // The part of `subject` inside `clip` (convex, counter-clockwise): Sutherland-Hodgman.
 Polygon clip_convex(const Polygon& subject, const Polygon& clip);
 
-// A flat facet of a segment: its 4 corners (counter-clockwise seen from outside) and
-// the part of the segment's xi it stands for, xi = center + half (s, t), (s,t) in [-1,1]^2.
-struct Facet {
-  std::array<Vec3, 4> corner{};
-  Xi center{};
-  double half = 1.0;
+// The polygon without the vertices that do not turn it: repeats and vertices on a straight
+// edge (to 1e-12 of its size), which the clipping leaves where edges meet or cross at a
+// vertex. What is left depends on the region alone, not on where the clipping began.
+Polygon corners_only(const Polygon& polygon);
+
+// The plane of a slave segment: the mean of its corners, the unit normal of its
+// diagonals and a basis.
+struct FacetPlane {
+  Vec3 origin, normal, e1, e2;
+  Vec2 project(Vec3 x) const {
+    const Vec3 d = x - origin;
+    return {dot(d, e1), dot(d, e2)};
+  }
 };
-constexpr int facet_count(SegmentType type) { return type == SegmentType::quad4 ? 1 : 4; }
-Facet segment_facet(const Segment& segment, int k);
+
+// The bilinear map q(s, t) = c0 + c1 s + c2 t + c3 s t of 4 corners of a plane.
+struct Bilinear {
+  Vec2 c0, c1, c2, c3;
+  Bilinear() = default;
+  explicit Bilinear(const std::array<Vec2, 4>& corner);
+  Vec2 ds(double t) const { return {c1.x + c3.x * t, c1.y + c3.y * t}; }  // dq/ds at t
+  Vec2 dt(double s) const { return {c2.x + c3.x * s, c2.y + c3.y * s}; }  // dq/dt at s
+  // (s, t) with q(s, t) = q by Newton from the centre (exact in one step on a
+  // parallelogram); false where it does not settle.
+  bool inverse(Vec2 q, double& s, double& t) const;
+};
+
+// A slave segment ready to be cut, made once a step: its plane, its corner polygon
+// there, that polygon's map from xi and its monomial form (for |a1 x a2|).
+struct SlaveFacet {
+  bool valid = false;  // false: seen edge-on from its own plane (degenerate)
+  FacetPlane plane;
+  Polygon polygon;  // its corners in the plane, counter-clockwise
+  Bilinear map;     // xi -> the plane
+  double area = 0.0;
+  Vec2 lo, hi;         // the polygon's box
+  Surface<8> surface;  // quad4: the last 4 terms zero (the same values)
+};
+SlaveFacet slave_facet(const Segment& slave);
 
 // A point of a piece: where it lies on the slave segment, its weight (m^2 of the slave
 // surface) and where the projection along the slave facet's normal meets the master
 // segment (a starting point for the local search).
 struct MortarPoint {
-  Xi slave_xi{};
-  Xi master_xi{};
-  double weight = 0.0;
+  Xi slave_xi;
+  Xi master_xi;
+  double weight;
 };
 
-// The most points one slave segment can have on one master segment: 4 x 4 facet pairs,
-// each piece at most 8 vertices (6 triangles), 7 points a triangle.
-inline constexpr int max_mortar_points_per_pair = 16 * 6 * 7;
+// The most points one slave segment can have on one master segment: a piece of at most
+// 8 corners (8 triangles), 7 points a triangle.
+inline constexpr int max_mortar_points_per_pair = 8 * 7;
 
-// The points of the pieces of `slave` on `master` into out[0 .. count), count returned
-// (at most max_mortar_points_per_pair). Facet pairs that do not face each other
-// (n_slave . n_master >= 0), or whose planes lie further apart than `capture` (m) at the
-// piece's centre, give none.
-int mortar_points(const Segment& slave, const Segment& master, const TriangleRule& rule, double capture,
+// The points of the pieces of the slave segment on `master` into out[0 .. count), count
+// returned (at most max_mortar_points_per_pair). A master that does not face the slave
+// (n_slave . n_master >= 0 of their diagonals' normals), or whose surface lies further
+// than `reach` (m) from the slave's along the slave normal at the piece's centre, gives
+// none.
+int mortar_points(const SlaveFacet& slave, const Segment& master, const PieceRule& rule, double reach,
                   MortarPoint* out);
+inline int mortar_points(const Segment& slave, const Segment& master, const PieceRule& rule, double reach,
+                         MortarPoint* out) {
+  return mortar_points(slave_facet(slave), master, rule, reach, out);
+}
 
 }  // namespace exdyn::contact

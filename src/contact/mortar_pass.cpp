@@ -17,31 +17,45 @@ namespace {
 // d of master segment m now was within d + margin of it at the search (no node has moved
 // more than margin / 2 since), and s's centre within R of x, R the largest extent of a
 // slave segment (the diagonal of its box) at the search: so the centre lay in m's box
-// inflated by d + margin + R.
+// inflated by d + margin + R. Of those pairs the bucket grid gives, the pairs kept are
+// those whose boxes overlap once s's is inflated by d + margin.
 void search_segment_pairs(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
                           ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u) {
   MortarState& m = state.mortar;
   const std::size_t n_slave = surfaces.slave_segments.size();
+  auto position = [&](std::uint32_t node) {
+    return std::array<double, 3>{x_ref.x[node] + u.x[node], x_ref.y[node] + u.y[node],
+                                 x_ref.z[node] + u.z[node]};
+  };
+  const double capture = settings.search_distance + settings.margin;
+  segment_boxes(position, surfaces.slave_segments, capture, m.slave_boxes);
   m.centres.resize(n_slave);
-  for (std::size_t s = 0; s < n_slave; ++s) {
-    const Vec3 c = position(current_segment(surfaces.slave_segments[s], x_ref, u), Xi{0.0, 0.0});
-    m.centres.x[s] = c.x, m.centres.y[s] = c.y, m.centres.z[s] = c.z;
-  }
   double extent = 0.0;
-  for (const SegmentNodes& ids : surfaces.slave_segments) {
-    const SegmentBox box = segment_box(current_segment(ids, x_ref, u));
-    extent = std::max(extent, norm(box.hi - box.lo));
+  for (std::size_t s = 0; s < n_slave; ++s) {
+    const Vec3 c = contact::position(current_segment(surfaces.slave_segments[s], x_ref, u), Xi{0.0, 0.0});
+    m.centres.x[s] = c.x, m.centres.y[s] = c.y, m.centres.z[s] = c.z;
+    double diagonal = 0.0;  // of the box without the capture
+    for (int k = 0; k < 3; ++k) {
+      const double side =
+          m.slave_boxes[s].hi[std::size_t(k)] - m.slave_boxes[s].lo[std::size_t(k)] - 2.0 * capture;
+      diagonal += side * side;
+    }
+    extent = std::max(extent, std::sqrt(diagonal));
   }
-  segment_boxes(
-      [&](std::uint32_t node) {
-        return std::array<double, 3>{x_ref.x[node] + u.x[node], x_ref.y[node] + u.y[node],
-                                     x_ref.z[node] + u.z[node]};
-      },
-      surfaces.segments, settings.search_distance + settings.margin + extent, state.boxes);
+  segment_boxes(position, surfaces.segments, capture + extent, state.boxes);
   bucket_search(m.centres, state.boxes, settings.cell_size, state.workspace, m.pairs);
-  m.pair_begin.assign(surfaces.slave_segments.size() + 1, 0);
+  segment_boxes(position, surfaces.segments, 0.0, m.master_boxes);
+  auto overlap = [](const Box& a, const Box& b) {
+    for (std::size_t k = 0; k < 3; ++k)
+      if (a.hi[k] < b.lo[k] || b.hi[k] < a.lo[k]) return false;
+    return true;
+  };
+  std::erase_if(m.pairs, [&](const CandidatePair& pair) {
+    return !overlap(m.slave_boxes[pair.point], m.master_boxes[pair.segment]);
+  });
+  m.pair_begin.assign(n_slave + 1, 0);
   for (const CandidatePair& pair : m.pairs) ++m.pair_begin[pair.point + 1];
-  for (std::size_t s = 0; s < surfaces.slave_segments.size(); ++s) m.pair_begin[s + 1] += m.pair_begin[s];
+  for (std::size_t s = 0; s < n_slave; ++s) m.pair_begin[s + 1] += m.pair_begin[s];
 
   state.moving_at_build.resize(surfaces.moving_nodes.size());
   for (std::size_t i = 0; i < surfaces.moving_nodes.size(); ++i) {
@@ -57,42 +71,39 @@ void search_segment_pairs(const ContactSurfaces& surfaces, const ContactPassSett
   m.view.segments = surfaces.segments;
 }
 
-// The points of slave segment s on its candidates, in their order, into out (count returned).
-template <class Sink>
-void segment_points(const ContactSurfaces& surfaces, const MortarState& m, const TriangleRule& rule,
-                    double capture, const NodalVectors& x_ref, const NodalVectors& u, std::size_t s,
-                    Sink&& sink) {
-  const Segment slave = current_segment(surfaces.slave_segments[s], x_ref, u);
-  std::array<MortarPoint, max_mortar_points_per_pair> points;
-  for (std::size_t c = m.pair_begin[s]; c < m.pair_begin[s + 1]; ++c) {
-    const std::uint32_t master = m.pairs[c].segment;
-    const int count = mortar_points(slave, current_segment(surfaces.segments[master], x_ref, u), rule,
-                                    capture, points.data());
-    for (int k = 0; k < count; ++k) sink(master, std::uint32_t(k), points[std::size_t(k)]);
-  }
-}
-
 // This step's points as the view's quadrature points, each with its one candidate (its
 // piece's master segment, from where the plane's projection met it: the starting point
 // of `previous`), its stiffness kappa w, length and dashpot mass; then the friction
-// anchors of the last step's points that are points of the same pieces again.
+// anchors of the last step's points that are points of the same pieces again. The
+// slave segments are cut chunk by chunk on the threads, each chunk into its own list,
+// and the lists joined in chunk order: the same points on any number of threads.
 void make_points(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
                  ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u) {
   MortarState& m = state.mortar;
   ContactSurfaces& view = m.view;
   const std::size_t n_slave = surfaces.slave_segments.size();
-  const TriangleRule rule = triangle_rule(surfaces.triangle_points);
-  const double capture = settings.search_distance + settings.margin;
-  // Count, then fill: each segment's points land in their place, the same on any
-  // number of threads.
+  const PieceRule rule = piece_rule(surfaces.triangle_points);
+  const std::size_t chunks = (n_slave + mortar_chunk - 1) / mortar_chunk;
+  if (m.chunk_points.size() < chunks) m.chunk_points.resize(chunks);
   m.point_begin.assign(n_slave + 1, 0);
-  const auto segments = static_cast<std::ptrdiff_t>(n_slave);
-#pragma omp parallel for schedule(dynamic, 16) if (segments >= 256)
-  for (std::ptrdiff_t k = 0; k < segments; ++k) {
-    std::size_t count = 0;
-    segment_points(surfaces, m, rule, capture, x_ref, u, std::size_t(k),
-                   [&count](std::uint32_t, std::uint32_t, const MortarPoint&) { ++count; });
-    m.point_begin[std::size_t(k) + 1] = count;
+  const auto chunk_count = static_cast<std::ptrdiff_t>(chunks);
+#pragma omp parallel for schedule(dynamic, 1) if (chunk_count > 1 && n_slave >= 256)
+  for (std::ptrdiff_t k = 0; k < chunk_count; ++k) {
+    std::vector<MortarState::Piece>& points = m.chunk_points[std::size_t(k)];
+    points.clear();
+    std::array<MortarPoint, max_mortar_points_per_pair> scratch;
+    const std::size_t end = std::min(n_slave, std::size_t(k + 1) * mortar_chunk);
+    for (std::size_t s = std::size_t(k) * mortar_chunk; s < end; ++s) {
+      const SlaveFacet slave = slave_facet(current_segment(surfaces.slave_segments[s], x_ref, u));
+      const std::size_t before = points.size();
+      for (std::size_t c = m.pair_begin[s]; c < m.pair_begin[s + 1]; ++c) {
+        const std::uint32_t master = m.pairs[c].segment;
+        const int count = mortar_points(slave, current_segment(surfaces.segments[master], x_ref, u), rule,
+                                        settings.search_distance, scratch.data());
+        for (int i = 0; i < count; ++i) points.push_back({scratch[std::size_t(i)], master, std::uint32_t(i)});
+      }
+      m.point_begin[s + 1] = points.size() - before;
+    }
   }
   for (std::size_t s = 0; s < n_slave; ++s) m.point_begin[s + 1] += m.point_begin[s];
   const std::size_t n_points = m.point_begin[n_slave];
@@ -106,23 +117,25 @@ void make_points(const ContactSurfaces& surfaces, const ContactPassSettings& set
   m.identity.resize(n_points);
   state.candidates.resize(n_points);
   state.previous_xi.resize(n_points);
-#pragma omp parallel for schedule(dynamic, 16) if (segments >= 256)
-  for (std::ptrdiff_t k = 0; k < segments; ++k) {
-    const auto s = std::size_t(k);
-    std::size_t p = m.point_begin[s];
-    segment_points(surfaces, m, rule, capture, x_ref, u, s,
-                   [&](std::uint32_t master, std::uint32_t index, const MortarPoint& point) {
-                     view.quadrature_points[p] = {std::uint32_t(s), point.slave_xi, point.weight};
-                     view.stiffness[p] = surfaces.segment_kappa[s] * point.weight;
-                     view.normal_length[p] = surfaces.segment_length[s];
-                     // The dashpot's reduced mass: mu w, 1 / mu = 1 / mu_s + 1 / mu_m.
-                     view.point_mass[p] = point.weight / (surfaces.slave_area_per_mass[s] +
-                                                          surfaces.master_area_per_mass[master]);
-                     m.identity[p] = {std::uint32_t(s), master, index};
-                     state.candidates[p] = {std::uint32_t(p), master};
-                     state.previous_xi[p] = point.master_xi;
-                     ++p;
-                   });
+#pragma omp parallel for schedule(static) if (chunk_count > 1 && n_slave >= 256)
+  for (std::ptrdiff_t k = 0; k < chunk_count; ++k) {
+    const std::size_t first_segment = std::size_t(k) * mortar_chunk;
+    const std::size_t end = std::min(n_slave, first_segment + mortar_chunk);
+    std::size_t p = m.point_begin[first_segment];
+    for (std::size_t s = first_segment; s < end; ++s)
+      for (; p < m.point_begin[s + 1]; ++p) {
+        const MortarState::Piece& piece = m.chunk_points[std::size_t(k)][p - m.point_begin[first_segment]];
+        const MortarPoint& point = piece.point;
+        view.quadrature_points[p] = {std::uint32_t(s), point.slave_xi, point.weight};
+        view.stiffness[p] = surfaces.segment_kappa[s] * point.weight;
+        view.normal_length[p] = surfaces.segment_length[s];
+        // The dashpot's reduced mass: mu w, 1 / mu = 1 / mu_s + 1 / mu_m.
+        view.point_mass[p] =
+            point.weight / (surfaces.slave_area_per_mass[s] + surfaces.master_area_per_mass[piece.master]);
+        m.identity[p] = {std::uint32_t(s), piece.master, piece.index};
+        state.candidates[p] = {std::uint32_t(p), piece.master};
+        state.previous_xi[p] = point.master_xi;
+      }
   }
   state.point_begin.resize(n_points + 1);
   for (std::size_t p = 0; p <= n_points; ++p) state.point_begin[p] = p;
