@@ -71,16 +71,11 @@ void search_segment_pairs(const ContactSurfaces& surfaces, const ContactPassSett
   m.view.segments = surfaces.segments;
 }
 
-// This step's points as the view's quadrature points, each with its one candidate (its
-// piece's master segment, from where the plane's projection met it: the starting point
-// of `previous`), its stiffness kappa w, length and dashpot mass; then the friction
-// anchors of the last step's points that are points of the same pieces again. The
-// slave segments are cut chunk by chunk on the threads, each chunk into its own list,
-// and the lists joined in chunk order: the same points on any number of threads.
-void make_points(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
-                 ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u) {
-  MortarState& m = state.mortar;
-  ContactSurfaces& view = m.view;
+// Cuts the slave segments chunk by chunk on the threads, each chunk into its own list
+// (m.chunk_points), and counts each segment's points: m.point_begin, ascending. The lists
+// joined in chunk order are the same points on any number of threads.
+void cut_segments(const ContactSurfaces& surfaces, const ContactPassSettings& settings, MortarState& m,
+                  const NodalVectors& x_ref, const NodalVectors& u) {
   const std::size_t n_slave = surfaces.slave_segments.size();
   const PieceRule rule = piece_rule(surfaces.triangle_points);
   const std::size_t chunks = (n_slave + mortar_chunk - 1) / mortar_chunk;
@@ -106,7 +101,15 @@ void make_points(const ContactSurfaces& surfaces, const ContactPassSettings& set
     }
   }
   for (std::size_t s = 0; s < n_slave; ++s) m.point_begin[s + 1] += m.point_begin[s];
-  const std::size_t n_points = m.point_begin[n_slave];
+}
+
+// This step's points as the view's quadrature points, each with its one candidate (its
+// piece's master segment, from where the plane's projection met it: the starting point
+// of `previous`), its stiffness kappa w, length and dashpot mass.
+void fill_view(const ContactSurfaces& surfaces, ContactPassState& state) {
+  MortarState& m = state.mortar;
+  ContactSurfaces& view = m.view;
+  const std::size_t n_slave = surfaces.slave_segments.size(), n_points = m.point_begin[n_slave];
   view.quadrature = true;
   view.own_segment = true;
   view.quadrature_points.resize(n_points);
@@ -117,6 +120,7 @@ void make_points(const ContactSurfaces& surfaces, const ContactPassSettings& set
   m.identity.resize(n_points);
   state.candidates.resize(n_points);
   state.previous_xi.resize(n_points);
+  const auto chunk_count = static_cast<std::ptrdiff_t>((n_slave + mortar_chunk - 1) / mortar_chunk);
 #pragma omp parallel for schedule(static) if (chunk_count > 1 && n_slave >= 256)
   for (std::ptrdiff_t k = 0; k < chunk_count; ++k) {
     const std::size_t first_segment = std::size_t(k) * mortar_chunk;
@@ -139,13 +143,16 @@ void make_points(const ContactSurfaces& surfaces, const ContactPassSettings& set
   }
   state.point_begin.resize(n_points + 1);
   for (std::size_t p = 0; p <= n_points; ++p) state.point_begin[p] = p;
+}
 
-  if (!settings.friction.enabled) return;
-  // Both lists of pieces ascend: a merge.
+// Friction: each point takes the stick anchor of the last step's point of the same piece
+// (both lists of pieces ascend: a merge); a point of a new piece has none.
+void carry_anchors(ContactPassState& state) {
+  MortarState& m = state.mortar;
   std::swap(state.anchors, m.previous_anchors);
-  state.anchors.assign(n_points, Anchor{});
+  state.anchors.assign(m.identity.size(), Anchor{});
   std::size_t old = 0;
-  for (std::size_t p = 0; p < n_points; ++p) {
+  for (std::size_t p = 0; p < m.identity.size(); ++p) {
     while (old < m.previous_identity.size() && m.previous_identity[old] < m.identity[p]) ++old;
     if (old < m.previous_identity.size() && m.previous_identity[old] == m.identity[p] &&
         old < m.previous_anchors.size())
@@ -169,7 +176,9 @@ void run_mortar_pass(const ContactSurfaces& surfaces, const ContactPassSettings&
   }
   {
     ScopedTimer timer(seconds.segmentation);
-    make_points(surfaces, settings, state, x_ref, u);
+    cut_segments(surfaces, settings, state.mortar, x_ref, u);
+    fill_view(surfaces, state);
+    if (settings.friction.enabled) carry_anchors(state);
   }
   if (records == nullptr) {
     run_contact_pass(m.view, settings, state, x_ref, u, v, mass, force, gap, statistics, seconds, nullptr,

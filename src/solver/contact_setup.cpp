@@ -195,7 +195,6 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
   };
   std::vector<double> node_length(s.slave_nodes.size(), std::numeric_limits<double>::infinity());
   g.area.assign(s.slave_nodes.size(), 0.0);
-  g.spring_area.assign(s.slave_nodes.size(), 0.0);
   std::uint64_t first_point = 0;  // of the face, in the whole pass
   for (std::size_t i = 0; i < slave.size(); ++i) {
     const mesh::Face& face = slave_faces[i];
@@ -238,17 +237,11 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
           g.place.point_keys.push_back(static_cast<std::uint32_t>(
               first_point + face.index_in_whole(at) * segment_points + std::uint64_t(b * rule.count + a)));
           s.normal_length.push_back(length);
-          const std::array<double, 8> N = contact::shape_functions(ids.type, point.xi);
-          double absolute_sum = 0.0;
-          for (int k = 0; k < contact::node_count(ids.type); ++k) absolute_sum += std::abs(N[std::size_t(k)]);
-          for (int k = 0; k < contact::node_count(ids.type); ++k)
-            g.spring_area[slave_index(ids.nodes[std::size_t(k)])] +=
-                std::abs(N[std::size_t(k)]) * point.weight * absolute_sum;
         }
     }
     first_point += face.whole_count() * (s.mortar ? 1 : segment_points);
   }
-  if (s.mortar) g.spring_area = spring_areas(options, x, s.slave_segments, s.slave_nodes);
+  if (s.quadrature || s.mortar) g.spring_area = spring_areas(options, x, s.slave_segments, s.slave_nodes);
   if (!s.quadrature && !s.mortar) s.normal_length = node_length;
   std::uint32_t first_segment = 0;  // of the face, in the whole pass
   for (const auto& f : master) {

@@ -116,6 +116,30 @@ TEST(Cli, BadDeckExitsTwoNamesTheKeyAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+// Mortar: `quadrature` is the points on each triangle of a piece (1, 3, 6 or 7), any
+// other count refused; a rigid wall has no segments to cut by, so mortar there is refused:
+// exit 2, the key named, nothing written. A good mortar deck checks and echoes its keys.
+TEST(Cli, MortarKeysAreCheckedAndBadOnesExitTwoWritingNothing) {
+  exdyn::testing::TempDir directory;
+  const std::string out = directory.file("out");
+  const auto bad_rule =
+      exdyn("run " + deck("contact_patch_mortar.yaml") + " --set contact[0].quadrature=4 --output " + out);
+  EXPECT_EQ(bad_rule.status, 2);
+  EXPECT_NE(bad_rule.output.find("contact[0].quadrature"), std::string::npos) << bad_rule.output;
+  EXPECT_NE(bad_rule.output.find("1, 3, 6 or 7"), std::string::npos) << bad_rule.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto wall =
+      exdyn("run " + deck("taylor_wall.yaml") + " --set rigid_walls[0].slave_points=mortar --output " + out);
+  EXPECT_EQ(wall.status, 2);
+  EXPECT_NE(wall.output.find("rigid_walls[0].slave_points"), std::string::npos) << wall.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto good = exdyn("check " + deck("contact_patch_mortar.yaml") + " --set contact[0].quadrature=7");
+  ASSERT_EQ(good.status, 0) << good.output;
+  EXPECT_NE(good.output.find("slave_points: mortar"), std::string::npos) << good.output;
+  EXPECT_NE(good.output.find("quadrature: 7"), std::string::npos) << good.output;
+  expect_echo_checks_to_itself(good, directory);
+}
+
 // A mesh part: every kind of bad mesh exits 2, names the file and what is wrong, and
 // writes nothing; a good one checks, and its echo checks to the same text.
 TEST(Cli, MeshPartsOfBadMeshesExitTwoNamingTheFileAndWriteNothing) {

@@ -101,3 +101,67 @@ TEST(ContactPatchMortar, SlaveNodesAndGaussPointsDoNotPassIt) {
 }
 
 }  // namespace
+
+namespace {
+
+// The paper's plates (input/plate_impact.yaml, hex8, and input/plate_impact_hex20.yaml) with
+// mortar: two passes, one the mirror image of the other, so the plates stay mirror images
+// (element i of plate A and element n - 1 - i of plate B; xz changes sign), and energy
+// is kept to round-off with the contact energy.
+void expect_mirror_images(const char* deck_file, int n) {
+  const DeckRun run(deck_file, {{"contact[0].slave_points", "mortar"}});
+  const std::vector<double> s = run.final("stress");
+  double worst = 0.0;
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < n; ++i)
+      for (int c : {0, 1, 2, 5}) {
+        const double sign = c == 5 ? -1.0 : 1.0;
+        const std::size_t a = 6 * std::size_t(i + n * k) + std::size_t(c);
+        const std::size_t b = 6 * std::size_t(n * n + (n - 1 - i) + n * k) + std::size_t(c);
+        worst = std::max(worst, std::abs(s[a] - sign * s[b]));
+      }
+  std::printf("%s with mortar: largest mirror difference %.1e of rho c1 v0, energy error %.1e\n", deck_file,
+              worst / plateau, run.summary.energy.max_relative_error);
+  EXPECT_LE(worst, 1e-12 * plateau) << deck_file;
+  EXPECT_LE(run.summary.energy.max_relative_error, 1e-13) << deck_file;
+  EXPECT_EQ(run.summary.contact.not_converged, 0) << deck_file;
+  EXPECT_EQ(run.summary.contact.pairs.at(0).slave_points, "mortar");
+}
+
+TEST(PlateImpactMortar, TwoPassesKeepThePlatesMirrorImagesAndTheEnergy) {
+  expect_mirror_images("plate_impact.yaml", 100);
+  expect_mirror_images("plate_impact_hex20.yaml", 50);
+}
+
+// The Hertz ball's coarse mesh (as tests/solver/test_hertz.cpp) with mortar at its default
+// penalty: within 2 % of Hertz in F_max and contact time, as the Gauss points there.
+TEST(HertzBallMortar, PeakForceAndContactTimeWithinTwoPercentOfHertz) {
+  const double E = 2.1e11, nu = 0.3, rho = 7800, R = 0.01, v = 10.0;
+  const double e_star = E / (2.0 * (1.0 - nu * nu));
+  const double ball = rho * 4.0 / 3.0 * 3.14159265358979323846 * R * R * R, block = rho * 0.04 * 0.04 * 0.02;
+  const double m = ball * block / (ball + block);
+  const double delta = std::pow(15.0 * m * v * v / (16.0 * e_star * std::sqrt(R)), 0.4);
+  const double force = 4.0 / 3.0 * e_star * std::sqrt(R) * std::pow(delta, 1.5), time = 2.943 * delta / v;
+  const DeckRun run("hertz_ball.yaml", {{"parts[0].elements", "[8, 2]"},
+                                        {"parts[1].elements", "[6, 6, 5]"},
+                                        {"contact[0].slave_points", "mortar"},
+                                        {"contact[0].penalty", "{scale: 1.0}"}});
+  const std::vector<double> t = run.history("time"), f = run.history("contact/impact/force");
+  double peak = 0.0, first = -1.0, last = -1.0;
+  for (std::size_t i = 0; i < t.size(); ++i) peak = std::max(peak, 4.0 * f[3 * i + 2]);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (4.0 * f[3 * i + 2] <= 1e-3 * peak) continue;
+    if (first < 0.0) first = t[i];
+    last = t[i];
+  }
+  std::printf("Hertz ball (8 x 2 on 6 x 6 x 5), mortar: F_max %+.2f %%, contact time %+.2f %%\n",
+              100 * (peak / force - 1), 100 * ((last - first) / time - 1));
+  EXPECT_NEAR(peak, force, 0.02 * force);
+  EXPECT_NEAR(last - first, time, 0.02 * time);
+  EXPECT_LT(last, t.back());
+  EXPECT_LE(run.summary.energy.max_relative_error, 1e-13);
+  EXPECT_EQ(run.summary.contact.not_converged, 0);
+  EXPECT_EQ(run.summary.contact.saddle_points, 0);
+}
+
+}  // namespace
