@@ -8,8 +8,8 @@
   gravity and friction between boxes, a spin with finite strain, hex8r plasticity, the
   hex20 plate impact (built and read from a Gmsh file, which rank 0 alone holds) and
   perturbed plates, mortar contact (with friction; and on the Hertz ball's curved 8-node
-  segments) on 1, 2 and 3 ranks (and 3 ranks x 2 threads)
-  give every field of every step, and the mesh, bit for bit as one process (the contact
+  segments) on 2 ranks and on 3 ranks x 2 threads (the plate contact also through
+  mpirun -n 1 and on 3 ranks x 1 thread) give every field of every step, and the mesh, bit for bit as one process (the contact
   distributed: each rank its own slave points); the history (sums over the ranks) to
   1e-12; the summary says mpi.ranks, the same contact figures and mpi.setup (every deck
   set up rank by rank);
@@ -27,7 +27,8 @@
 
   scripts/test_mpi.py --exdyn build/release/src/app/exdyn [--quick]
 
---quick (the sanitizer build): the equal-fields cases on shorter runs, no kills.
+--quick (the sanitizer build): the equal-fields and partition cases on shorter runs and on
+3 ranks alone (each path once), no kills.
 Exit 0 when every check passes.
 """
 import argparse
@@ -166,17 +167,26 @@ def test_equal_fields(exdyn, work, quick):
              ("hertz_ball", ["contact[0].slave_points=mortar", "contact[0].penalty={scale: 1.0}",
                              "time.end_time=3.0e-6" if quick else "time.end_time=1.2e-5", "output.every=100"],
               "mortar_hertz")]
-    if quick:
-        cases = [c for c in cases if c[-1] != "perturbed_plates"]
+    if quick:  # the sanitizer build: each path once (mortar on curved faces: the unit tests)
+        cases = [c for c in cases if c[-1] not in ("perturbed_plates", "mortar_hertz")]
     for deck, sets, *label in cases:
         label = label[0] if label else deck
+        start = time.time()
         reference = os.path.join(work, f"{label}_1")
         code, text = run(exdyn, deck, reference, 0, sets=sets)
         check(f"{label}: one process runs", code == 0, text[-400:])
         if code != 0:
             continue
         one = summary(reference, deck)
-        variants = [(1, 1), (2, 1), (3, 1), (3, 2)] if not quick else [(2, 1), (3, 1)]
+        # mpirun -n 1 and 3 ranks of one thread on the first deck; the others on 2 ranks and
+        # on 3 ranks of 2 threads (threads give the bits of one thread: tests/solver). --quick:
+        # 3 ranks alone, whose traffic takes every path 2 ranks' does.
+        if quick:
+            variants = [(3, 1)]
+        elif label == cases[0][0]:
+            variants = [(1, 1), (2, 1), (3, 1), (3, 2)]
+        else:
+            variants = [(2, 1), (3, 2)]
         for ranks, threads in variants:
             out = os.path.join(work, f"{label}_{ranks}x{threads}")
             code, text = run(exdyn, deck, out, ranks, threads, sets)
@@ -195,24 +205,29 @@ def test_equal_fields(exdyn, work, quick):
                                          "saddle_points", "max_penetration_over_h"))
             check(f"{label}: {ranks} ranks: the contact figures of one process", same_contact,
                   f"{s['contact']} vs {one['contact']}")
+        print(f"     {label}: {time.time() - start:.1f} s", flush=True)
 
 
-def test_partitions(exdyn, work):
+def test_partitions(exdyn, work, quick):
     """Imported meshes and boxes dealt by METIS, and chunks weighed by their measured work
     (the boxes set up rank by rank: their chunk graph made from their lattices, their
-    work timed on a first setup): every field of N ranks is one rank's, bit for bit."""
-    for deck, sets in [("plate_impact_gmsh", ["output.every=112"]),
-                       ("hertz_ball_gmsh", ["time.end_time=3.0e-6", "output.every=100"]),
-                       ("plate_impact", ["time.end_time=1.2e-7", "output.every=56"]),
-                       # its contact work all on one rank when weighed by elements
-                       ("contact_patch_hex20", ["time.end_time=3.0e-7"])]:
+    work timed on a first setup): every field of N ranks is one rank's, bit for bit.
+    --quick: 3 ranks alone, and the Gmsh ball's path left to the Gmsh plates'."""
+    decks = [("plate_impact_gmsh", ["output.every=112"]),
+             ("hertz_ball_gmsh", ["time.end_time=3.0e-6", "output.every=100"]),
+             ("plate_impact", ["time.end_time=1.2e-7", "output.every=56"]),
+             # its contact work all on one rank when weighed by elements
+             ("contact_patch_hex20", ["time.end_time=3.0e-7"])]
+    if quick:
+        decks = [d for d in decks if d[0] != "hertz_ball_gmsh"]
+    for deck, sets in decks:
         reference = os.path.join(work, f"{deck}_partition_1")
         code, text = run(exdyn, deck, reference, 0, sets=sets)
         if not check(f"{deck}: one process runs", code == 0, text[-400:]):
             continue
         for ranks, options, key, value in [(2, ["--partition", "metis"], "partition", "metis"),
                                            (3, ["--partition", "metis"], "partition", "metis"),
-                                           (3, ["--weigh", "work"], "weigh", "work")]:
+                                           (3, ["--weigh", "work"], "weigh", "work")][1 if quick else 0:]:
             name = " ".join(options)
             out = os.path.join(work, f"{deck}_{value}_{ranks}")
             code, text = run(exdyn, deck, out, ranks, 1, sets, options=options)
@@ -405,6 +420,13 @@ def test_unreachable_host(exdyn, work):
           str(os.listdir(out)) if os.path.isdir(out) else "no output directory")
 
 
+def timed(section, *args):
+    """Runs one section and prints its wall time (s): where a long run of this script goes."""
+    start = time.time()
+    section(*args)
+    print(f"---- {section.__name__}: {time.time() - start:.1f} s", flush=True)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--exdyn", required=True)
@@ -414,18 +436,18 @@ def main():
     args = p.parse_args()
     rng = random.Random(args.seed)
     with tempfile.TemporaryDirectory(prefix="exdyn_mpi_") as work:
-        test_errors(args.exdyn, work)
-        test_equal_fields(args.exdyn, work, args.quick)
-        test_partitions(args.exdyn, work)
-        test_mirror(args.exdyn, work, args.quick)
-        test_guards(args.exdyn, work)
+        timed(test_errors, args.exdyn, work)
+        timed(test_equal_fields, args.exdyn, work, args.quick)
+        timed(test_partitions, args.exdyn, work, args.quick)
+        timed(test_mirror, args.exdyn, work, args.quick)
+        timed(test_guards, args.exdyn, work)
         if not args.quick:
             reference = os.path.join(work, "long")
             code, text = run(args.exdyn, "plate_impact", reference, 0, sets=LONG + ["time.end_time=2.0e-6"])
             check("the one-process reference of the kills runs", code == 0, text[-400:])
-            test_sigterm(args.exdyn, work, reference)
-            test_kills(args.exdyn, work, reference, args.kills, rng)
-            test_paraview(work)
+            timed(test_sigterm, args.exdyn, work, reference)
+            timed(test_kills, args.exdyn, work, reference, args.kills, rng)
+            timed(test_paraview, work)
     failed = results.count(False)
     print(f"test_mpi: {len(results) - failed} passed, {failed} failed")
     return 1 if failed else 0

@@ -53,18 +53,19 @@ ElementLoopFn for_isa(Isa isa) {
 // The pack width of an ISA's loops: one 128-, 256- or 512-bit register of doubles.
 inline int lanes_for(Isa isa) { return isa == Isa::x86_64_v4 ? 8 : isa == Isa::x86_64_v3 ? 4 : 2; }
 
-// The loop for `isa`, from its versions for packs of 2, 4 and 8.
+// The loop for `isa`, from its versions for packs of 2, 4 and 8: each pack width is
+// compiled for its own ISA alone (three functions, not nine).
 template <ElementLoopFn Loop2, ElementLoopFn Loop4, ElementLoopFn Loop8>
 ElementLoopFn packed_for_isa(Isa isa) {
   switch (isa) {
     case Isa::x86_64_v4:
-      return for_isa<Loop8>(isa);
+      return loop_x86_64_v4<Loop8>;
     case Isa::x86_64_v3:
-      return for_isa<Loop4>(isa);
+      return loop_x86_64_v3<Loop4>;
     case Isa::x86_64_v2:
       break;
   }
-  return for_isa<Loop2>(isa);
+  return loop_x86_64_v2<Loop2>;
 }
 
 }  // namespace exdyn::element

@@ -14,7 +14,6 @@
 //    the displacements of up to `batch` elements at once (a small matrix product,
 //    3,960 multiply-adds per element instead of about 11,600 at 27 Gauss points), the
 //    elements in the vector lanes of the ISA.
-#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -29,15 +28,18 @@
 #include "element/element_loop.hpp"
 #include "element/hex20.hpp"
 #include "element/hex20_constitutive.hpp"
+#include "element/hex20_matrix.hpp"
 
 namespace exdyn::element {
 namespace {
 
 using hex20::ElementVectors20;
 
-constexpr int dofs = 60;         // 20 nodes x 3: x of the 20 nodes, then y, then z
-constexpr int matrix_rows = 66;  // K (60 rows) then S (6 rows: mean xx yy zz xy yz xz)
-constexpr int matrix_size = matrix_rows * dofs;
+using hex20_setup::dofs;
+using hex20_setup::element_matrix;
+using hex20_setup::element_step;
+using hex20_setup::matrix_rows;
+using hex20_setup::matrix_size;
 constexpr int batch = 8;                // elements per matrix product
 constexpr std::size_t max_groups = 64;  // distinct Jacobians kept before falling back to the general layout
 
@@ -195,24 +197,6 @@ ElementEnergies affine_loop(const ElementBlock& block, std::uint32_t begin, std:
   return total;
 }
 
-// [K; S] of one element from its general reference data: column c is the force and
-// the mean stress of the unit displacement of degree of freedom c.
-void element_matrix(int gauss_points, const double* table, const double* reference, double lambda, double mu,
-                    double* matrix) {
-  for (int c = 0; c < dofs; ++c) {
-    ElementVectors20 unit, f{ElementVectors20::Uninitialized{}};
-    (c < 20 ? unit.x[c] : c < 40 ? unit.y[c - 20] : unit.z[c - 40]) = 1.0;
-    material::SymTensor s;
-    hex20::internal_forces(gauss_points, table, reference, lambda, mu, unit, f, s);
-    for (int k = 0; k < 20; ++k) {
-      matrix[dofs * k + c] = f.x[k];
-      matrix[dofs * (20 + k) + c] = f.y[k];
-      matrix[dofs * (40 + k) + c] = f.z[k];
-    }
-    for (int k = 0; k < 6; ++k) matrix[dofs * (60 + k) + c] = s[k];
-  }
-}
-
 // Same Jacobian to round-off: the inverse Jacobian and w det J at the first Gauss
 // point agree to 1e-12 of their size (an affine element's are the same at every point).
 bool same_jacobian(const double* a, const double* b) {
@@ -353,17 +337,6 @@ void add_hrz_mass(const ElementBlock& block, const NodalVectors& x_ref, std::vec
     const std::array<double, 20> m = hex20::hrz_masses(gather20(x_ref, nodes), rho);
     for (int k = 0; k < 20; ++k) mass[nodes[k]] += m[k];
   }
-}
-
-// 2 / omega_max of one element: omega_max^2 the largest eigenvalue of M^-1 K, from the
-// symmetric M^-1/2 K M^-1/2 (M the element's HRZ mass), s.
-double element_step(const double* matrix, const std::array<double, 20>& masses) {
-  Eigen::Matrix<double, dofs, dofs> a;
-  for (int r = 0; r < dofs; ++r)
-    for (int c = 0; c < dofs; ++c)
-      a(r, c) = matrix[dofs * r + c] / std::sqrt(masses[std::size_t(r % 20)] * masses[std::size_t(c % 20)]);
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, dofs, dofs>> solver(a, Eigen::EigenvaluesOnly);
-  return 2.0 / std::sqrt(solver.eigenvalues().maxCoeff());
 }
 
 // The element eigenvalue rule: min over elements of 2 / omega_max(element). The mesh's

@@ -28,11 +28,11 @@ Json to_json(const RunSummary& s) {
   phases["element_forces"] = number(s.phase_seconds.element_forces);
   phases["contact_global_search"] = number(s.phase_seconds.contact_global_search);
   phases["contact_local_search"] = number(s.phase_seconds.contact_local_search);
-  phases["contact_segmentation"] = number(s.phase_seconds.contact_segmentation);
   phases["contact_forces"] = number(s.phase_seconds.contact_forces);
   phases["time_integration"] = number(s.phase_seconds.time_integration);
   phases["output"] = number(s.phase_seconds.output);
   phases["guards"] = number(s.phase_seconds.guards);
+  phases["contact_segmentation"] = number(s.phase_seconds.contact_segmentation);
 
   Json energy;
   energy["initial_total"] = number(s.energy.initial_total);

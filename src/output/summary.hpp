@@ -11,11 +11,11 @@ struct PhaseSeconds {
   double element_forces = 0.0;
   double contact_global_search = 0.0;
   double contact_local_search = 0.0;
-  double contact_segmentation = 0.0;  // mortar: cutting slave segments into pieces
   double contact_forces = 0.0;
   double time_integration = 0.0;
   double output = 0.0;
   double guards = 0.0;  // the run-time checks of docs/stability.md (not in the spec's list: an addition)
+  double contact_segmentation = 0.0;  // mortar: cutting slave segments into pieces (an addition too)
 };
 
 struct EnergySummary {

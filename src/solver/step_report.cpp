@@ -254,7 +254,8 @@ void summarise_ranks(const Decomposition& d, const ContactModel& contact, const 
   const double peak_mb = double(usage.ru_maxrss) / 1024.0;  // ru_maxrss: kB on Linux
   double contact_seconds = 0.0;                             // this rank's passes
   for (const ContactPair& pair : contact.pairs)
-    contact_seconds += pair.seconds.global_search + pair.seconds.local_search + pair.seconds.forces;
+    contact_seconds += pair.seconds.global_search + pair.seconds.local_search + pair.seconds.segmentation +
+                       pair.seconds.forces;
   for (const RigidWall& wall : contact.walls)
     contact_seconds += wall.seconds.global_search + wall.seconds.local_search + wall.seconds.forces;
   if (!d.comm.distributed()) {

@@ -49,7 +49,7 @@ RunSummary example() {
   s.end_time = 2.3255e-7;
   s.wall_seconds = 12.5;
   s.element_cycles_per_second = 716800.0;
-  s.phase_seconds = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0};
+  s.phase_seconds = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0};
   s.energy = {10.0, 9.5, 0.05};
   static_cast<ContactFigures&>(s.contact) = {1000, 3.5, 12, 2, 1, 0.01, 1.5e9};
   return s;
@@ -84,7 +84,8 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                                       {"contact_forces", 4.0},
                                       {"time_integration", 5.0},
                                       {"output", 6.0},
-                                      {"guards", 7.0}}));  // the spec's six, then ours
+                                      {"guards", 7.0},
+                                      {"contact_segmentation", 8.0}}));  // the spec's six, then ours
   EXPECT_EQ(j["energy"], (Json{{"initial_total", 10.0},
                                {"final_total", 9.5},
                                {"max_relative_error", 0.05},
