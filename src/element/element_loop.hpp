@@ -2,9 +2,13 @@
 // element families (hex8_family.cpp, hex20_family.cpp): one element at a time
 // (element_loop) or a pack of elements in the vector lanes (element_pack_loop);
 // templates on the number of nodes and the value type, so a family writes only its kernel.
+// Every node index is asserted within the nodal vectors: the sanitizer build compiles the
+// families without instrumentation (src/element/CMakeLists.txt), and the asserts (off
+// under NDEBUG) keep their every read and write of nodal data checked there.
 #pragma once
 
 #include <array>
+#include <cassert>
 #include <cstdint>
 #include <cstring>
 #include <type_traits>
@@ -23,6 +27,7 @@ inline void gather(const NodalVectors& v, const std::uint32_t* nodes, Vectors& l
   const double* z = v.z.data();
   for (int k = 0; k < Nodes; ++k) {
     const std::uint32_t n = nodes[k];
+    assert(n < v.size());
     local.x[k] = x[n];
     local.y[k] = y[n];
     local.z[k] = z[n];
@@ -36,6 +41,7 @@ inline void scatter_add(const Vectors& local, const std::uint32_t* nodes, NodalV
   double* z = v.z.data();
   for (int k = 0; k < Nodes; ++k) {
     const std::uint32_t n = nodes[k];
+    assert(n < v.size());
     x[n] += local.x[k];
     y[n] += local.y[k];
     z[n] += local.z[k];
@@ -81,6 +87,7 @@ NodeValues<Nodes, Pack<Lanes>> gather_pack(const NodalVectors& v,
   for (int k = 0; k < Nodes; ++k) {
     for (int lane = 0; lane < Lanes; ++lane) {
       const std::uint32_t n = nodes[lane][k];
+      assert(n < v.size());
       local.x[k][lane] = x[n];
       local.y[k][lane] = y[n];
       local.z[k][lane] = z[n];
@@ -106,6 +113,7 @@ NodeValues<8, Pack<Lanes>> gather_row_pack(const NodalVectors& v, const std::uin
   NodeValues<8, Pack<Lanes>> local{
       typename NodeValues<8, Pack<Lanes>>::Uninitialized{}};  // every entry written below
   for (int k = 0; k < 8; ++k) {
+    assert(nodes[k] + Lanes <= v.size());
     local.x[k] = load<Pack<Lanes>>(v.x.data() + nodes[k], 0);
     local.y[k] = load<Pack<Lanes>>(v.y.data() + nodes[k], 0);
     local.z[k] = load<Pack<Lanes>>(v.z.data() + nodes[k], 0);
@@ -127,6 +135,7 @@ void scatter_add_row_pack(const NodeValues<8, Pack<Lanes>>& local, const std::ui
   const std::array<double*, 3> out{v.x.data(), v.y.data(), v.z.data()};
   for (const auto& edge : row_edges) {
     const std::uint32_t n = nodes[edge[0]];
+    assert(n + Lanes < v.size());
     for (int c = 0; c < 3; ++c) {
       const Real f_a = (*forces[std::size_t(c)])[std::size_t(edge[0])];
       const Real f_b = (*forces[std::size_t(c)])[std::size_t(edge[1])];
@@ -151,6 +160,7 @@ void scatter_add_lane(const NodeValues<Nodes, Real>& local, int lane, const std:
   double* z = v.z.data();
   for (int k = 0; k < Nodes; ++k) {
     const std::uint32_t n = nodes[k];
+    assert(n < v.size());
     x[n] += lane_value(local.x[std::size_t(k)], lane);
     y[n] += lane_value(local.y[std::size_t(k)], lane);
     z[n] += lane_value(local.z[std::size_t(k)], lane);

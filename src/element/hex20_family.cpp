@@ -16,6 +16,7 @@
 //    elements in the vector lanes of the ISA.
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -170,6 +171,7 @@ ElementEnergies affine_loop(const ElementBlock& block, std::uint32_t begin, std:
       const std::uint32_t* nodes = block.connectivity + 20 * (std::size_t(e) + std::size_t(slot));
       for (int k = 0; k < 20; ++k) {
         const std::uint32_t n = nodes[k];
+        assert(n < u.size());  // element_loop.hpp: the sanitizer build does not instrument this file
         u_batch[k][slot] = ux[n];
         u_batch[20 + k][slot] = uy[n];
         u_batch[40 + k][slot] = uz[n];
@@ -181,6 +183,7 @@ ElementEnergies affine_loop(const ElementBlock& block, std::uint32_t begin, std:
       double energy = 0.0;
       for (int k = 0; k < 20; ++k) {
         const std::uint32_t n = nodes[k];
+        assert(n < f_int.size());
         fx[n] += f_batch[k][slot];
         fy[n] += f_batch[20 + k][slot];
         fz[n] += f_batch[40 + k][slot];
@@ -335,7 +338,10 @@ void add_hrz_mass(const ElementBlock& block, const NodalVectors& x_ref, std::vec
   for (std::uint32_t e = 0; e < block.count; ++e) {
     const std::uint32_t* nodes = block.connectivity + 20 * std::size_t(e);
     const std::array<double, 20> m = hex20::hrz_masses(gather20(x_ref, nodes), rho);
-    for (int k = 0; k < 20; ++k) mass[nodes[k]] += m[k];
+    for (int k = 0; k < 20; ++k) {
+      assert(nodes[k] < mass.size());
+      mass[nodes[k]] += m[k];
+    }
   }
 }
 

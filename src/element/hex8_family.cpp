@@ -9,6 +9,7 @@
 // partial pack is padded with zeros.
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -278,7 +279,10 @@ void add_row_sum_mass(const ElementBlock& block, const NodalVectors& x_ref, std:
   for (std::uint32_t e = 0; e < block.count; ++e) {
     const std::uint32_t* nodes = block.connectivity + 8 * static_cast<std::size_t>(e);
     const std::array<double, 8> integral = hex8::shape_function_integrals(gather8(x_ref, nodes));
-    for (int k = 0; k < 8; ++k) mass[nodes[k]] += rho * integral[k];
+    for (int k = 0; k < 8; ++k) {
+      assert(nodes[k] < mass.size());  // element_loop.hpp: the sanitizer build does not instrument this file
+      mass[nodes[k]] += rho * integral[k];
+    }
   }
 }
 
