@@ -4,6 +4,7 @@
 #   scripts/install_deps.sh --test    also ParaView, xvfb and the Python packages of the tests
 #   scripts/install_deps.sh --mesher  also the gmsh program (scripts/make_meshes.sh)
 #   scripts/install_deps.sh --fuzz    also clang 14, its libFuzzer runtime and llvm-symbolizer (scripts/fuzz.sh)
+#   scripts/install_deps.sh --perf    also Linux perf (scripts/serial_fraction.py)
 set -euo pipefail
 packages=(cmake g++ make pkg-config libeigen3-dev libhdf5-dev libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
           libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libgmsh-dev libmetis-dev
@@ -13,7 +14,8 @@ for option in "$@"; do
     --test) packages+=(paraview python3-paraview xvfb xauth) ;;
     --mesher) packages+=(gmsh) ;;
     --fuzz) packages+=(clang-14 libclang-rt-14-dev llvm-14) ;;
-    *) echo "usage: scripts/install_deps.sh [--test] [--mesher] [--fuzz]" >&2; exit 2 ;;
+    --perf) packages+=(linux-perf) ;;
+    *) echo "usage: scripts/install_deps.sh [--test] [--mesher] [--fuzz] [--perf]" >&2; exit 2 ;;
   esac
 done
 missing=()

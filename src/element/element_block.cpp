@@ -10,7 +10,9 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/parallel.hpp"
 #include "common/simd_pack.hpp"
+#include "element/corner_checks.hpp"
 #include "element/element_family.hpp"
 #include "element/element_isa.hpp"
 #include "element/element_loop.hpp"
@@ -61,6 +63,7 @@ void build_schedule(ElementBlock& block, std::size_t node_count) {
     block.colours[index].push_back(c);
   }
   block.chunk_energies.assign(chunks, ElementEnergies{});
+  block.chunk_checks.assign(chunks, CornerChecks{});
 }
 
 // The initial states of every point (material/j2.hpp, initial_state), interleaved by
@@ -126,70 +129,6 @@ void commit_material_state(const ElementBlock& block) {
 }
 
 void set_material_time_step(const ElementBlock& block, double dt) { block.material_state.dt = dt; }
-
-namespace {
-
-using StepFn = CurrentStep (*)(const ElementBlock&, const NodalVectors&, const NodalVectors&);
-
-// Packs of Lanes elements (the ISA's vector width); lanes past the block's end repeat
-// its last element.
-template <int Lanes>
-CurrentStep current_step_packs(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
-  using Real = Pack<Lanes>;
-  CurrentStep result{std::numeric_limits<double>::infinity(), block.first_element};
-  const double scale = block.step_scale / block.material.dilatational_wave_speed();
-  for (std::uint32_t first = 0; first < block.count; first += Lanes) {
-    BasicElementVectors<Real> x{typename BasicElementVectors<Real>::Uninitialized{}};
-    for (int lane = 0; lane < Lanes; ++lane) {
-      const std::uint32_t e = std::min(first + std::uint32_t(lane), block.count - 1);
-      const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
-      for (int k = 0; k < 8; ++k) {
-        const std::uint32_t n = nodes[k];
-        x.x[k][lane] = x_ref.x[n] + u.x[n], x.y[k][lane] = x_ref.y[n] + u.y[n],
-        x.z[k][lane] = x_ref.z[n] + u.z[n];
-      }
-    }
-    const Real length = hex8::current_characteristic_length(x);
-    for (int lane = 0; lane < Lanes && first + std::uint32_t(lane) < block.count; ++lane) {
-      const double dt = scale * length[lane];
-      if (dt < result.dt) result = {dt, block.first_element + first + std::uint32_t(lane)};
-    }
-  }
-  return result;
-}
-
-template <StepFn F>
-[[gnu::flatten]] CurrentStep step_x86_64_v2(const ElementBlock& b, const NodalVectors& x,
-                                            const NodalVectors& u) {
-  return F(b, x, u);
-}
-template <StepFn F>
-[[gnu::target("arch=x86-64-v3"), gnu::flatten]] CurrentStep step_x86_64_v3(const ElementBlock& b,
-                                                                           const NodalVectors& x,
-                                                                           const NodalVectors& u) {
-  return F(b, x, u);
-}
-template <StepFn F>
-[[gnu::target("arch=x86-64-v4"), gnu::flatten]] CurrentStep step_x86_64_v4(const ElementBlock& b,
-                                                                           const NodalVectors& x,
-                                                                           const NodalVectors& u) {
-  return F(b, x, u);
-}
-
-}  // namespace
-
-CurrentStep current_time_step(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
-  if (block.count == 0) return {std::numeric_limits<double>::infinity(), block.first_element};
-  switch (selected_isa()) {  // the element loops' ISA and pack width (element_isa.hpp)
-    case Isa::x86_64_v4:
-      return step_x86_64_v4<current_step_packs<8>>(block, x_ref, u);
-    case Isa::x86_64_v3:
-      return step_x86_64_v3<current_step_packs<4>>(block, x_ref, u);
-    case Isa::x86_64_v2:
-      break;
-  }
-  return step_x86_64_v2<current_step_packs<2>>(block, x_ref, u);
-}
 
 ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t element_begin,
                                     std::uint32_t element_end, const NodalVectors& u, NodalVectors& f_int,
@@ -269,6 +208,7 @@ ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint3
     for (const std::uint32_t c : block.colours[k])
       if (local_chunk[c] != ~0u) slice.colours[k].push_back(local_chunk[c]);
   slice.chunk_energies.assign(chunks.size(), ElementEnergies{});
+  slice.chunk_checks.assign(chunks.size(), CornerChecks{});
   allocate_material_state(slice);  // every point in its initial state, as the whole block's
   return slice;
 }
@@ -283,12 +223,11 @@ void add_chunk_forces(const ElementBlock& block, const std::vector<std::uint32_t
   // dynamic chunks half of them came from the other core's. Static ran the one-plate
   // reference 13-18 % faster on two threads (docs/performance.md, "Two threads on the
   // plate impact: the ceiling").
-#pragma omp parallel for schedule(static) if (count > 1)
-  for (std::ptrdiff_t k = 0; k < count; ++k) {
+  parallel_for_static(count, [&](std::ptrdiff_t k) {
     const std::uint32_t c = chunks[static_cast<std::size_t>(k)];
     block.chunk_energies[c] =
         add_internal_forces(block, block.chunk_begin[c], block.chunk_begin[c + 1], u, f_int, stress);
-  }
+  });
 }
 
 ElementEnergies chunk_energy_total(const ElementBlock& block) {
@@ -297,47 +236,6 @@ ElementEnergies chunk_energy_total(const ElementBlock& block) {
     total += e;
   }
   return total;
-}
-
-InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t element_begin,
-                                      std::uint32_t element_end, const NodalVectors& x_ref,
-                                      const NodalVectors& u) {
-  EXDYN_ASSERT(element_begin <= element_end && element_end <= block.count);
-  // Neighbours of each corner along xi, eta, zeta, and the sign that orients the
-  // edge towards +xi, +eta, +zeta (VTK order: 0-3 at zeta = -1, 4-7 at zeta = +1).
-  static constexpr int neighbour[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7},
-                                          {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
-  // -sx sy sz of the corner at (sx, sy, sz): +1 where all three edges already point the + way.
-  static constexpr double orientation[8] = {1.0, -1.0, 1.0, -1.0, -1.0, 1.0, -1.0, 1.0};
-  double smallest_ratio = std::numeric_limits<double>::infinity();  // det J / ||J||_F^2, m
-  for (std::uint32_t e = element_begin; e < element_end; ++e) {
-    const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
-    NodeValues<8> x0, du;  // the corners
-    gather<8>(x_ref, nodes, x0);
-    gather<8>(u, nodes, du);
-    std::array<double, 8> x, y, z;
-    for (int k = 0; k < 8; ++k) x[k] = x0.x[k] + du.x[k], y[k] = x0.y[k] + du.y[k], z[k] = x0.z[k] + du.z[k];
-    for (int a = 0; a < 8; ++a) {
-      const int i = neighbour[a][0], j = neighbour[a][1], k = neighbour[a][2];
-      const double ax = x[i] - x[a], ay = y[i] - y[a], az = z[i] - z[a];
-      const double bx = x[j] - x[a], by = y[j] - y[a], bz = z[j] - z[a];
-      const double cx = x[k] - x[a], cy = y[k] - y[a], cz = z[k] - z[a];
-      const double det =
-          orientation[a] * (ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx));
-      if (!(det > 0.0)) return {true, block.first_element + e, a, det, 0.0};
-      const double frobenius2 =
-          ax * ax + ay * ay + az * az + bx * bx + by * by + bz * bz + cx * cx + cy * cy + cz * cz;
-      smallest_ratio = std::min(smallest_ratio, det / frobenius2);
-    }
-  }
-  InvertedElement none;
-  none.safety_radius = smallest_ratio / (2.0 * std::sqrt(3.0));
-  return none;
-}
-
-InvertedElement find_inverted_element(const ElementBlock& block, const NodalVectors& x_ref,
-                                      const NodalVectors& u) {
-  return find_inverted_element(block, 0, block.count, x_ref, u);
 }
 
 bool uses_parallelepiped_kernel(const ElementBlock& block) { return block.constant_jacobian; }

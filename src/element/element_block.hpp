@@ -47,6 +47,30 @@ inline constexpr std::uint32_t element_chunk = 512;
 struct ElementBlock;
 struct ElementFamily;
 
+// The stable step of a block's elements (current_time_step) and the element (global
+// index) that sets it.
+struct CurrentStep {
+  double dt = 0.0;
+  std::uint32_t element = 0;
+};
+
+// An element whose current configuration x = x_ref + u is inverted.
+struct InvertedElement {
+  bool found = false;
+  std::uint32_t element = 0;  // global element index
+  int corner = 0;             // local node (VTK order) where det J <= 0
+  double det_jacobian = 0.0;  // det of the corner's edge vectors there, m^3
+  // When none is inverted: no element can invert before some node has moved by this
+  // much from the configuration checked, m (a lower bound, see below).
+  double safety_radius = 0.0;
+};
+
+// A pass over the corners of a block's elements: its stable step and inversion check.
+struct CornerChecks {
+  CurrentStep step;
+  InvertedElement inverted;
+};
+
 // What a rank's part of a block, built alone (solver/rank_setup.cpp), takes from the
 // whole block, so that its elements run the kernels and share the data they do there:
 // whether every element of the whole block is a parallelepiped (and, hex8, has its
@@ -109,6 +133,9 @@ struct ElementBlock {
   std::vector<std::uint32_t> chunk_begin;               // chunk c is [chunk_begin[c], chunk_begin[c + 1])
   std::vector<std::vector<std::uint32_t>> colours;      // the chunks of each colour, ascending
   mutable std::vector<ElementEnergies> chunk_energies;  // scratch: the energies of each chunk
+  // Scratch of the threaded passes over the corners (corner_checks.hpp): each chunk's
+  // result, reduced in chunk order.
+  mutable std::vector<CornerChecks> chunk_checks;
 };
 
 // Builds a block and precomputes its reference data from the reference
@@ -140,15 +167,6 @@ std::vector<std::uint32_t> jacobian_group_starts(input::Formulation formulation,
 void commit_material_state(const ElementBlock& block);
 // The step over which the next element pass's strain increment happens, s.
 void set_material_time_step(const ElementBlock& block, double dt);
-
-// The stable step of the block's current configuration x_ref + u without the Courant
-// factor, s: min over elements of L_e(x) / c1 (8 corners) times block.step_scale, and
-// the element (global index) that sets it.
-struct CurrentStep {
-  double dt = 0.0;
-  std::uint32_t element = 0;
-};
-CurrentStep current_time_step(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u);
 
 // f_int += internal forces (N) of the block's elements for the displacement u
 // (small strain, reference configuration). Writes each element's volume-averaged
@@ -202,33 +220,6 @@ void add_lumped_mass(const ElementBlock& block, const NodalVectors& x_ref, std::
 ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t element_begin,
                                     std::uint32_t element_end, const NodalVectors& u, NodalVectors& f_int,
                                     double* stress);
-
-// An element whose current configuration x = x_ref + u is inverted.
-struct InvertedElement {
-  bool found = false;
-  std::uint32_t element = 0;  // global element index
-  int corner = 0;             // local node (VTK order) where det J <= 0
-  double det_jacobian = 0.0;  // det of the corner's edge vectors there, m^3
-  // When none is inverted: no element can invert before some node has moved by this
-  // much from the configuration checked, m (a lower bound, see below).
-  double safety_radius = 0.0;
-};
-
-// The lowest-indexed element of [element_begin, element_end) (local indices) with a
-// non-positive corner Jacobian in the current configuration (of the 8 corner nodes;
-// a 20-node element's mid-edge nodes are not looked at): at each corner a,
-// det[e_xi, e_eta, e_zeta] with e the edges from a towards its three neighbours,
-// oriented along +xi, +eta, +zeta (the trilinear map's Jacobian at a, times 8).
-// All eight positive is the usual validity test of a hexahedron. The safety radius:
-// moving the nodes by at most delta changes each edge by at most 2 delta, so the
-// corner matrix J by ||E||_2 <= ||E||_F <= 2 sqrt(3) delta, and det J keeps its sign
-// while that stays below sigma_min(J) >= det J / ||J||_F^2 (as sigma_1 sigma_2 <=
-// ||J||_F^2); hence delta < min over corners of det J / (2 sqrt(3) ||J||_F^2).
-InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t element_begin,
-                                      std::uint32_t element_end, const NodalVectors& x_ref,
-                                      const NodalVectors& u);
-InvertedElement find_inverted_element(const ElementBlock& block, const NodalVectors& x_ref,
-                                      const NodalVectors& u);
 
 // True when every element of the block is a parallelepiped, so that the block
 // runs the constant-Jacobian kernels (hex8::parallelepiped_internal_forces,

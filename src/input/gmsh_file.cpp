@@ -1,7 +1,8 @@
 #include "input/gmsh_file.hpp"
 
-#include <gmsh.h>
+#include <dlfcn.h>
 
+#include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <utility>
@@ -9,25 +10,6 @@
 namespace exdyn::input {
 
 namespace {
-
-// The library keeps one global model: one reader at a time, each in its own session.
-std::mutex gmsh_mutex;
-
-class GmshSession {
- public:
-  GmshSession() {
-    gmsh::initialize(0, nullptr, false);  // no configuration files: the same result on every machine
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);  // errors only
-    gmsh::logger::start();
-  }
-  ~GmshSession() {
-    gmsh::logger::stop();
-    gmsh::finalize();
-  }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
-};
 
 // The first line that is not blank, without its line end.
 std::string first_line(std::ifstream& in) {
@@ -40,36 +22,34 @@ std::string first_line(std::ifstream& in) {
   return {};
 }
 
-// The elements of every entity of physical group (dim, tag), merged by type.
-GmshGroup read_group(int dim, int tag) {
-  GmshGroup group;
-  gmsh::model::getPhysicalName(dim, tag, group.name);
-  if (group.name.empty()) group.name = std::to_string(tag);
-  std::vector<int> entities;
-  gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
-  for (const int entity : entities) {
-    std::vector<int> types;
-    std::vector<std::vector<std::size_t>> tags, nodes;
-    gmsh::model::mesh::getElements(types, tags, nodes, dim, entity);
-    for (std::size_t t = 0; t < types.size(); ++t) {
-      GmshElements* block = nullptr;
-      for (GmshElements& known : group.elements)
-        if (known.type == types[t]) block = &known;
-      if (block == nullptr) {
-        GmshElements added;
-        added.type = types[t];
-        int order = 0, primary_nodes = 0;
-        std::vector<double> local_coordinates;
-        gmsh::model::mesh::getElementProperties(types[t], added.name, added.dimension, order,
-                                                added.nodes_per_element, local_coordinates, primary_nodes);
-        group.elements.push_back(std::move(added));
-        block = &group.elements.back();
-      }
-      block->tags.insert(block->tags.end(), tags[t].begin(), tags[t].end());
-      block->nodes.insert(block->nodes.end(), nodes[t].begin(), nodes[t].end());
+using ReadFn = void (*)(const char* file, GmshMesh* mesh, std::string* error);
+
+// The reader module (gmsh_reader.cpp), loaded once and kept: where the build put it,
+// else beside the executable. A module that cannot be loaded is an error of the
+// installation, named with the loader's reason.
+ReadFn reader(const SourceLocation& where, const std::string& key_path) {
+  static std::mutex mutex;
+  static ReadFn read = nullptr;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (read != nullptr) return read;
+  std::string reasons;
+  std::error_code ignored;
+  const std::filesystem::path beside =
+      std::filesystem::read_symlink("/proc/self/exe", ignored).parent_path() / EXDYN_GMSH_READER_NAME;
+  for (const std::string& path : {std::string(EXDYN_GMSH_READER), beside.string()}) {
+    void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (module == nullptr) {
+      reasons += std::string(reasons.empty() ? "" : "; ") + dlerror();
+      continue;
     }
+    read = reinterpret_cast<ReadFn>(dlsym(module, "exdyn_read_gmsh_file"));
+    if (read != nullptr) return read;
+    reasons += "; " + path + " has no exdyn_read_gmsh_file";
   }
-  return group;
+  throw InputError(
+      where, key_path,
+      "cannot load exdyn's Gmsh reader, which reads mesh files (" + reasons +
+          "): rebuild exdyn (scripts/build.sh) or install libgmsh-dev (scripts/install_deps.sh)");
 }
 
 }  // namespace
@@ -86,25 +66,12 @@ GmshMesh read_gmsh(const std::string& file, const SourceLocation& where, const s
          "', not $MeshFormat (write it with gmsh -3 FILE.geo -o FILE.msh)");
   in.close();
 
-  const std::lock_guard<std::mutex> lock(gmsh_mutex);
-  GmshSession session;
+  const ReadFn read = reader(where, key_path);
   GmshMesh result;
   result.file = file;
-  try {
-    gmsh::open(file);
-    std::vector<double> parametric;
-    gmsh::model::mesh::getNodes(result.node_tags, result.coordinates, parametric, -1, -1, false, false);
-    gmsh::vectorpair groups;
-    gmsh::model::getPhysicalGroups(groups);
-    for (const auto& [dim, tag] : groups) {
-      if (dim == 3) result.volumes.push_back(read_group(dim, tag));
-      if (dim == 2) result.surfaces.push_back(read_group(dim, tag));
-    }
-  } catch (const std::string& message) {  // how Gmsh 4.8 reports an error
-    fail("Gmsh cannot read '" + file + "': " + message);
-  } catch (const std::exception& error) {
-    fail("Gmsh cannot read '" + file + "': " + error.what());
-  }
+  std::string error;
+  read(file.c_str(), &result, &error);
+  if (!error.empty()) fail("Gmsh cannot read '" + file + "': " + error);
   if (result.node_tags.empty()) fail("'" + file + "' has no nodes: is it a mesh (gmsh -3)?");
   return result;
 }

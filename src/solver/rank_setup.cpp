@@ -15,6 +15,7 @@
 #include <unordered_map>
 
 #include "common/errors.hpp"
+#include "element/corner_checks.hpp"
 #include "element/element_family.hpp"
 #include "material/elastic.hpp"
 #include "material/material_law.hpp"

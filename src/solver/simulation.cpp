@@ -27,6 +27,7 @@
 #include "common/parallel.hpp"
 #include "common/timer.hpp"
 #include "common/version.hpp"
+#include "element/corner_checks.hpp"
 #include "output/result_writer.hpp"
 #include "solver/contact_setup.hpp"
 #include "solver/decomposition.hpp"
@@ -101,6 +102,11 @@ class TimeLoop {
   double initial_mean_energy_ = 0.0, largest_mean_energy_ = 0.0, mean_energy_ = 0.0;
   double moved_since_check_ = std::numeric_limits<double>::infinity(), safety_radius_ = 0.0,
          largest_speed_ = 0.0;
+  // Following the deformation, the step's plan reads every element's corners: when the
+  // inversion check falls on that step it rides along (element::check_corners), each
+  // block's result kept here for check_inversion, stamped with the step.
+  std::vector<element::InvertedElement> planned_inversion_;
+  long planned_inversion_step_ = -1;
   bool small_strain_warned_ = false;
   int stop_requested_ = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
 };
@@ -292,7 +298,25 @@ void TimeLoop::compute_forces() {
 void TimeLoop::plan_time_step() {
   if (!clock_->follows_deformation()) return;
   ScopedTimer timer(summary_.phase_seconds.time_integration);
-  const std::string collapse = clock_->plan(state_.step, model_, d_, state_.displacement);
+  const bool check = moved_since_check_ >= safety_radius_;  // check_guards' test, the same figures
+  planned_inversion_.assign(model_.blocks.size(), element::InvertedElement{});
+  planned_inversion_step_ = check ? state_.step : -1;
+  element::CurrentStep finite{std::numeric_limits<double>::infinity(), 0};
+  for (std::size_t b = 0; b < model_.blocks.size(); ++b) {
+    const element::ElementBlock& block = model_.blocks[b];
+    const NodalVectors& x_ref = model_.mesh.x_ref;
+    element::CurrentStep current{std::numeric_limits<double>::infinity(), 0};
+    if (block.law.finite && check) {
+      const element::CornerChecks both = element::check_corners(block, x_ref, state_.displacement);
+      current = both.step, planned_inversion_[b] = both.inverted;
+    } else if (block.law.finite) {
+      current = element::current_time_step(block, x_ref, state_.displacement);
+    } else if (check) {
+      planned_inversion_[b] = element::find_inverted_element(block, x_ref, state_.displacement);
+    }
+    if (current.dt < finite.dt) finite = current;
+  }
+  const std::string collapse = clock_->plan(state_.step, d_, finite);
   summary_.dt_min = clock_->smallest();
   if (!collapse.empty()) stop_run(collapse + when());
 }
@@ -367,9 +391,12 @@ void TimeLoop::check_inversion() {
   safety_radius_ = std::numeric_limits<double>::infinity();
   std::string message;
   std::uint32_t inverted_element = std::numeric_limits<std::uint32_t>::max();
-  for (const auto& block : model_.blocks) {
+  for (std::size_t b = 0; b < model_.blocks.size(); ++b) {
+    const element::ElementBlock& block = model_.blocks[b];
     const element::InvertedElement inverted =
-        element::find_inverted_element(block, model_.mesh.x_ref, state_.displacement);
+        planned_inversion_step_ == state_.step
+            ? planned_inversion_[b]
+            : element::find_inverted_element(block, model_.mesh.x_ref, state_.displacement);
     safety_radius_ = std::min(safety_radius_, inverted.safety_radius);
     if (!inverted.found) continue;
     const std::uint32_t element = global_element_id(d_, inverted.element);

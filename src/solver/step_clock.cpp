@@ -38,15 +38,11 @@ bool StepClock::last(long step) const {
   return time_ >= end_time_ - 1e-9 * first_;
 }
 
-std::string StepClock::plan(long step, const Model& model, const Decomposition& d, const NodalVectors& u) {
+std::string StepClock::plan(long step, const Decomposition& d, element::CurrentStep finite) {
   if (!follows_) return {};
   double stable = fixed_part_;
   std::uint32_t element = 0;
-  for (const element::ElementBlock& block : model.blocks) {
-    if (!block.law.finite) continue;
-    const element::CurrentStep current = element::current_time_step(block, model.mesh.x_ref, u);
-    if (current.dt < stable) stable = current.dt, element = global_element_id(d, current.element);
-  }
+  if (finite.dt < stable) stable = finite.dt, element = global_element_id(d, finite.element);
   // The smallest over the ranks (ties: the lowest element), the same on every rank.
   const double mine[2] = {stable, double(element)};
   const std::vector<double> all = mpi::all_gather(d.comm, mine, 2);

@@ -39,9 +39,11 @@ class StepClock {
   long planned_steps() const { return planned_; }
   bool last(long step) const;
 
-  // dt^{n+1/2} at step n from the current configuration (every rank calls it). Returns
-  // an empty text, or the message of a step that fell below min_dt_ratio of the first.
-  std::string plan(long step, const Model& model, const Decomposition& d, const NodalVectors& u);
+  // dt^{n+1/2} at step n from the current configuration x^n: `finite`, the smallest
+  // stable step of this rank's finite-strain blocks there (element::current_time_step,
+  // local element index; infinite when none). Every rank calls it. Returns an empty
+  // text, or the message of a step that fell below min_dt_ratio of the first.
+  std::string plan(long step, const Decomposition& d, element::CurrentStep finite);
   // t^{n+1} = t^n + dt^{n+1/2}.
   void advance(long step);
 

@@ -43,6 +43,22 @@ TEST(Cli, VersionAndHelpExitZero) {
   EXPECT_NE(exdyn("run --help").output.find("--set"), std::string::npos);
 }
 
+// The Gmsh library (and the ~120 libraries it needs) is loaded by a deck with a mesh
+// file alone: the dynamic loader's own account (LD_DEBUG=files) of what a process opens.
+TEST(Cli, OnlyADeckWithAMeshFileLoadsTheGmshLibrary) {
+  const auto opened = [](const std::string& arguments) {
+    return exdyn::testing::run_exdyn(arguments, "LD_DEBUG=files").output;
+  };
+  const std::string version = opened("--version");
+  const std::string box = opened("check " + deck("plate_impact.yaml"));
+  const std::string mesh = opened("check " + deck("plate_impact_gmsh.yaml"));
+  ASSERT_NE(box.find("file=libhdf5"), std::string::npos) << box;  // the loader's account is there
+  EXPECT_EQ(version.find("libgmsh"), std::string::npos) << version;
+  EXPECT_EQ(box.find("libgmsh"), std::string::npos) << box;
+  EXPECT_NE(mesh.find("file=libgmsh"), std::string::npos) << mesh;
+  EXPECT_NE(mesh.find("libexdyn_gmsh_reader"), std::string::npos) << mesh;
+}
+
 TEST(Cli, BadUsageExitsTwo) {
   EXPECT_EQ(exdyn("").status, 2);
   EXPECT_EQ(exdyn("frobnicate").status, 2);

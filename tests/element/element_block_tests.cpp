@@ -9,7 +9,9 @@
 #include <utility>
 #include <vector>
 
+#include "box_mesh.hpp"
 #include "common/errors.hpp"
+#include "element/corner_checks.hpp"
 #include "element/element_block.hpp"
 #include "element/hex8.hpp"
 #include "element/hex8_parallelepiped.hpp"
@@ -19,14 +21,6 @@ namespace exdyn::element {
 namespace {
 
 const material::ElasticConstants steel = material::elastic_constants(2.1e11, 0.3, 7800.0);
-
-// A structured box of nx x ny x nz elements of sides h, node (i, j, k) at
-// index i + (nx+1) (j + (ny+1) k), elements in VTK order.
-struct Box {
-  NodalVectors x_ref;
-  std::vector<std::uint32_t> connectivity;
-  std::uint32_t count = 0;
-};
 
 // n nodal vectors, each component uniform in [-scale, scale], drawn x, y, z node by node.
 NodalVectors random_vectors(std::size_t n, double scale, std::mt19937_64& rng) {
@@ -38,31 +32,6 @@ NodalVectors random_vectors(std::size_t n, double scale, std::mt19937_64& rng) {
     v.z[i] = scale * unit(rng);
   }
   return v;
-}
-
-Box make_box(int nx, int ny, int nz, double h) {
-  Box box;
-  const auto node = [&](int i, int j, int k) {
-    return static_cast<std::uint32_t>(i + (nx + 1) * (j + (ny + 1) * k));
-  };
-  box.x_ref.resize(static_cast<std::size_t>((nx + 1) * (ny + 1) * (nz + 1)));
-  for (int k = 0; k <= nz; ++k)
-    for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) {
-        box.x_ref.x[node(i, j, k)] = i * h;
-        box.x_ref.y[node(i, j, k)] = j * h;
-        box.x_ref.z[node(i, j, k)] = k * h;
-      }
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        const std::uint32_t element[8] = {
-            node(i, j, k),     node(i + 1, j, k),     node(i + 1, j + 1, k),     node(i, j + 1, k),
-            node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
-        box.connectivity.insert(box.connectivity.end(), element, element + 8);
-        ++box.count;
-      }
-  return box;
 }
 
 ElementVectors gather(const NodalVectors& v, const std::uint32_t* nodes) {

@@ -16,8 +16,10 @@ struct CommandResult {
   std::string output;  // stdout and stderr
 };
 
-inline CommandResult run_exdyn(const std::string& arguments) {
-  const std::string command = std::string(EXDYN_EXECUTABLE) + " " + arguments + " 2>&1";
+// `environment`: assignments put before the command (e.g. "LD_DEBUG=files").
+inline CommandResult run_exdyn(const std::string& arguments, const std::string& environment = "") {
+  const std::string command = (environment.empty() ? "" : environment + " ") + std::string(EXDYN_EXECUTABLE) +
+                              " " + arguments + " 2>&1";
   CommandResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;
