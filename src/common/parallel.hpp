@@ -52,7 +52,8 @@ inline std::size_t chunk_count(std::size_t n, std::size_t chunk = node_chunk) {
 // parallel region costs libgomp 2-3 us even on one thread (a team set up and a futex
 // call), 20 us a step of the Taylor rod's eight regions, 9 % of its step on one
 // thread. scripts/serial_fraction.py counts the work inside as the threads' (by the
-// name of one_thread_loop on the stack: kept out of line for it).
+// name of one_thread_loop on the stack: kept out of line for it); a single item, which
+// no number of threads would share, runs in place and counts as serial.
 template <class Body>
 [[gnu::noinline]] void one_thread_loop(std::ptrdiff_t count, Body& body) {
   for (std::ptrdiff_t k = 0; k < count; ++k) body(k);
@@ -60,7 +61,11 @@ template <class Body>
 
 template <class Body>
 void parallel_for_static(std::ptrdiff_t count, Body&& body) {
-  if (count <= 1 || max_threads() == 1) {
+  if (count <= 1) {  // work that no number of threads would share: serial
+    if (count == 1) body(std::ptrdiff_t{0});
+    return;
+  }
+  if (max_threads() == 1) {
     one_thread_loop(count, body);
     return;
   }

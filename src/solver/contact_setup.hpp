@@ -61,6 +61,7 @@ struct ContactModel {
   std::vector<ContactPair> pairs;
   std::vector<RigidWall> walls;
   std::vector<std::uint32_t> nodes;  // every node of every contact surface and wall, unique
+  std::vector<double> node_power;    // scratch of the contact power: per node of `nodes`, W x 2
 
   bool empty() const { return pairs.empty() && walls.empty(); }
   // "contact pair NAME" or "rigid wall NAME": the first with the deepest penetration

@@ -66,15 +66,25 @@ namespace {
 // The contact pass of every pair at x^n = x_ref + u^n with v^{n-1/2}; then the
 // work done against the contact forces (trapezoidal rule):
 //   E_c^n = E_c^{n-1} - 1/2 (f_c^{n-1} + f_c^n).(u^n - u^{n-1}),  u^n - u^{n-1} = dt v^{n-1/2}.
+// The contact nodes' loops run on the threads, in chunks of contact_node_chunk nodes
+// (a contact face has hundreds to thousands): each node is written by one thread.
+constexpr std::size_t contact_node_chunk = 256;
+
 void begin_contact_forces(ContactModel& contact, State& state) {
   std::swap(state.contact_force, state.previous_contact_force);
   const bool loads = !state.load_force.empty();
-  for (std::uint32_t node : contact.nodes) {
-    for (int c = 0; c < 3; ++c)
-      state.contact_force.component(c)[node] = loads ? state.load_force.component(c)[node] : 0.0;
-    state.previous_gap[node] = state.gap[node];
-    state.gap[node] = std::numeric_limits<double>::infinity();
-  }
+  for_each_chunk(
+      contact.nodes.size(),
+      [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const std::uint32_t node = contact.nodes[i];
+          for (int c = 0; c < 3; ++c)
+            state.contact_force.component(c)[node] = loads ? state.load_force.component(c)[node] : 0.0;
+          state.previous_gap[node] = state.gap[node];
+          state.gap[node] = std::numeric_limits<double>::infinity();
+        }
+      },
+      contact_node_chunk);
 }
 
 void run_contact_passes(const Model& model, ContactModel& contact, State& state) {
@@ -98,16 +108,31 @@ void run_contact_passes(const Model& model, ContactModel& contact, State& state)
 void finish_contact_forces(ContactModel& contact, State& state, double dt, Decomposition* d) {
   double power = 0.0;  // (f_c^{n-1} + f_c^n).v^{n-1/2}, W x 2
   const bool loads = !state.load_force.empty();
-  for (std::uint32_t node : contact.nodes) {
-    if (state.gap[node] == std::numeric_limits<double>::infinity()) state.gap[node] = 0.0;  // no candidate
+  // Each node's term on the threads, then their sum in node order (the bits of one loop).
+  contact.node_power.resize(contact.nodes.size());
+  for_each_chunk(
+      contact.nodes.size(),
+      [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t i = begin; i < end; ++i) {
+          const std::uint32_t node = contact.nodes[i];
+          if (state.gap[node] == std::numeric_limits<double>::infinity())
+            state.gap[node] = 0.0;  // no candidate
+          if (loads) continue;
+          contact.node_power[i] =
+              (state.previous_contact_force.x[node] + state.contact_force.x[node]) * state.velocity.x[node] +
+              (state.previous_contact_force.y[node] + state.contact_force.y[node]) * state.velocity.y[node] +
+              (state.previous_contact_force.z[node] + state.contact_force.z[node]) * state.velocity.z[node];
+        }
+      },
+      contact_node_chunk);
+  for (std::size_t i = 0; i < contact.nodes.size(); ++i) {
+    const std::uint32_t node = contact.nodes[i];
     if (d != nullptr && d->owned[node] == 0) continue;
     if (!loads) {
-      power += (state.previous_contact_force.x[node] + state.contact_force.x[node]) * state.velocity.x[node] +
-               (state.previous_contact_force.y[node] + state.contact_force.y[node]) * state.velocity.y[node] +
-               (state.previous_contact_force.z[node] + state.contact_force.z[node]) * state.velocity.z[node];
+      power += contact.node_power[i];
       continue;
     }
-    for (int c = 0; c < 3; ++c)
+    for (int c = 0; c < 3; ++c)  // three terms a node, added one by one
       power += (state.previous_contact_force.component(c)[node] + state.contact_force.component(c)[node] -
                 2.0 * state.load_force.component(c)[node]) *
                state.velocity.component(c)[node];
