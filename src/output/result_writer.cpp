@@ -341,6 +341,10 @@ void ResultWriter::Impl::fill_field(std::vector<double>& out, const FieldLayout&
       break;
   }
   out.resize(count);
+  if (data.fill_rows) {
+    data.fill_rows(layout.field, out.data());
+    return;
+  }
   if (vectors == nullptr && values == nullptr) {
     std::fill(out.begin(), out.end(), 0.0);
     return;

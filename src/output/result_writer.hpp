@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -50,6 +51,11 @@ struct StepData {
   const double* von_mises = nullptr;       // E
   const double* gap = nullptr;             // N
   const double* plastic_strain = nullptr;  // E: mean equivalent plastic strain (null: 0, elastic parts)
+  // Instead of the pointers (many ranks): writes this rank's rows of a requested field
+  // straight into the step's buffer, in the file's layout ((rows, 3) or (rows, 6)
+  // row-major, or (rows,)), so no rank keeps a copy of its rows beside the buffer.
+  // Called on the caller's thread, once per requested field in the writer's order.
+  std::function<void(input::OutputField field, double* rows)> fill_rows;
 };
 
 struct HistoryRow {

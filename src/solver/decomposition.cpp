@@ -456,13 +456,24 @@ void rows_of(Decomposition& d, const NodalVectors& local, NodalVectors& rows) {
       });
 }
 
-void rows_of(Decomposition& d, const double* local, int k, bool nodal, std::vector<double>& rows) {
-  const RowExchange& x = nodal ? d.node_rows : d.element_rows;
-  rows.resize(std::size_t(k) * (x.end - x.begin));
+// One column at a time: the messages' buffers hold one value an item, not 3 or 6 (at
+// the output steps they were the rank's largest figure beside its part).
+void rows_of(Decomposition& d, const NodalVectors& local, double* rows) {
+  for (int c = 0; c < 3; ++c) {
+    const double* values = local.component(c).data();
+    exchange_rows(
+        d, d.node_rows, 1, [&](std::uint32_t item, double* out) { *out = values[item]; },
+        [&](std::uint32_t row, const double* in) { rows[3 * std::size_t(row) + std::size_t(c)] = *in; });
+  }
+}
+
+void rows_of(Decomposition& d, const double* local, int k, bool nodal, double* rows) {
   const auto n = std::size_t(k);
-  exchange_rows(
-      d, x, k, [&](std::uint32_t item, double* out) { std::copy_n(local + n * item, n, out); },
-      [&](std::uint32_t row, const double* in) { std::copy_n(in, n, rows.data() + n * row); });
+  for (std::size_t c = 0; c < n; ++c)
+    exchange_rows(
+        d, nodal ? d.node_rows : d.element_rows, 1,
+        [&](std::uint32_t item, double* out) { *out = local[n * item + c]; },
+        [&](std::uint32_t row, const double* in) { rows[n * row + c] = *in; });
 }
 
 MeshRows mesh_rows(Decomposition& d, const mesh::Mesh& local) {

@@ -187,10 +187,13 @@ inline std::uint32_t global_element_id(const Decomposition& d, std::uint32_t ele
 element::ElementEnergies add_forces_across_ranks(const Model& model, Decomposition& d, const NodalVectors& u,
                                                  NodalVectors& f_int, double* stress);
 
-// The rows this rank writes of a nodal vector field / of a field of k values per
-// element (stress: 6) or per node (k = 1, `nodal`), from the owners.
+// The rows this rank writes of a nodal vector field, from the owners: as vectors, or
+// into `rows` as (rows, 3) row-major (node_rows.end - node_rows.begin rows, the
+// file's layout); and of a field of k values per element (stress: 6) or per node
+// (k = 1, `nodal`) into `rows`, k a row.
 void rows_of(Decomposition& d, const NodalVectors& local, NodalVectors& rows);
-void rows_of(Decomposition& d, const double* local, int k, bool nodal, std::vector<double>& rows);
+void rows_of(Decomposition& d, const NodalVectors& local, double* rows);
+void rows_of(Decomposition& d, const double* local, int k, bool nodal, double* rows);
 
 // This rank's rows of the mesh (node_rows, element_rows), for the output: the
 // coordinates, and per element its nodes (global ids), part and node count, from the

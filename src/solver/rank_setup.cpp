@@ -1113,6 +1113,17 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
     for (std::size_t c = 0; c < part.chunks; ++c)
       if (chunks.rank[part.first_chunk + c] == me)
         my_chunks[std::size_t(part.index)].push_back(std::uint32_t(c));
+  // Sized first: grown by doubling, the lists would keep up to twice their size for the
+  // whole run (the node list, before its duplicates go, 8 or 20 entries an element).
+  std::size_t my_elements = 0, my_entries = 0;
+  for (const SetupPart& part : deck_parts.list)
+    for (const std::uint32_t c : my_chunks[std::size_t(part.index)]) {
+      const std::size_t count = std::min((c + 1) * chunk_size, part.element_count) - c * chunk_size;
+      my_elements += count;
+      my_entries += count * std::size_t(part.nodes_per_element);
+    }
+  d.global_element.reserve(my_elements);
+  d.global_node.reserve(my_entries);
   for (const SetupPart& part : deck_parts.list)
     for (const std::uint32_t c : my_chunks[std::size_t(part.index)])
       for (std::uint32_t e = c * chunk_size; e < std::min((c + 1) * chunk_size, part.element_count); ++e) {
@@ -1121,6 +1132,7 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
       }
   std::sort(d.global_node.begin(), d.global_node.end());
   d.global_node.erase(std::unique(d.global_node.begin(), d.global_node.end()), d.global_node.end());
+  d.global_node.shrink_to_fit();
   auto local_of = [&](std::uint32_t g) {
     return std::uint32_t(std::lower_bound(d.global_node.begin(), d.global_node.end(), g) -
                          d.global_node.begin());
@@ -1156,6 +1168,8 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   m.mesh.x_ref = deck_parts.points(d.global_node);
   for (const SetupPart& part : deck_parts.list) m.mesh.parts.push_back(part.range());
   std::vector<std::size_t> first_connectivity;
+  m.mesh.connectivity.reserve(my_entries);
+  m.mesh.element_part.reserve(my_elements);
   for (const SetupPart& part : deck_parts.list) {
     first_connectivity.push_back(m.mesh.connectivity.size());
     for (const std::uint32_t c : my_chunks[std::size_t(part.index)])

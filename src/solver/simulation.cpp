@@ -211,7 +211,7 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   state_.plastic_strain.assign(model_.mesh.element_count(), 0.0);
   state_.velocity = std::move(initial_v);
   for (auto& p : state_.partial) p.assign(chunk_count(node_count), 0.0);
-  step_writer_ = std::make_unique<StepWriter>(*writer_, model_, d_, deck.output.fields);
+  step_writer_ = std::make_unique<StepWriter>(*writer_, model_, d_);
   nodal_update_ = nodal_update_for(selected_isa());  // the element blocks' ISA
   // The element and contact passes side by side, as tasks (compute_forces_side_by_side),
   // where the element pass runs on the threads anyway (a colour of more than one chunk):

@@ -118,26 +118,29 @@ void StepWriter::write(State& state, double dt) {
     data.von_mises = von_mises_.data();
     data.plastic_strain = state.plastic_strain.data();
   } else {
-    // The rows of the fields the deck writes only (every rank knows them: the same deck).
-    using input::OutputField;
-    auto wanted = [&](OutputField f) {
-      return std::find(fields_.begin(), fields_.end(), f) != fields_.end();
+    // The writer asks for the deck's fields only (every rank knows them: the same
+    // deck), in its order on every rank; the owners' values go straight to its buffer.
+    data.fill_rows = [&](input::OutputField field, double* rows) {
+      using input::OutputField;
+      switch (field) {
+        case OutputField::displacement:
+          return rows_of(d_, state.displacement, rows);
+        case OutputField::velocity:
+          return rows_of(d_, velocity_, rows);
+        case OutputField::acceleration:
+          return rows_of(d_, state.acceleration, rows);
+        case OutputField::contact_force:
+          return rows_of(d_, *contact_force, rows);
+        case OutputField::gap:
+          return rows_of(d_, state.gap.data(), 1, true, rows);
+        case OutputField::stress:
+          return rows_of(d_, state.stress.data(), 6, false, rows);
+        case OutputField::von_mises:
+          return rows_of(d_, von_mises_.data(), 1, false, rows);
+        case OutputField::plastic_strain:
+          return rows_of(d_, state.plastic_strain.data(), 1, false, rows);
+      }
     };
-    const std::tuple<OutputField, const NodalVectors*, NodalVectors*, const NodalVectors**> vectors[] = {
-        {OutputField::displacement, &state.displacement, &rows_[0], &data.displacement},
-        {OutputField::velocity, &velocity_, &rows_[1], &data.velocity},
-        {OutputField::acceleration, &state.acceleration, &rows_[2], &data.acceleration},
-        {OutputField::contact_force, contact_force, &rows_[3], &data.contact_force}};
-    for (const auto& [field, local, rows, out] : vectors)
-      if (wanted(field)) rows_of(d_, *local, *rows), *out = rows;
-    const std::tuple<OutputField, const double*, int, bool, std::vector<double>*, const double**> values[] = {
-        {OutputField::gap, state.gap.data(), 1, true, &gap_rows_, &data.gap},
-        {OutputField::stress, state.stress.data(), 6, false, &stress_rows_, &data.stress},
-        {OutputField::von_mises, von_mises_.data(), 1, false, &von_mises_rows_, &data.von_mises},
-        {OutputField::plastic_strain, state.plastic_strain.data(), 1, false, &plastic_strain_rows_,
-         &data.plastic_strain}};
-    for (const auto& [field, local, k, nodal, rows, out] : values)
-      if (wanted(field)) rows_of(d_, local, k, nodal, *rows), *out = rows->data();
   }
   writer_.write_step(data);
 }

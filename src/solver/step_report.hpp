@@ -20,10 +20,8 @@ namespace exdyn::solver {
 // write their rows (decomposition.hpp, rows_of), which write them together.
 class StepWriter {
  public:
-  // fields: the deck's output fields (on many ranks only theirs travel to the writers).
-  StepWriter(output::ResultWriter& writer, const Model& model, Decomposition& d,
-             std::vector<input::OutputField> fields)
-      : writer_(writer), model_(model), d_(d), fields_(std::move(fields)) {
+  StepWriter(output::ResultWriter& writer, const Model& model, Decomposition& d)
+      : writer_(writer), model_(model), d_(d) {
     velocity_.resize(model.mesh.node_count());
     von_mises_.resize(model.mesh.element_count());
   }
@@ -33,12 +31,9 @@ class StepWriter {
   output::ResultWriter& writer_;
   const Model& model_;
   Decomposition& d_;
-  std::vector<input::OutputField> fields_;
   NodalVectors velocity_;
   std::vector<double> von_mises_;
-  std::array<NodalVectors, 4> rows_;  // many ranks: this rank's rows of u, v, a, f_contact
-  NodalVectors contact_only_;         // with loads: f_contact alone (state.contact_force holds f_load too)
-  std::vector<double> gap_rows_, stress_rows_, von_mises_rows_, plastic_strain_rows_;
+  NodalVectors contact_only_;  // with loads: f_contact alone (state.contact_force holds f_load too)
 };
 
 // The node with the largest |v|_1 (m/s), for a guard's message.
