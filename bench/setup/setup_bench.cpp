@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "input/deck_reader.hpp"
-#include "solver/model.hpp"
-#include "solver/rank_setup.hpp"
+#include "model/model.hpp"
+#include "ranks/rank_setup.hpp"
 
 namespace {
 

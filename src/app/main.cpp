@@ -19,7 +19,7 @@
 #include "common/version.hpp"
 #include "input/deck_reader.hpp"
 #include "mesh/mesh.hpp"
-#include "solver/mesh_quality.hpp"
+#include "model/mesh_quality.hpp"
 #include "solver/simulation.hpp"
 
 namespace {

@@ -71,7 +71,7 @@ struct CornerChecks {
   InvertedElement inverted;
 };
 
-// What a rank's part of a block, built alone (solver/rank_setup.cpp), takes from the
+// What a rank's part of a block, built alone (ranks/rank_setup.cpp), takes from the
 // whole block, so that its elements run the kernels and share the data they do there:
 // whether every element of the whole block is a parallelepiped (and, hex8, has its
 // edges along x, y, z), and a 20-node block's groups (ElementBlock::group_points).

@@ -35,7 +35,7 @@ std::uint64_t mapped_element_count(const input::PartOptions& options);
 void add_mapped_part(Mesh& mesh, const input::PartOptions& options, int part_index);
 
 // A cylinder or sphere part by numbers, for a rank that builds only its own elements
-// (solver/rank_setup.hpp): add_mapped_part's nodes (numbered from 0), elements and
+// (ranks/rank_setup.hpp): add_mapped_part's nodes (numbered from 0), elements and
 // faces, the same numbering and bits, each computed when asked for from the layout
 // of blocks. It holds one figure per lattice row of each block, the node ids of the
 // points on the blocks' sides and the part's faces: O(n^2) for n^3 elements.

@@ -46,7 +46,7 @@ struct Face {
   std::vector<FaceSegment> segments;
   double normal_length = 0.0;
   // A face cut to some of its segments (cut_face; a rank's contact faces,
-  // solver/rank_setup.cpp): each kept segment's index in the whole face, and the whole
+  // ranks/rank_setup.cpp): each kept segment's index in the whole face, and the whole
   // face's segment count. Both empty for a whole face.
   std::vector<std::uint32_t> segment_index;
   std::size_t whole_segments = 0;
@@ -122,7 +122,7 @@ Mesh build_mesh(const input::Deck& deck);
 // with the same bits, numbered from 0; its faces; the same checks of a perturbed or
 // imported part, an error naming element first_element + e for its element e): for a
 // rank that builds only its own elements of a part it cannot make piece by piece
-// (solver/rank_setup.hpp). An imported part's file comes from `read` (input::read_gmsh's
+// (ranks/rank_setup.hpp). An imported part's file comes from `read` (input::read_gmsh's
 // arguments and result: on many ranks, read once and sent to every rank).
 using GmshReader = std::function<input::GmshMesh(const std::string& file, const SourceLocation& where,
                                                  const std::string& key_path)>;
@@ -198,7 +198,7 @@ inline constexpr std::array<std::array<int, 3>, 20> brick_offsets{
      {1, 2, 2}, {0, 1, 2}, {0, 0, 1}, {2, 0, 1}, {2, 2, 1}, {0, 2, 1}}};
 
 // The box part's pieces as functions of the lattice, for a rank that builds only its
-// own elements (solver/rank_setup.hpp) and must get the bits build_mesh gives:
+// own elements (ranks/rank_setup.hpp) and must get the bits build_mesh gives:
 // the corner grid point (i, j, k) of part `part_index` (m, with its perturbation),
 // and the element lengths normal to its sides xmin, xmax, ..., zmax (m).
 std::array<double, 3> box_point(const input::PartOptions& options, int part_index,

@@ -81,7 +81,7 @@ struct MpiSummary {
   double exchange_seconds = 0.0;        // the longest time a rank waited in the exchanges, s
   std::string partition = "bisection";  // how the chunks were dealt (exdyn run --partition)
   std::string weigh = "elements";       // what the partition balanced (exdyn run --weigh)
-  std::string setup = "whole";          // "by_rank": each rank built only its part (solver/rank_setup.hpp)
+  std::string setup = "whole";          // "by_rank": each rank built only its part (ranks/rank_setup.hpp)
   long edge_cut = 0;                    // shared nodes summed over pairs of chunks on different ranks
   // Each rank's figures (mpi.per_rank, one entry per rank): its peak resident memory,
   // its share of the contact (solver::ContactShareFigures) and its force messages.

@@ -28,12 +28,11 @@
 #include "common/timer.hpp"
 #include "common/version.hpp"
 #include "element/corner_checks.hpp"
+#include "model/contact_setup.hpp"
+#include "model/model.hpp"
 #include "output/result_writer.hpp"
-#include "solver/contact_setup.hpp"
-#include "solver/decomposition.hpp"
-#include "solver/model.hpp"
+#include "ranks/ranks.hpp"
 #include "solver/nodal_update.hpp"
-#include "solver/rank_setup.hpp"
 #include "solver/step_clock.hpp"
 #include "solver/step_passes.hpp"
 #include "solver/step_report.hpp"
@@ -50,6 +49,9 @@ class TimeLoop {
   void flush() { writer_->flush(); }
 
  private:
+  NodalVectors set_up(const RunControls& controls, output::RunSummary& summary);
+  void open_writer(const RunControls& controls);
+  void set_initial_state(NodalVectors initial_velocity);
   void begin_step();
   void compute_forces();
   void plan_time_step();
@@ -111,55 +113,53 @@ class TimeLoop {
   int stop_requested_ = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
 };
 
-// On many ranks each rank sets up only its part (rank_setup.hpp: the chunks weighed by
-// their elements or their measured work) and its share of the contact
+// The model, the step clock and the contact; returns the initial velocities. On many
+// ranks each rank sets up only its part (rank_setup.hpp: the chunks weighed by their
+// elements or their measured work) and its share of the contact
 // (distributed_contact.hpp); the stable step is the whole model's (docs/parallel.md).
-TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output::RunSummary& summary)
-    : deck_(deck), controls_(controls), summary_(summary) {
+NodalVectors TimeLoop::set_up(const RunControls& controls, output::RunSummary& summary) {
   const mpi::Communicator& comm = controls.comm;
-  NodalVectors initial_v;
-  std::vector<std::uint32_t> contact_nodes;
-  if (comm.distributed()) {
-    RankSetup setup = set_up_rank(deck, comm, controls.partitioning, controls.weigh_by_work);
-    critical_dt_ = setup.critical_dt;
-    clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, setup.run.model, &comm);
-    contact_ = build_contact(deck, setup.surfaces, clock_->next(), critical_dt_, contact_scope(setup, comm));
-    globalize_contact(contact_, setup.surface_nodes);
-    contact_nodes = std::move(setup.contact_nodes);
-    local_ = std::move(setup.run);
-    summary.nodes = static_cast<long>(setup.nodes);
-    summary.elements = static_cast<long>(setup.elements);
-  } else {
-    model_ = build_model(deck);
-    initial_v = initial_velocity(deck, model_);
+  d_.comm = comm;
+  if (!comm.distributed()) {
+    model_ = build_model(deck_);
     critical_dt_ = critical_time_step(model_);
-    clock_ = std::make_unique<StepClock>(deck.time, critical_dt_, model_);
-    contact_ = build_contact(deck, model_, clock_->next(), critical_dt_);
+    clock_ = std::make_unique<StepClock>(deck_.time, critical_dt_, model_);
+    contact_ = build_contact(deck_, model_, clock_->next(), critical_dt_);
     summary.nodes = static_cast<long>(model_.mesh.node_count());
     summary.elements = static_cast<long>(model_.mesh.element_count());
+    summary.dt = clock_->next();
+    return initial_velocity(deck_, model_);
   }
+  RankSetup setup = set_up_rank(deck_, comm, controls.partitioning, controls.weigh_by_work);
+  critical_dt_ = setup.critical_dt;
+  clock_ = std::make_unique<StepClock>(deck_.time, critical_dt_, setup.run.model, &comm);
+  contact_ = build_contact(deck_, setup.surfaces, clock_->next(), critical_dt_, contact_scope(setup, comm));
+  globalize_contact(contact_, setup.surface_nodes);
+  local_ = std::move(setup.run);
+  summary.nodes = static_cast<long>(setup.nodes);
+  summary.elements = static_cast<long>(setup.elements);
   summary.dt = clock_->next();
-
   // From here on this rank's part only.
-  d_.comm = comm;
-  if (comm.distributed()) {
-    d_.contact = distribute_contact(contact_, comm, d_.global_node, local_.model, contact_nodes,
-                                    local_.contact_holders);
-    local_.contact_holders = {};
-    model_ = std::move(local_.model);
-    initial_v = std::move(local_.initial_velocity);
-  }
+  d_.contact = distribute_contact(contact_, comm, d_.global_node, local_.model, setup.contact_nodes,
+                                  local_.contact_holders);
+  local_.contact_holders = {};
+  model_ = std::move(local_.model);
+  return std::move(local_.initial_velocity);
+}
+
+// NAME.h5 with the mesh. One process writes its mesh; on many ranks each writes its
+// rows of it (mesh_rows), once the whole model is gone.
+void TimeLoop::open_writer(const RunControls& controls) {
   const std::string directory =
-      controls.output_directory.empty() ? deck.output.directory : controls.output_directory;
+      controls.output_directory.empty() ? deck_.output.directory : controls.output_directory;
   output::HistoryGroups history_groups;
   for (const auto& pair : contact_.pairs) history_groups.contact_pairs.push_back(pair.name);
   for (const auto& wall : contact_.walls) history_groups.walls.push_back(wall.name);
-  // One process writes its mesh; on many ranks each writes its rows of it (mesh_rows),
-  // once the whole model is gone.
   output::Distribution distribution;
   MeshRows mesh;
-  if (comm.distributed()) {
-    distribution.comm = comm;
+  const bool rows = controls.comm.distributed();
+  if (rows) {
+    distribution.comm = controls.comm;
     distribution.nodes = d_.global_nodes;
     distribution.elements = d_.global_elements;
     distribution.node_begin = d_.node_rows.begin;
@@ -172,18 +172,20 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
     for (std::size_t e = 0; e < mesh.element_nodes.size(); ++e)
       mesh.element_nodes[e] = static_cast<std::uint8_t>(model_.mesh.nodes_of(e));
   }
-  const bool rows = comm.distributed();
   writer_ = std::make_unique<output::ResultWriter>(
-      directory, deck.name,
+      directory, deck_.name,
       output::MeshView{rows ? &mesh.x_ref : &model_.mesh.x_ref,
                        rows ? &mesh.connectivity : &model_.mesh.connectivity,
                        rows ? &mesh.element_part : &model_.mesh.element_part, &mesh.element_nodes},
-      deck.output.fields, history_groups,
+      deck_.output.fields, history_groups,
       // steps 0, every, 2 every, ..., the last, and one more a stop may write
-      static_cast<std::size_t>(clock_->planned_steps() / std::max(deck.output.every, 1) + 3), distribution);
-  mesh = {};
-  writer_->write_in_background(deck.output.background);
+      static_cast<std::size_t>(clock_->planned_steps() / std::max(deck_.output.every, 1) + 3), distribution);
+  writer_->write_in_background(deck_.output.background);
+}
 
+// The state at step 0: u = 0, v the initial velocities, the flags of the fixed and
+// contact nodes, and f_load = m g with the contact forces from the start.
+void TimeLoop::set_initial_state(NodalVectors initial_velocity) {
   const std::size_t node_count = model_.mesh.node_count();
   state_.displacement.resize(node_count);
   for (std::size_t c = 0; c < 3; ++c) {
@@ -195,7 +197,7 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   state_.internal_force.resize(node_count);
   state_.contact_force.resize(node_count);
   state_.previous_contact_force.resize(node_count);
-  if (!model_.load_acceleration.empty()) {  // f_load = m g, with the contact forces from the start
+  if (!model_.load_acceleration.empty()) {
     state_.load_force.resize(node_count);
     for (int c = 0; c < 3; ++c)
       for (std::size_t i = 0; i < node_count; ++i) {
@@ -209,8 +211,14 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
   state_.previous_gap.assign(node_count, 0.0);
   state_.stress.assign(6 * model_.mesh.element_count(), 0.0);
   state_.plastic_strain.assign(model_.mesh.element_count(), 0.0);
-  state_.velocity = std::move(initial_v);
+  state_.velocity = std::move(initial_velocity);
   for (auto& p : state_.partial) p.assign(chunk_count(node_count), 0.0);
+}
+
+TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output::RunSummary& summary)
+    : deck_(deck), controls_(controls), summary_(summary) {
+  set_initial_state(set_up(controls, summary));
+  open_writer(controls);
   step_writer_ = std::make_unique<StepWriter>(*writer_, model_, d_);
   nodal_update_ = nodal_update_for(selected_isa());  // the element blocks' ISA
   // The element and contact passes side by side, as tasks (compute_forces_side_by_side),
@@ -224,7 +232,8 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
         return std::any_of(block.colours.begin(), block.colours.end(),
                            [](const auto& colour) { return colour.size() > 1; });
       });
-  side_by_side_ = !contact_.empty() && max_threads() > 1 && element_pass_threaded && !comm.distributed();
+  side_by_side_ =
+      !contact_.empty() && max_threads() > 1 && element_pass_threaded && !controls.comm.distributed();
 }
 
 // One step n, in the order of the algorithm.

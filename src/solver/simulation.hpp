@@ -9,7 +9,7 @@
 #include "common/mpi.hpp"
 #include "input/options.hpp"
 #include "output/summary.hpp"
-#include "solver/partitioning.hpp"
+#include "ranks/ranks.hpp"
 
 namespace exdyn::solver {
 

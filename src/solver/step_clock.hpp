@@ -11,8 +11,8 @@
 #include <string>
 
 #include "input/options.hpp"
-#include "solver/decomposition.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
+#include "ranks/ranks.hpp"
 
 namespace exdyn::solver {
 

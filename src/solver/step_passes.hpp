@@ -11,10 +11,10 @@
 #include "common/nodal_vectors.hpp"
 #include "contact/contact_pass.hpp"
 #include "element/element_block.hpp"
+#include "model/contact_setup.hpp"
+#include "model/model.hpp"
 #include "output/result_writer.hpp"
-#include "solver/contact_setup.hpp"
-#include "solver/decomposition.hpp"
-#include "solver/model.hpp"
+#include "ranks/ranks.hpp"
 #include "solver/nodal_update.hpp"
 
 namespace exdyn::solver {

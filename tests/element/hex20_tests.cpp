@@ -243,7 +243,7 @@ TEST(Hex20, AffineMatrixPathEqualsTheGaussPointKernel) {
   }
 }
 
-// A rank's part of a block built alone (solver/rank_setup.cpp) shares the whole
+// A rank's part of a block built alone (ranks/rank_setup.cpp) shares the whole
 // block's groups of equal Jacobians: the groups start at those of the parts' starts
 // that start one among them all, and a part given the whole block's group points has
 // its matrices, each element's group and its stable step, bit for bit.

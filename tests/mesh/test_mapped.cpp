@@ -13,7 +13,7 @@
 
 #include "mesh/mapped.hpp"
 #include "mesh/mesh.hpp"
-#include "solver/mesh_quality.hpp"
+#include "model/mesh_quality.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The domain decomposition (solver/decomposition.hpp, docs/parallel.md), for virtual
+// The domain decomposition (ranks/decomposition.hpp, docs/parallel.md), for virtual
 // ranks in one process: localize only reads the communicator's rank and size, so every
 // rank's part of a model can be built and checked here. The exchanges themselves run
 // through mpirun (scripts/test_mpi.py: every field bit for bit as one process).
@@ -16,12 +16,12 @@
 #include "element/element_block.hpp"
 #include "input/deck_reader.hpp"
 #include "mesh/mesh.hpp"
-#include "solver/contact_setup.hpp"
-#include "solver/decomposition.hpp"
-#include "solver/distributed_contact.hpp"
-#include "solver/load_balance.hpp"
-#include "solver/model.hpp"
-#include "solver/rank_setup.hpp"
+#include "model/contact_setup.hpp"
+#include "ranks/decomposition.hpp"
+#include "ranks/distributed_contact.hpp"
+#include "ranks/load_balance.hpp"
+#include "model/model.hpp"
+#include "ranks/rank_setup.hpp"
 
 namespace {
 
@@ -298,7 +298,7 @@ TEST(SliceBlock, TheSameBitsAtTheNodesOfItsChunksAlone) {
   }
 }
 
-// Setting up rank by rank (solver/rank_setup.hpp) walks the parts chunk by chunk in
+// Setting up rank by rank (ranks/rank_setup.hpp) walks the parts chunk by chunk in
 // place of the whole model: the colours, the partition, the masses and the contact
 // surfaces must be the whole model's, bit for bit. Decks: the plates (two parts), the
 // sliding block (two parts of other sizes, friction, gravity), the wall deck, the

@@ -18,7 +18,7 @@
 #include "../support/deck_run.hpp"
 #include "../support/result_file.hpp"
 #include "input/deck_reader.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 #include "solver/simulation.hpp"
 
 namespace {

@@ -19,7 +19,7 @@
 #include "common/errors.hpp"
 #include "element/element_block.hpp"
 #include "input/deck_reader.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 #include "solver/simulation.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-// The mesh size check (solver/memory_estimate.hpp, docs/input.md "Mesh size"):
+// The mesh size check (model/memory_estimate.hpp, docs/input.md "Mesh size"):
 // the estimate counts what a run holds, and a deck too large for the machine or
 // for 32-bit indices is refused as bad input before its mesh is allocated.
 #include <gtest/gtest.h>
@@ -15,8 +15,8 @@
 #include "../support/temp_dir.hpp"
 #include "common/errors.hpp"
 #include "input/deck_reader.hpp"
-#include "solver/memory_estimate.hpp"
-#include "solver/model.hpp"
+#include "model/memory_estimate.hpp"
+#include "model/model.hpp"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define EXDYN_TEST_UNDER_ASAN 1

@@ -13,7 +13,7 @@
 
 #include "../support/deck_run.hpp"
 #include "../support/result_file.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace {
 

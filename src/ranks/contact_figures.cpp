@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "common/timer.hpp"
-#include "solver/distributed_contact.hpp"
+#include "ranks/distributed_contact.hpp"
 
 namespace exdyn::solver {
 

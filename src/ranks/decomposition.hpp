@@ -32,9 +32,9 @@
 #include "common/mpi.hpp"
 #include "common/nodal_vectors.hpp"
 #include "input/options.hpp"
-#include "solver/distributed_contact.hpp"
-#include "solver/model.hpp"
-#include "solver/partitioning.hpp"
+#include "model/model.hpp"
+#include "ranks/distributed_contact.hpp"
+#include "ranks/partitioning.hpp"
 
 namespace exdyn::solver {
 

@@ -20,8 +20,8 @@
 
 #include "common/mpi.hpp"
 #include "common/nodal_vectors.hpp"
-#include "solver/contact_setup.hpp"
-#include "solver/model.hpp"
+#include "model/contact_setup.hpp"
+#include "model/model.hpp"
 
 namespace exdyn::solver {
 

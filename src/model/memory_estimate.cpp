@@ -1,4 +1,4 @@
-#include "solver/memory_estimate.hpp"
+#include "model/memory_estimate.hpp"
 
 #include <algorithm>
 #include <array>

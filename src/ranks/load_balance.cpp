@@ -1,5 +1,5 @@
 // The chunks' costs for the partition (load_balance.hpp).
-#include "solver/load_balance.hpp"
+#include "ranks/load_balance.hpp"
 
 #include <algorithm>
 #include <functional>

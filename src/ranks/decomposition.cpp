@@ -1,6 +1,6 @@
 // Domain decomposition: the partition, a rank's part of the model, and the
 // exchanges of a step (decomposition.hpp, docs/parallel.md).
-#include "solver/decomposition.hpp"
+#include "ranks/decomposition.hpp"
 
 #include <algorithm>
 #include <array>

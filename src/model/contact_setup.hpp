@@ -10,7 +10,7 @@
 #include "contact/contact_pass.hpp"
 #include "contact/rigid_wall.hpp"
 #include "input/options.hpp"
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 namespace exdyn::solver {
 

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "common/errors.hpp"
-#include "solver/decomposition.hpp"
+#include "ranks/decomposition.hpp"
 
 namespace exdyn::solver {
 

@@ -1,4 +1,4 @@
-#include "solver/mesh_quality.hpp"
+#include "model/mesh_quality.hpp"
 
 #include <array>
 #include <limits>

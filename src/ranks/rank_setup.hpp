@@ -30,10 +30,10 @@
 
 #include "common/mpi.hpp"
 #include "input/options.hpp"
-#include "solver/contact_setup.hpp"
-#include "solver/decomposition.hpp"
-#include "solver/model.hpp"
-#include "solver/partitioning.hpp"
+#include "model/contact_setup.hpp"
+#include "model/model.hpp"
+#include "ranks/decomposition.hpp"
+#include "ranks/partitioning.hpp"
 
 namespace exdyn::solver {
 

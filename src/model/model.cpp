@@ -1,4 +1,4 @@
-#include "solver/model.hpp"
+#include "model/model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "common/errors.hpp"
 #include "material/elastic.hpp"
 #include "material/material_law.hpp"
-#include "solver/memory_estimate.hpp"
+#include "model/memory_estimate.hpp"
 
 namespace exdyn::solver {
 

@@ -1,5 +1,5 @@
 // How the chunks of the elements are dealt to the MPI ranks (`exdyn run --partition`;
-// solver/partition.cpp, docs/parallel.md).
+// ranks/partition.cpp, docs/parallel.md).
 #pragma once
 
 namespace exdyn::solver {

@@ -56,7 +56,7 @@ MemoryEstimate estimate_memory(const input::Deck& deck);
 std::optional<std::uint64_t> available_memory(const std::string& meminfo_path = "/proc/meminfo");
 
 // The ranks of a run and how many of them share this machine: a run on many ranks
-// (solver/rank_setup.hpp) needs about the model's memory times ranks_here / ranks on
+// (ranks/rank_setup.hpp) needs about the model's memory times ranks_here / ranks on
 // this machine (each rank its part and a halo of one element; boxes, cylinders and
 // balls are set up by numbers). An imported part is read and held whole by rank 0
 // alone while it sets up; it is not counted here, its size is known only once it is
