@@ -4,7 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "common/parallel.hpp"
 #include "common/timer.hpp"
+#include "contact/force_scatter.hpp"
 #include "contact/mortar_pass.hpp"
 #include "contact/penalty.hpp"
 #include "contact/slave_points.hpp"
@@ -139,6 +141,65 @@ void add_friction(const ContactSurfaces& surfaces, const ContactPassSettings& se
     anchor = relocate_anchor(surfaces, settings, state, p, y_anchor + t.anchor_shift, anchor, x_ref, u);
 }
 
+// The penalty force of slave point p along its normal (state.force_magnitude), its
+// pair's stiffness (state.pair_stiffness) and, with friction, its tangential force:
+// F = max(0, -k g - c (v_s - v_m).n), k the point pair's stiffness (capped when
+// automatic), c the dashpot of its reduced mass.
+void point_force(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                 ContactPassState& state, std::size_t p, const NodalVectors& x_ref, const NodalVectors& u,
+                 const NodalVectors& v, const std::vector<double>& mass) {
+  const bool friction = settings.friction.enabled;
+  const auto& contact = state.contacts[p];
+  if (contact.segment < 0 || contact.gap >= 0.0) {
+    if (friction) state.anchors[p] = Anchor{};  // out of contact: no stick to keep
+    return;
+  }
+  const SegmentNodes& master = surfaces.segments[static_cast<std::size_t>(contact.segment)];
+  const std::array<double, 8> N = shape_functions(master.type, contact.xi);
+  Vec3 master_velocity{};
+  double master_inverse_mass = 0.0;  // sum N_i^2 / m_i: the master point's 1 / mass
+  for (int i = 0; i < node_count(master.type); ++i) {
+    const std::uint32_t node = master.nodes[std::size_t(i)];
+    master_velocity = master_velocity + N[std::size_t(i)] * Vec3{v.x[node], v.y[node], v.z[node]};
+    master_inverse_mass += N[std::size_t(i)] * N[std::size_t(i)] / mass[node];
+  }
+  const SlaveSide slave = slave_side(surfaces, p);
+  const SlaveMotion motion = slave_motion(slave, v, mass);  // the slave point's velocity and 1 / mass
+  const Vec3 slave_velocity = motion.velocity;
+  const double slave_inverse_mass = motion.inverse_mass;
+  const Vec3 n = contact.normal;
+  const double normal_velocity = dot(slave_velocity - master_velocity, n);
+  double k = surfaces.stiffness[p];  // the point pair's stiffness
+  if (settings.automatic_stiffness) k *= settings.stiffness_growth;
+  if (settings.automatic_stiffness && !surfaces.quadrature) {
+    const double inverse_mass = slave_inverse_mass + master_inverse_mass;
+    k = std::min({k, settings.stiffness_scale * accurate_stiffness_bound(settings.dt, inverse_mass),
+                  settings.stiffness_scale * stable_stiffness_bound(settings.dt, settings.courant,
+                                                                    settings.damping_ratio, inverse_mass)});
+  }
+  state.pair_stiffness[p] = k;
+  k /= settings.pass_count;
+  const double slave_mass = surfaces.quadrature ? 1.0 / slave_inverse_mass : mass[slave.nodes[0]];
+  // A mortar point's dashpot: on the reduced mass per area of its segments times its
+  // weight, so that a uniform approach gives a uniform traction.
+  const double c = surfaces.point_mass.empty()
+                       ? damping_coefficient(settings.damping_ratio, k, slave_mass, 1.0 / master_inverse_mass)
+                       : settings.damping_ratio * 2.0 * std::sqrt(k * surfaces.point_mass[p]);
+  state.force_magnitude[p] = normal_force(k, c, contact.gap, normal_velocity);
+  if (friction && !(state.force_magnitude[p] > 0.0)) state.anchors[p] = Anchor{};
+  state.point_force[p] = state.force_magnitude[p] * contact.normal;
+  if (friction && state.force_magnitude[p] > 0.0) {
+    const Vec3 point{state.slave_points.x[p], state.slave_points.y[p], state.slave_points.z[p]};
+    const Vec3 slip_velocity = tangential_part(slave_velocity - master_velocity, n);
+    add_friction(surfaces, settings, state, p, point, k, state.force_magnitude[p], slip_velocity, x_ref, u);
+    state.point_force[p] = state.point_force[p] + state.tangential_force[p];
+  }
+}
+
+// Slave points per chunk of the force pass: a surface of one chunk runs in place (on a
+// few hundred points starting threads costs more than the work).
+constexpr std::size_t force_chunk = 256;
+
 }  // namespace
 
 void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
@@ -270,12 +331,13 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
   // Penalty forces: F = max(0, -k g - c (v_s - v_m).n) along n on the slave point,
   // -N_i F n on the segment's nodes (momentum is conserved exactly); a Gauss point's
   // F goes to its segment's nodes as N_I F n. F and the pair's k of every slave point
-  // on the threads (large surfaces only: on a few hundred points starting threads
-  // costs more than the work); then the scatter, in slave order, alone, since
-  // segments share nodes: the same sums on any number of threads.
+  // on the threads, in chunks of force_chunk points (point_force); then the scatter, in
+  // slave order, alone, since segments share nodes: the same sums on any number of
+  // threads.
   {
     ScopedTimer timer(seconds.forces);
     state.force_magnitude.assign(n_points, 0.0);
+    state.point_force.assign(n_points, Vec3{});
     state.pair_stiffness.assign(n_points, 0.0);
     const bool friction = settings.friction.enabled;
     if (friction) {
@@ -283,108 +345,45 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       state.dissipation.assign(n_points, 0.0);
       state.anchors.resize(n_points);
     }
-    const auto points = static_cast<std::ptrdiff_t>(n_points);
-#pragma omp parallel for schedule(static) if (points >= 4096)
-    for (std::ptrdiff_t q = 0; q < points; ++q) {
-      const auto p = static_cast<std::size_t>(q);
-      const auto& contact = state.contacts[p];
-      if (contact.segment < 0 || contact.gap >= 0.0) {
-        if (friction) state.anchors[p] = Anchor{};  // out of contact: no stick to keep
-        continue;
-      }
-      const SegmentNodes& master = surfaces.segments[static_cast<std::size_t>(contact.segment)];
-      const std::array<double, 8> N = shape_functions(master.type, contact.xi);
-      Vec3 master_velocity{};
-      double master_inverse_mass = 0.0;  // sum N_i^2 / m_i: the master point's 1 / mass
-      for (int i = 0; i < node_count(master.type); ++i) {
-        const std::uint32_t node = master.nodes[std::size_t(i)];
-        master_velocity = master_velocity + N[std::size_t(i)] * Vec3{v.x[node], v.y[node], v.z[node]};
-        master_inverse_mass += N[std::size_t(i)] * N[std::size_t(i)] / mass[node];
-      }
-      const SlaveSide slave = slave_side(surfaces, p);
-      const SlaveMotion motion = slave_motion(slave, v, mass);  // the slave point's velocity and 1 / mass
-      const Vec3 slave_velocity = motion.velocity;
-      const double slave_inverse_mass = motion.inverse_mass;
-      const Vec3 n = contact.normal;
-      const double normal_velocity = dot(slave_velocity - master_velocity, n);
-      double k = surfaces.stiffness[p];  // the point pair's stiffness
-      if (settings.automatic_stiffness) k *= settings.stiffness_growth;
-      if (settings.automatic_stiffness && !surfaces.quadrature) {
-        const double inverse_mass = slave_inverse_mass + master_inverse_mass;
-        k = std::min(
-            {k, settings.stiffness_scale * accurate_stiffness_bound(settings.dt, inverse_mass),
-             settings.stiffness_scale * stable_stiffness_bound(settings.dt, settings.courant,
-                                                               settings.damping_ratio, inverse_mass)});
-      }
-      state.pair_stiffness[p] = k;
-      k /= settings.pass_count;
-      const double slave_mass = surfaces.quadrature ? 1.0 / slave_inverse_mass : mass[slave.nodes[0]];
-      // A mortar point's dashpot: on the reduced mass per area of its segments times its
-      // weight, so that a uniform approach gives a uniform traction.
-      const double c =
-          surfaces.point_mass.empty()
-              ? damping_coefficient(settings.damping_ratio, k, slave_mass, 1.0 / master_inverse_mass)
-              : settings.damping_ratio * 2.0 * std::sqrt(k * surfaces.point_mass[p]);
-      state.force_magnitude[p] = normal_force(k, c, contact.gap, normal_velocity);
-      if (friction && !(state.force_magnitude[p] > 0.0)) state.anchors[p] = Anchor{};
-      if (friction && state.force_magnitude[p] > 0.0) {
-        const Vec3 point{state.slave_points.x[p], state.slave_points.y[p], state.slave_points.z[p]};
-        const Vec3 slip_velocity = tangential_part(slave_velocity - master_velocity, n);
-        add_friction(surfaces, settings, state, p, point, k, state.force_magnitude[p], slip_velocity, x_ref,
-                     u);
-      }
-    }
+    for_each_chunk(
+        n_points,
+        [&](std::size_t begin, std::size_t end, std::size_t) {
+          for (std::size_t p = begin; p < end; ++p)
+            point_force(surfaces, settings, state, p, x_ref, u, v, mass);
+        },
+        force_chunk);
+    // The pass's sums and largest figures, in slave point order.
     state.slave_force = state.slave_normal_force = state.slave_tangential_force = Vec3{};
     state.max_penetration = 0.0;
     state.slipping = state.sticking = 0;
     for (std::size_t p = 0; p < n_points; ++p) {
       const auto& contact = state.contacts[p];
-      if (contact.segment < 0) continue;
-      const SlaveSide slave = slave_side(surfaces, p);
-      for (int i = 0; i < slave.count; ++i) {
-        if (records != nullptr) {
-          records->gap(p, i, slave.nodes[std::size_t(i)], contact.gap);
-          continue;
-        }
-        double& g = gap[slave.nodes[std::size_t(i)]];
-        g = std::min(g, contact.gap);
-      }
-      if (contact.gap >= 0.0) continue;
-      const SegmentNodes& master = surfaces.segments[static_cast<std::size_t>(contact.segment)];
-      const std::array<double, 8> N = shape_functions(master.type, contact.xi);
-      const Vec3 F_n = state.force_magnitude[p] * contact.normal;
-      Vec3 F = F_n;
+      if (contact.segment < 0 || contact.gap >= 0.0) continue;
       if (friction && state.force_magnitude[p] > 0.0) {
-        F = F + state.tangential_force[p];
         state.slave_tangential_force = state.slave_tangential_force + state.tangential_force[p];
         state.friction_work += state.dissipation[p];
         ++(state.dissipation[p] > 0.0 ? state.slipping : state.sticking);
       }
-      state.slave_normal_force = state.slave_normal_force + F_n;
+      state.slave_normal_force = state.slave_normal_force + state.force_magnitude[p] * contact.normal;
       statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
-      if (records != nullptr) {  // f -= N F is f += -(N F), bit for bit
-        add_to_slave(slave, F, p, *records);
-        for (int i = 0; i < node_count(master.type); ++i) {
-          const double w = N[std::size_t(i)];
-          records->add(p, 8 + i, master.nodes[std::size_t(i)], -(w * F.x), -(w * F.y), -(w * F.z));
-        }
-      } else {
-        add_to_slave(slave, F, force);
-        for (int i = 0; i < node_count(master.type); ++i) {
-          const std::uint32_t node = master.nodes[std::size_t(i)];
-          force.x[node] -= N[std::size_t(i)] * F.x;
-          force.y[node] -= N[std::size_t(i)] * F.y;
-          force.z[node] -= N[std::size_t(i)] * F.z;
-        }
-      }
-      state.slave_force = state.slave_force + F;
+      state.slave_force = state.slave_force + state.point_force[p];
       state.max_penetration = std::max(state.max_penetration, -contact.gap);
       if (const double depth = -contact.gap / surfaces.normal_length[p];
           depth > statistics.max_penetration_over_h) {
         statistics.max_penetration_over_h = depth;
-        statistics.deepest_node = slave.nodes[0];
+        statistics.deepest_node =
+            surfaces.quadrature ? surfaces.slave_segments[surfaces.quadrature_points[p].segment].nodes[0]
+                                : surfaces.slave_nodes[p];
       }
     }
+    // The forces and gaps onto the nodes: a surface of more than one chunk on the
+    // threads, in the order of one process (force_scatter.hpp).
+    if (records != nullptr)
+      scatter_to_records(surfaces, state, *records);
+    else if (n_points > force_chunk)
+      scatter_by_chunks(surfaces, state, force, gap, force_chunk, state.scatter);
+    else
+      scatter_in_point_order(surfaces, state, force, gap);
   }
 }
 

@@ -130,7 +130,17 @@ struct MortarState {
   std::vector<std::uint64_t> point_keys;  // records (many processes): each point's key
 };
 
-// What the pass keeps from step to step.
+// The chunked scatter's scratch (force_scatter.hpp): the slots (places among the
+// pass's moving nodes) of each slave point's and each master segment's nodes, each
+// slot's first chunk in the last call (under the call's stamp), and each chunk's
+// points with writes left for the ordered phase.
+struct ScatterScratch {
+  std::vector<std::uint32_t> point_slots, segment_slots;  // 8 a point, 8 a segment
+  std::vector<std::uint64_t> first_chunk;
+  std::uint32_t stamp = 0;
+  std::vector<std::vector<std::uint32_t>> late;
+};
+
 struct ContactPassState {
   bool built = false;
   long rebuilds = 0;
@@ -147,10 +157,12 @@ struct ContactPassState {
   std::vector<ProjectionResult> results;   // the projection of each candidate pair, this step
   std::vector<EdgeContact> edge_contacts;  // scratch: a fold's edge point of each candidate pair
   std::vector<double> force_magnitude;     // F of each slave point's contact, N (0: none)
-  std::vector<double> pair_stiffness;      // k of each slave point's pair before the pass split, N/m
-  std::vector<Vec3> tangential_force;      // F_t of each slave point, N (friction)
-  std::vector<double> dissipation;         // the friction work of each slave point this step, J
-  std::vector<Anchor> anchors;  // friction: each slave point's stick anchor, kept from step to step
+  std::vector<Vec3> point_force;           // F n + F_t of each slave point pressed, N (0: none)
+  ScatterScratch scatter;
+  std::vector<double> pair_stiffness;  // k of each slave point's pair before the pass split, N/m
+  std::vector<Vec3> tangential_force;  // F_t of each slave point, N (friction)
+  std::vector<double> dissipation;     // the friction work of each slave point this step, J
+  std::vector<Anchor> anchors;         // friction: each slave point's stick anchor, kept from step to step
   // This step: the total contact force on the pass's slave side (N), its normal and
   // tangential parts, and its deepest penetration (m, >= 0): the pair's histories.
   Vec3 slave_force{};

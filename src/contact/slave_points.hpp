@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "common/nodal_vectors.hpp"
+#include "common/parallel.hpp"
 #include "contact/contact_pass.hpp"
 
 namespace exdyn::contact {
@@ -25,26 +26,33 @@ inline Segment current_segment(const SegmentNodes& ids, const NodalVectors& x_re
 }
 
 // The current position of every slave point into `points` (m): a slave node's, or a
-// Gauss point's y(xi) = sum N_I(xi) y_I on its slave segment.
+// Gauss point's y(xi) = sum N_I(xi) y_I on its slave segment. On the threads in chunks
+// of 256 points, each point its own: the gathers from the nodal arrays miss the caches
+// on a large model (alone, 0.8 % of the step of the plate impact at 320,000 bricks).
 inline void update_slave_points(const ContactSurfaces& surfaces, const NodalVectors& x_ref,
                                 const NodalVectors& u, NodalVectors& points) {
   const std::size_t n_points = surfaces.point_count();
   points.resize(n_points);
-  for (std::size_t p = 0; p < n_points; ++p) {
-    Vec3 x{};
-    if (!surfaces.quadrature) {
-      x = current_position(x_ref, u, surfaces.slave_nodes[p]);
-    } else {
-      const QuadraturePoint& q = surfaces.quadrature_points[p];
-      const SegmentNodes& ids = surfaces.slave_segments[q.segment];
-      const std::array<double, 8> N = shape_functions(ids.type, q.xi);
-      for (int i = 0; i < node_count(ids.type); ++i)
-        x = x + N[std::size_t(i)] * current_position(x_ref, u, ids.nodes[std::size_t(i)]);
-    }
-    points.x[p] = x.x;
-    points.y[p] = x.y;
-    points.z[p] = x.z;
-  }
+  for_each_chunk(
+      n_points,
+      [&](std::size_t begin, std::size_t end, std::size_t) {
+        for (std::size_t p = begin; p < end; ++p) {
+          Vec3 x{};
+          if (!surfaces.quadrature) {
+            x = current_position(x_ref, u, surfaces.slave_nodes[p]);
+          } else {
+            const QuadraturePoint& q = surfaces.quadrature_points[p];
+            const SegmentNodes& ids = surfaces.slave_segments[q.segment];
+            const std::array<double, 8> N = shape_functions(ids.type, q.xi);
+            for (int i = 0; i < node_count(ids.type); ++i)
+              x = x + N[std::size_t(i)] * current_position(x_ref, u, ids.nodes[std::size_t(i)]);
+          }
+          points.x[p] = x.x;
+          points.y[p] = x.y;
+          points.z[p] = x.z;
+        }
+      },
+      256);
 }
 
 // The nodes a slave point's force goes to and their weights: the slave node with

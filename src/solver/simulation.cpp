@@ -217,8 +217,9 @@ void TimeLoop::set_initial_state(NodalVectors initial_velocity) {
 
 TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output::RunSummary& summary)
     : deck_(deck), controls_(controls), summary_(summary) {
-  set_initial_state(set_up(controls, summary));
+  NodalVectors initial_velocity = set_up(controls, summary);
   open_writer(controls);
+  set_initial_state(std::move(initial_velocity));
   step_writer_ = std::make_unique<StepWriter>(*writer_, model_, d_);
   nodal_update_ = nodal_update_for(selected_isa());  // the element blocks' ISA
   // The element and contact passes side by side, as tasks (compute_forces_side_by_side),
