@@ -131,11 +131,13 @@ struct MortarState {
 };
 
 // The chunked scatter's scratch (force_scatter.hpp): the slots (places among the
-// pass's moving nodes) of each slave point's and each master segment's nodes, each
-// slot's first chunk in the last call (under the call's stamp), and each chunk's
-// points with writes left for the ordered phase.
+// pass's moving nodes) of the slave nodes (or of each slave segment's nodes) and of each
+// master segment's nodes, made after the candidate search numbered `rebuilds`; each
+// slot's first chunk in the last call (under the call's stamp); and each chunk's points
+// with writes left for the ordered phase.
 struct ScatterScratch {
-  std::vector<std::uint32_t> point_slots, segment_slots;  // 8 a point, 8 a segment
+  std::vector<std::uint32_t> slave_slots, segment_slots;
+  long rebuilds = -1;
   std::vector<std::uint64_t> first_chunk;
   std::uint32_t stamp = 0;
   std::vector<std::vector<std::uint32_t>> late;

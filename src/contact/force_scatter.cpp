@@ -77,30 +77,36 @@ struct RecordTarget {
   }
 };
 
-// The slots (places in surfaces.moving_nodes, the pass's nodes) of each slave point's
-// and each master segment's nodes, 8 each: fixed for the run, made at the first call.
-// The marks are kept per slot: a few kB that stay in the cache, where marks per node
-// of the model would be a sweep of the memory each step.
-void make_slots(const ContactSurfaces& surfaces, ScatterScratch& scratch) {
+// The slots (places in surfaces.moving_nodes, the pass's nodes) of each slave node (slave
+// nodes) or of each slave segment's nodes (Gauss points, 8 a segment) and of each master
+// segment's nodes (8 a segment): fixed until the pass's next candidate search (where a
+// view's segments may change), made at the first call after it. The marks are kept
+// per slot: a few kB that stay in the cache, where marks per node of the model would
+// be a sweep of the memory each step.
+void make_slots(const ContactSurfaces& surfaces, long rebuilds, ScatterScratch& scratch) {
   const std::vector<std::uint32_t>& nodes = surfaces.moving_nodes;
   auto slot = [&](std::uint32_t node) {
     const auto at = std::lower_bound(nodes.begin(), nodes.end(), node);
     EXDYN_ASSERT(at != nodes.end() && *at == node);  // every node of the pass moves with it
     return std::uint32_t(at - nodes.begin());
   };
-  const std::size_t points = surfaces.point_count();
-  scratch.point_slots.assign(8 * points, 0);
-  for (std::size_t p = 0; p < points; ++p) {
-    const SlaveSide slave = slave_side(surfaces, p);
-    for (int i = 0; i < slave.count; ++i)
-      scratch.point_slots[8 * p + std::size_t(i)] = slot(slave.nodes[std::size_t(i)]);
+  auto segment_slots = [&](const std::vector<SegmentNodes>& segments, std::vector<std::uint32_t>& slots) {
+    slots.assign(8 * segments.size(), 0);
+    for (std::size_t s = 0; s < segments.size(); ++s)
+      for (int i = 0; i < node_count(segments[s].type); ++i)
+        slots[8 * s + std::size_t(i)] = slot(segments[s].nodes[std::size_t(i)]);
+  };
+  if (surfaces.quadrature) {
+    segment_slots(surfaces.slave_segments, scratch.slave_slots);
+  } else {
+    scratch.slave_slots.resize(surfaces.slave_nodes.size());
+    for (std::size_t p = 0; p < surfaces.slave_nodes.size(); ++p)
+      scratch.slave_slots[p] = slot(surfaces.slave_nodes[p]);
   }
-  scratch.segment_slots.assign(8 * surfaces.segments.size(), 0);
-  for (std::size_t s = 0; s < surfaces.segments.size(); ++s)
-    for (int i = 0; i < node_count(surfaces.segments[s].type); ++i)
-      scratch.segment_slots[8 * s + std::size_t(i)] = slot(surfaces.segments[s].nodes[std::size_t(i)]);
+  segment_slots(surfaces.segments, scratch.segment_slots);
   scratch.first_chunk.assign(nodes.size(), unmarked);
   scratch.stamp = 0;
+  scratch.rebuilds = rebuilds;
 }
 
 // Lowers first_chunk[slot] to `mark`, if it is lower (any thread may lower it: the least wins).
@@ -129,14 +135,15 @@ void scatter_to_records(const ContactSurfaces& surfaces, const ContactPassState&
 void scatter_by_chunks(const ContactSurfaces& surfaces, const ContactPassState& state, NodalVectors& force,
                        std::vector<double>& gap, std::size_t chunk, ScatterScratch& scratch) {
   const std::size_t points = state.contacts.size();
-  if (scratch.point_slots.size() != 8 * points || scratch.stamp == std::numeric_limits<std::uint32_t>::max())
-    make_slots(surfaces, scratch);
+  if (scratch.rebuilds != state.rebuilds || scratch.stamp == std::numeric_limits<std::uint32_t>::max())
+    make_slots(surfaces, state.rebuilds, scratch);
   const std::uint32_t stamp = ++scratch.stamp;
   std::vector<std::uint64_t>& first_chunk = scratch.first_chunk;
   // The slot of point p's write (master: of its segment's node i).
   auto slot_of = [&](std::size_t p, bool master, int i) {
-    return master ? scratch.segment_slots[8 * std::size_t(state.contacts[p].segment) + std::size_t(i)]
-                  : scratch.point_slots[8 * p + std::size_t(i)];
+    if (master) return scratch.segment_slots[8 * std::size_t(state.contacts[p].segment) + std::size_t(i)];
+    if (!surfaces.quadrature) return scratch.slave_slots[p];
+    return scratch.slave_slots[8 * std::size_t(surfaces.quadrature_points[p].segment) + std::size_t(i)];
   };
   scratch.late.resize(chunk_count(points, chunk));
   ArrayTarget target{force, gap};

@@ -69,6 +69,7 @@ void search_segment_pairs(const ContactSurfaces& surfaces, const ContactPassSett
   // The view's segments are the pass's (they change only where a search is asked for).
   m.view.slave_segments = surfaces.slave_segments;
   m.view.segments = surfaces.segments;
+  m.view.moving_nodes = surfaces.moving_nodes;  // the scatter's slots (force_scatter.hpp)
 }
 
 // Cuts the slave segments chunk by chunk on the threads, each chunk into its own list
