@@ -147,21 +147,24 @@ void scatter_by_chunks(const ContactSurfaces& surfaces, const ContactPassState& 
   };
   scratch.late.resize(chunk_count(points, chunk));
   ArrayTarget target{force, gap};
-  struct NoTarget {
-    void gap(std::size_t, int, std::uint32_t, double) {}
-    void slave(std::size_t, int, std::uint32_t, double, Vec3) {}
-    void master(std::size_t, int, std::uint32_t, double, Vec3) {}
-  } none;
-  // The marks: each node's first chunk.
+  // The marks: each node's first chunk, from the slots of each point's writes alone (no
+  // weights or shape functions: point_writes' nodes, not its values).
+  auto mark_point = [&](std::size_t p, std::uint64_t mark) {
+    const auto& contact = state.contacts[p];
+    if (contact.segment < 0) return;
+    const int slaves = surfaces.quadrature
+                           ? node_count(surfaces.slave_segments[surfaces.quadrature_points[p].segment].type)
+                           : 1;
+    for (int i = 0; i < slaves; ++i) lower(first_chunk, slot_of(p, slave_node, i), mark);
+    if (contact.gap >= 0.0) return;
+    for (int i = 0; i < node_count(surfaces.segments[std::size_t(contact.segment)].type); ++i)
+      lower(first_chunk, slot_of(p, master_node, i), mark);
+  };
   for_each_chunk(
       points,
       [&](std::size_t begin, std::size_t end, std::size_t c) {
         const std::uint64_t mark = mark_of(stamp, c);
-        for (std::size_t p = begin; p < end; ++p)
-          point_writes(surfaces, state, p, none, [&](bool master, int i) {
-            lower(first_chunk, slot_of(p, master, i), mark);
-            return false;
-          });
+        for (std::size_t p = begin; p < end; ++p) mark_point(p, mark);
       },
       chunk);
   // Each chunk writes the nodes it is the first of, its points in order, and keeps

@@ -17,10 +17,10 @@
 #include "input/deck_reader.hpp"
 #include "mesh/mesh.hpp"
 #include "model/contact_setup.hpp"
+#include "model/model.hpp"
 #include "ranks/decomposition.hpp"
 #include "ranks/distributed_contact.hpp"
 #include "ranks/load_balance.hpp"
-#include "model/model.hpp"
 #include "ranks/rank_setup.hpp"
 
 namespace {
