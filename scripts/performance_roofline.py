@@ -29,7 +29,7 @@ def main():
     machine = data["machine"]
     intensity = np.logspace(-1.3, 1.6, 200)  # flop / byte
 
-    fig, ax = plt.subplots(figsize=(7.5, 5.0), dpi=110)
+    fig, ax = plt.subplots(figsize=(11.5, 5.0), dpi=110)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlim(intensity[0], intensity[-1])
@@ -67,8 +67,9 @@ def main():
     ax.set_ylabel("GFLOP/s, one core")
     ax.set_title(data.get("title", "roofline"), fontsize=10)
     ax.grid(True, which="both", lw=0.3, color="0.85")
-    ax.legend(fontsize=7.5, loc="lower right", title="filled: DRAM bytes, large mesh; hollow: load/store bytes, "
-              "in cache", title_fontsize=7)
+    # beside the chart: inside it the legend hid the kernels near the ridge
+    ax.legend(fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+              title="filled: DRAM bytes, large mesh;\nhollow: load/store bytes, in cache", title_fontsize=7)
     fig.tight_layout()
     fig.savefig(out_path)
     print(f"wrote {out_path}")

@@ -24,6 +24,10 @@ LOOPS = [  # (label, the loop template's name as objdump -C prints it, lanes per
     ("hex8 general", "hex8_general_loop<{L}>"),
     ("hex8r parallelepiped", "hex8r_loop<true, {L}>"),
     ("hex8r general", "hex8r_loop<false, {L}>"),
+    # The finite-strain loops of linear hardening: every path of the return mapping and
+    # of the corner checks (step and inversion) counted once, as if all ran every pack.
+    ("hex8r finite plastic", "hex8r_law_loop<exdyn::material::Hardening, true, {L}>"),
+    ("hex8 F-bar finite plastic", "hex8_law_loop<exdyn::material::Hardening, true, {L}>"),
 ]
 LANES = {"x86-64-v2": 2, "x86-64-v3": 4, "x86-64-v4": 8}
 
@@ -39,12 +43,12 @@ def main():
     functions = re.split(r"\n(?=[0-9a-f]+ <)", text)
     wrapper = "loop_" + args.isa.replace("-", "_")
     print(f"{args.binary}, {args.isa}: per element (static count of the pack loop / {lanes})")
-    print(f"{'loop':<22} {'instructions':>12} {'fp':>6} {'flops':>7}")
+    print(f"{'loop':<26} {'instructions':>12} {'fp':>6} {'flops':>7}")
     for label, name in LOOPS:
         target = name.format(L=lanes)
         body = next((f for f in functions if wrapper in f.split("\n", 1)[0] and target in f.split("\n", 1)[0]), None)
         if body is None:
-            print(f"{label:<22} not found")
+            print(f"{label:<26} not found")
             continue
         instructions = fp = flops = 0
         for line in body.split("\n")[1:]:
@@ -62,7 +66,7 @@ def main():
                 fp, flops = fp + 1, flops + 2 * width
             elif re.match(r"^vfn?m(add|sub)\d+sd$", mnemonic):
                 fp, flops = fp + 1, flops + 2
-        print(f"{label:<22} {instructions / lanes:>12.0f} {fp / lanes:>6.0f} {flops / lanes:>7.0f}")
+        print(f"{label:<26} {instructions / lanes:>12.0f} {fp / lanes:>6.0f} {flops / lanes:>7.0f}")
 
 
 if __name__ == "__main__":

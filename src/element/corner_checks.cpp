@@ -12,6 +12,7 @@
 #include "common/errors.hpp"
 #include "common/parallel.hpp"
 #include "common/simd_pack.hpp"
+#include "element/corner_pack.hpp"
 #include "element/element_isa.hpp"
 #include "element/element_loop.hpp"
 #include "element/hex8_constitutive.hpp"
@@ -19,13 +20,6 @@
 namespace exdyn::element {
 
 namespace {
-
-// Neighbours of each corner along xi, eta, zeta, and the sign that orients the edge
-// towards +xi, +eta, +zeta (VTK order: 0-3 at zeta = -1, 4-7 at zeta = +1).
-constexpr int neighbour[8][3] = {{1, 3, 4}, {0, 2, 5}, {3, 1, 6}, {2, 0, 7},
-                                 {5, 7, 0}, {4, 6, 1}, {7, 5, 2}, {6, 4, 3}};
-// -sx sy sz of the corner at (sx, sy, sz): +1 where all three edges already point the + way.
-constexpr double orientation[8] = {1.0, -1.0, 1.0, -1.0, -1.0, 1.0, -1.0, 1.0};
 
 // The corners x_ref + u of the pack of Lanes elements from `first` on; lanes past the
 // block's end repeat its last element. A row pack (ElementBlock::row_pack) gathers
@@ -59,67 +53,16 @@ BasicElementVectors<Pack<Lanes>> gather_corners(const ElementBlock& block, const
   return x;
 }
 
-// The inversion check of a pack (find_inverted_element's arithmetic, lane by lane):
-// the first lane and corner with det <= 0 (or not a number) into `found`, else the
-// smallest det / ||J||_F^2 into `smallest`.
-template <int Lanes>
-void check_pack(const BasicElementVectors<Pack<Lanes>>& x, std::uint32_t first, const ElementBlock& block,
-                InvertedElement& found, Pack<Lanes>& smallest) {
-  using Real = Pack<Lanes>;
-  Real det[8];
-  bool bad = false;
-  for (int a = 0; a < 8; ++a) {
-    const int i = neighbour[a][0], j = neighbour[a][1], k = neighbour[a][2];
-    const Real ax = x.x[i] - x.x[a], ay = x.y[i] - x.y[a], az = x.z[i] - x.z[a];
-    const Real bx = x.x[j] - x.x[a], by = x.y[j] - x.y[a], bz = x.z[j] - x.z[a];
-    const Real cx = x.x[k] - x.x[a], cy = x.y[k] - x.y[a], cz = x.z[k] - x.z[a];
-    det[a] =
-        orientation[a] * (ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx));
-    bad = bad || any_lane((det[a] > 0.0) == 0);
-    const Real frobenius2 =
-        ax * ax + ay * ay + az * az + bx * bx + by * by + bz * bz + cx * cx + cy * cy + cz * cz;
-    const Real ratio = det[a] / frobenius2;
-    smallest = select(ratio < smallest, ratio, smallest);
-  }
-  if (!bad) return;
-  for (int lane = 0; lane < Lanes && first + std::uint32_t(lane) < block.count; ++lane)
-    for (int a = 0; a < 8; ++a)
-      if (!(det[a][lane] > 0.0)) {
-        found = {true, block.first_element + first + std::uint32_t(lane), a, det[a][lane], 0.0};
-        return;
-      }
-}
-
 // The elements [begin, end) of a chunk (begin a multiple of Lanes) in packs of Lanes.
 template <int Lanes, bool Step, bool Inversion>
 CornerChecks corner_packs(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u,
                           std::uint32_t begin, std::uint32_t end) {
-  using Real = Pack<Lanes>;
-  CornerChecks result;
-  result.step = {std::numeric_limits<double>::infinity(), block.first_element + begin};
-  const double scale = block.step_scale / block.material.dilatational_wave_speed();
+  PackCorners<Lanes> corners(block, begin);
   const bool rows = block.row_pack.size() == (std::size_t(block.count) + Lanes - 1) / Lanes;
-  Real smallest_ratio = Real{} + std::numeric_limits<double>::infinity();  // det J / ||J||_F^2, m
-  for (std::uint32_t first = begin; first < end; first += Lanes) {
-    const BasicElementVectors<Real> x =
-        gather_corners<Lanes>(block, x_ref, u, first, rows && block.row_pack[first / Lanes] != 0);
-    if constexpr (Step) {
-      const Real length = hex8::current_characteristic_length(x);
-      for (int lane = 0; lane < Lanes && first + std::uint32_t(lane) < end; ++lane) {
-        const double dt = scale * length[lane];
-        if (dt < result.step.dt) result.step = {dt, block.first_element + first + std::uint32_t(lane)};
-      }
-    }
-    if constexpr (Inversion) {
-      if (!result.inverted.found) check_pack<Lanes>(x, first, block, result.inverted, smallest_ratio);
-    }
-  }
-  if (Inversion && !result.inverted.found) {
-    double ratio = smallest_ratio[0];  // lanes past the block's end repeat an element inside it
-    for (int lane = 1; lane < Lanes; ++lane) ratio = std::min(ratio, double(smallest_ratio[lane]));
-    result.inverted.safety_radius = ratio / (2.0 * std::sqrt(3.0));
-  }
-  return result;
+  for (std::uint32_t first = begin; first < end; first += Lanes)
+    corners.add(gather_corners<Lanes>(block, x_ref, u, first, rows && block.row_pack[first / Lanes] != 0),
+                block, first, end, Step, Inversion);
+  return corners.finish(Inversion);
 }
 
 using CornerFn = CornerChecks (*)(const ElementBlock&, const NodalVectors&, const NodalVectors&,
@@ -165,20 +108,14 @@ CornerFn corners_for_isa() {
 // The pass over every chunk of the block on the threads (static, as the element pass:
 // each thread reads the nodes it updates), then the chunks in order: the first smallest step and the first
 // inverted element of the block, whatever the threads.
-template <bool Step, bool Inversion>
-CornerChecks corner_pass(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
+// The chunks' results in chunk order: the first smallest step and the first inverted
+// element of the block, whatever the threads.
+CornerChecks reduce_chunks(const ElementBlock& block) {
   CornerChecks result;
   result.step = {std::numeric_limits<double>::infinity(), block.first_element};
   result.inverted.safety_radius = std::numeric_limits<double>::infinity();
   if (block.count == 0) return result;
-  const CornerFn pass = corners_for_isa<Step, Inversion>();
-  std::vector<CornerChecks>& chunks = block.chunk_checks;
-  const auto count = static_cast<std::ptrdiff_t>(block.chunk_begin.size() - 1);
-  EXDYN_ASSERT(chunks.size() == std::size_t(count));
-  parallel_for_static(count, [&](std::ptrdiff_t c) {
-    chunks[std::size_t(c)] =
-        pass(block, x_ref, u, block.chunk_begin[std::size_t(c)], block.chunk_begin[std::size_t(c) + 1]);
-  });
+  const std::vector<CornerChecks>& chunks = block.chunk_checks;
   result.step = chunks.front().step;
   for (const CornerChecks& chunk : chunks) {
     if (chunk.step.dt < result.step.dt) result.step = chunk.step;
@@ -190,6 +127,22 @@ CornerChecks corner_pass(const ElementBlock& block, const NodalVectors& x_ref, c
   }
   if (result.inverted.found) result.inverted.safety_radius = 0.0;
   return result;
+}
+
+// The pass over every chunk of the block on the threads (static, as the element pass:
+// each thread reads the nodes it updates), reduced in chunk order.
+template <bool Step, bool Inversion>
+CornerChecks corner_pass(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u) {
+  if (block.count == 0) return reduce_chunks(block);
+  const CornerFn pass = corners_for_isa<Step, Inversion>();
+  std::vector<CornerChecks>& chunks = block.chunk_checks;
+  const auto count = static_cast<std::ptrdiff_t>(block.chunk_begin.size() - 1);
+  EXDYN_ASSERT(chunks.size() == std::size_t(count));
+  parallel_for_static(count, [&](std::ptrdiff_t c) {
+    chunks[std::size_t(c)] =
+        pass(block, x_ref, u, block.chunk_begin[std::size_t(c)], block.chunk_begin[std::size_t(c) + 1]);
+  });
+  return reduce_chunks(block);
 }
 
 }  // namespace
@@ -207,6 +160,17 @@ CornerChecks check_corners(const ElementBlock& block, const NodalVectors& x_ref,
   return corner_pass<true, true>(block, x_ref, u);
 }
 
+void request_corner_checks(const ElementBlock& block, const NodalVectors& x_ref, bool step, bool inversion) {
+  EXDYN_ASSERT(block.corners_in_pass && (step || inversion));
+  block.corner_request = {&x_ref, step, inversion};
+}
+
+CornerChecks corner_checks_of_pass(const ElementBlock& block) {
+  EXDYN_ASSERT(block.corner_request.x_ref != nullptr);
+  block.corner_request = {};
+  return reduce_chunks(block);
+}
+
 InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t element_begin,
                                       std::uint32_t element_end, const NodalVectors& x_ref,
                                       const NodalVectors& u) {
@@ -220,12 +184,12 @@ InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t e
     std::array<double, 8> x, y, z;
     for (int k = 0; k < 8; ++k) x[k] = x0.x[k] + du.x[k], y[k] = x0.y[k] + du.y[k], z[k] = x0.z[k] + du.z[k];
     for (int a = 0; a < 8; ++a) {
-      const int i = neighbour[a][0], j = neighbour[a][1], k = neighbour[a][2];
+      const int i = corner::neighbour[a][0], j = corner::neighbour[a][1], k = corner::neighbour[a][2];
       const double ax = x[i] - x[a], ay = y[i] - y[a], az = z[i] - z[a];
       const double bx = x[j] - x[a], by = y[j] - y[a], bz = z[j] - z[a];
       const double cx = x[k] - x[a], cy = y[k] - y[a], cz = z[k] - z[a];
-      const double det =
-          orientation[a] * (ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx));
+      const double det = corner::orientation[a] *
+                         (ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx));
       if (!(det > 0.0)) return {true, block.first_element + e, a, det, 0.0};
       const double frobenius2 =
           ax * ax + ay * ay + az * az + bx * bx + by * by + bz * bz + cx * cx + cy * cy + cz * cz;

@@ -1,8 +1,10 @@
 // The passes over the corners of a block's current configuration x = x_ref + u: its
 // stable time step and its inversion check. Both read the same 8 corners of every
 // element, so the time loop runs them as one pass when both fall on a step
-// (check_corners). The chunks of the block run on the threads and are reduced in chunk
-// order: the same result on any number of threads.
+// (check_corners), and the element pass of a block whose loop can runs them on the
+// corners it gathers, with no pass of their own (request_corner_checks, below). The
+// chunks of the block run on the threads and are reduced in chunk order: the same
+// result on any number of threads.
 #pragma once
 
 #include <cstdint>
@@ -39,5 +41,12 @@ InvertedElement find_inverted_element(const ElementBlock& block, const NodalVect
 // Both in one pass over the corners: what current_time_step and find_inverted_element
 // return (the step's bits are current_time_step's).
 CornerChecks check_corners(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u);
+
+// The same checks run by the block's next element pass on the corners its kernels
+// gather (a block whose loop does: ElementBlock::corners_in_pass), in place of a pass
+// of their own: its step, its inversion check or both. corner_checks_of_pass, after
+// that pass, returns what check_corners would (the same bits) and clears the request.
+void request_corner_checks(const ElementBlock& block, const NodalVectors& x_ref, bool step, bool inversion);
+CornerChecks corner_checks_of_pass(const ElementBlock& block);
 
 }  // namespace exdyn::element

@@ -178,6 +178,7 @@ ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint3
   slice.shared = block.shared;
   slice.group_points = block.group_points;
   slice.loop = block.loop;
+  slice.corners_in_pass = block.corners_in_pass;
   slice.constant_jacobian = block.constant_jacobian;
   slice.axis_aligned = block.axis_aligned;
   slice.reference_per_element = block.reference_per_element;

@@ -5,6 +5,7 @@
 // the kernels (hex8.hpp, hex8r.hpp, hex20.hpp) are free functions on fixed-size data.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -71,6 +72,16 @@ struct CornerChecks {
   InvertedElement inverted;
 };
 
+// What the next element pass of a block checks at its corners as well
+// (ElementBlock::corners_in_pass), on x = x_ref + u: its stable step, its inversion
+// check, or both (corner_checks.hpp). Each chunk's result goes to
+// ElementBlock::chunk_checks.
+struct CornerRequest {
+  const NodalVectors* x_ref = nullptr;  // null: no checks
+  bool step = false;
+  bool inversion = false;
+};
+
 // What a rank's part of a block, built alone (ranks/rank_setup.cpp), takes from the
 // whole block, so that its elements run the kernels and share the data they do there:
 // whether every element of the whole block is a parallelepiped (and, hex8, has its
@@ -118,7 +129,12 @@ struct ElementBlock {
   // element_loop.hpp, but element e's data starts at e * this for e a multiple of the
   // pack width; slice_block relies on it).
   std::size_t reference_per_element = 0;
-  ElementLoopFn loop = nullptr;    // the kernel loop of the layout in use
+  ElementLoopFn loop = nullptr;  // the kernel loop of the layout in use
+  // The loop runs the corner checks on the corners it gathers when asked
+  // (corner_request): the 8-node loops of a material law, whose finite-strain parts
+  // need the step of the current configuration every step.
+  bool corners_in_pass = false;
+  mutable CornerRequest corner_request;
   bool constant_jacobian = false;  // every element is a parallelepiped (a faster kernel)
   bool axis_aligned = false;       // hex8: and has its edges along x, y, z (diagonal dxi/dx: faster still)
   // Per pack of the packed loops (hex8_family.cpp, packs of 2, 4 or 8 elements): 1 when
@@ -200,6 +216,12 @@ ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint3
 // interleaves the colours with other work (solver/simulation.cpp on many ranks).
 void add_chunk_forces(const ElementBlock& block, const std::vector<std::uint32_t>& chunks,
                       const NodalVectors& u, NodalVectors& f_int, double* stress);
+
+// The index of the chunk that starts at element `begin` (local).
+inline std::size_t chunk_index(const ElementBlock& block, std::uint32_t begin) {
+  const auto after = std::upper_bound(block.chunk_begin.begin(), block.chunk_begin.end(), begin);
+  return std::size_t(after - block.chunk_begin.begin()) - 1;
+}
 
 // The sum of block.chunk_energies in chunk order.
 ElementEnergies chunk_energy_total(const ElementBlock& block);

@@ -15,6 +15,7 @@
 
 #include "common/nodal_vectors.hpp"
 #include "common/simd_pack.hpp"
+#include "element/corner_pack.hpp"
 #include "element/element_block.hpp"
 #include "element/node_values.hpp"
 
@@ -167,6 +168,34 @@ void scatter_add_lane(const NodeValues<Nodes, Real>& local, int lane, const std:
   }
 }
 
+// The corner checks of block.corner_request on the pack of elements first .. first +
+// Lanes - 1 (nodes: their connectivity; a row pack's x_ref loads as whole vectors):
+// x = x_ref + u, the sum corner_checks.cpp's pass forms, into `checks`.
+template <int Lanes>
+void add_pack_corners(PackCorners<Lanes>& checks, const ElementBlock& block,
+                      const NodeValues<8, Pack<Lanes>>& u_local, const std::uint32_t* const (&nodes)[Lanes],
+                      bool row, std::uint32_t first, std::uint32_t end) {
+  using Real = Pack<Lanes>;
+  const CornerRequest& request = block.corner_request;
+  const NodalVectors& x_ref = *request.x_ref;
+  NodeValues<8, Real> x{typename NodeValues<8, Real>::Uninitialized{}};  // every entry written below
+  for (int k = 0; k < 8; ++k) {
+    Real rx, ry, rz;
+    if (row) {
+      rx = load<Real>(x_ref.x.data() + nodes[0][k], 0), ry = load<Real>(x_ref.y.data() + nodes[0][k], 0),
+      rz = load<Real>(x_ref.z.data() + nodes[0][k], 0);
+    } else {
+      for (int lane = 0; lane < Lanes; ++lane) {
+        const std::uint32_t n = nodes[lane][k];
+        assert(n < x_ref.size());
+        rx[lane] = x_ref.x[n], ry[lane] = x_ref.y[n], rz[lane] = x_ref.z[n];
+      }
+    }
+    x.x[k] = rx + u_local.x[k], x.y[k] = ry + u_local.y[k], x.z[k] = rz + u_local.z[k];
+  }
+  checks.add(x, block, first, end, request.step, request.inversion);
+}
+
 // The element loop over packs of Lanes consecutive elements: kernel(pack, u, f, stress)
 // on the elements Lanes pack .. Lanes pack + Lanes - 1 at once returns their energies
 // (strain, hourglass, and plastic work for the kernels of a material law); it finds the pack's reference data
@@ -174,14 +203,20 @@ void scatter_add_lane(const NodeValues<Nodes, Real>& local, int lane, const std:
 // block's last element take its first lane's nodes (hex8 layouts pad their reference
 // data with zeros there). The forces are added lane by lane, in element order (a row
 // pack, 8-node elements only: summed along its row edges first); the same order for
-// any number of threads.
-template <int Nodes, int Lanes, class Kernel>
+// any number of threads. Corners (8 nodes): the loop also runs the checks of
+// block.corner_request on x = x_ref + u of each pack (corner_pack.hpp) when one is set,
+// and [begin, end) must then be one chunk: its result goes to block.chunk_checks.
+template <int Nodes, int Lanes, bool Corners = false, class Kernel>
 ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
                                   const NodalVectors& u, NodalVectors& f_int, double* stress, Kernel kernel) {
   using Real = Pack<Lanes>;
   using Vectors = NodeValues<Nodes, Real>;
+  static_assert(!Corners || Nodes == 8);
   ElementEnergies total;
   if (begin >= end) return total;
+  const CornerRequest& request = block.corner_request;
+  const bool corners = Corners && request.x_ref != nullptr;
+  PackCorners<Lanes> checks(block, begin);
   for (std::uint32_t pack = begin / Lanes; pack <= (end - 1) / Lanes; ++pack) {
     std::uint32_t element[Lanes];
     const std::uint32_t* nodes[Lanes];
@@ -199,6 +234,9 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
       u_local = row ? gather_row_pack<Lanes>(u, nodes[0]) : gather_pack<Nodes, Lanes>(u, nodes);
     } else {
       u_local = gather_pack<Nodes, Lanes>(u, nodes);
+    }
+    if constexpr (Corners) {
+      if (corners) add_pack_corners<Lanes>(checks, block, u_local, nodes, row, Lanes * pack, end);
     }
     Vectors f_local{typename Vectors::Uninitialized{}};  // written whole by the kernel
     std::array<Real, 6> element_stress;
@@ -218,6 +256,11 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
         for (int k = 0; k < 6; ++k) out[k] = lane_value(element_stress[std::size_t(k)], lane);
       }
     }
+  }
+  if (corners) {
+    const std::size_t chunk = chunk_index(block, begin);
+    assert(block.chunk_begin[chunk] == begin && block.chunk_begin[chunk + 1] == end);
+    block.chunk_checks[chunk] = checks.finish(request.inversion);
   }
   return total;
 }

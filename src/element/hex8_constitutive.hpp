@@ -73,31 +73,30 @@ inline ConstitutiveResult<Real> constitutive_forces(const double* reference,
   return result;
 }
 
+// The triple product a . (b x c) of three modes' vectors.
+template <class Real>
+inline Real triple_product(const BasicElementModes<Real>& c, int a, int b, int d) {
+  return c.x[a] * (c.y[b] * c.z[d] - c.z[b] * c.y[d]) - c.y[a] * (c.x[b] * c.z[d] - c.z[b] * c.x[d]) +
+         c.z[a] * (c.x[b] * c.y[d] - c.y[b] * c.x[d]);
+}
+
 // The characteristic length of the current configuration, V / (largest face area),
-// for one element (Real = double) or a pack of elements (Real = Pack<L>): V by the
-// 2 x 2 x 2 sum of det J (exact for the trilinear brick), each face's area by its
-// diagonals as in face_area; the same value as characteristic_length to round-off,
-// without inverses, for the step that follows the deformation every step.
+// for one element (Real = double) or a pack of elements (Real = Pack<L>), without
+// inverses, for the step that follows the deformation every step. V is the exact
+// volume of the trilinear brick, the integral of det J over the cube in closed form:
+// with x = c0 + c1 xi + c2 eta + c3 zeta + c4 eta zeta + c5 xi zeta + c6 xi eta
+// + c7 xi eta zeta (modes_from_nodal) and [a, b, c] = a . (b x c),
+//   V = 8 [c1, c2, c3] + 8/3 ([c1, c6, c5] + [c5, c4, c3] + [c6, c2, c4])
+// (the monomials of det J with an odd power integrate to zero, and the terms left
+// with c7, or a mode twice, are triple products with a vector twice). The 2 x 2 x 2
+// Gauss sum of det J (exact too) takes eight 3 x 3 determinants. Each face's area by
+// its diagonals as in face_area: the same value as characteristic_length to round-off.
 template <class Real>
 inline Real current_characteristic_length(const BasicElementVectors<Real>& x) {
   const BasicElementModes<Real> c = modes_from_nodal(x);
-  constexpr double a = gauss_abscissa;
-  Real volume{};
-  for (int g = 0; g < 8; ++g) {
-    const double sx = a * node_natural_coordinates[g][0], se = a * node_natural_coordinates[g][1],
-                 sz = a * node_natural_coordinates[g][2];
-    Real d[3][3];
-    const std::array<const std::array<Real, 8>*, 3> m{&c.x, &c.y, &c.z};
-    for (int i = 0; i < 3; ++i) {
-      const std::array<Real, 8>& k = *m[i];
-      d[i][0] = k[1] + k[5] * sz + k[6] * se + k[7] * (se * sz);
-      d[i][1] = k[2] + k[4] * sz + k[6] * sx + k[7] * (sx * sz);
-      d[i][2] = k[3] + k[4] * se + k[5] * sx + k[7] * (sx * se);
-    }
-    volume += d[0][0] * (d[1][1] * d[2][2] - d[1][2] * d[2][1]) -
-              d[0][1] * (d[1][0] * d[2][2] - d[1][2] * d[2][0]) +
-              d[0][2] * (d[1][0] * d[2][1] - d[1][1] * d[2][0]);
-  }
+  const Real volume =
+      8.0 * triple_product(c, 1, 2, 3) +
+      (8.0 / 3.0) * (triple_product(c, 1, 6, 5) + triple_product(c, 5, 4, 3) + triple_product(c, 6, 2, 4));
   Real largest{};  // |d1 x d2|^2 = (2 A)^2
   for (const auto& face : faces) {
     const Real d1x = x.x[face[2]] - x.x[face[0]], d1y = x.y[face[2]] - x.y[face[0]],

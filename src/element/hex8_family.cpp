@@ -99,7 +99,7 @@ ElementEnergies hex8_law_loop(const ElementBlock& block, std::uint32_t begin, st
   const bool f_bar = block.law.f_bar;
   const double dt = block.material_state.dt;
   const double* data = block.reference.data();
-  return element_pack_loop<8, Lanes>(
+  return element_pack_loop<8, Lanes, true>(
       block, begin, end, u, f_int, stress,
       [&](std::uint32_t pack, const BasicElementVectors<Real>& u_local, BasicElementVectors<Real>& f_local,
           std::array<Real, 6>& s) {
@@ -121,7 +121,7 @@ ElementEnergies hex8r_law_loop(const ElementBlock& block, std::uint32_t begin, s
   const material::ElasticConstants elastic = block.material;
   const double dt = block.material_state.dt;
   const double* data = block.reference.data();
-  return element_pack_loop<8, Lanes>(
+  return element_pack_loop<8, Lanes, true>(
       block, begin, end, u, f_int, stress,
       [&](std::uint32_t pack, const BasicElementVectors<Real>& u_local, BasicElementVectors<Real>& f_local,
           std::array<Real, 6>& s) {
@@ -212,6 +212,7 @@ void prepare_hex8(ElementBlock& block, const NodalVectors& x_ref) {
       return packed_for_isa<hex8_law_loop<Flow, Finite, 2>, hex8_law_loop<Flow, Finite, 4>,
                             hex8_law_loop<Flow, Finite, 8>>(isa);
     });
+    block.corners_in_pass = true;
     fill_reference(block, x_ref, hex8::reference_size, lanes_for(isa),
                    [](const ElementVectors& x, double* r) { return hex8::make_reference(x, r); });
     mark_row_packs(block, lanes_for(isa));
@@ -249,6 +250,7 @@ void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
       return packed_for_isa<hex8r_law_loop<Flow, Finite, 2>, hex8r_law_loop<Flow, Finite, 4>,
                             hex8r_law_loop<Flow, Finite, 8>>(isa);
     });
+    block.corners_in_pass = true;
     fill_reference(block, x_ref, hex8r::reference_size, lanes_for(isa),
                    [mu, coefficient](const ElementVectors& x, double* r) {
                      return hex8r::make_reference(x, mu, coefficient, r);

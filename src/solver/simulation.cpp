@@ -275,6 +275,14 @@ void TimeLoop::begin_step() {
     if (state_.step > 0) element::commit_material_state(block);
     element::set_material_time_step(block, clock_->previous());
   }
+  // The step of the current configuration and the inversion check (plan_time_step) ride
+  // on the element pass where the block's loop runs them: no pass of their own.
+  if (clock_->follows_deformation()) {
+    const bool check = moved_since_check_ >= safety_radius_;  // plan_time_step's test
+    for (const element::ElementBlock& block : model_.blocks)
+      if (block.corners_in_pass && (block.law.finite || check))
+        element::request_corner_checks(block, model_.mesh.x_ref, block.law.finite, check);
+  }
   // The penalty of this step's contact pass follows the last step the mesh asked for
   // (the next one is planned after the forces; the caps' margin covers its change of a
   // fraction; a step cut short to land on end_time is not the mesh's).
@@ -316,7 +324,11 @@ void TimeLoop::plan_time_step() {
     const element::ElementBlock& block = model_.blocks[b];
     const NodalVectors& x_ref = model_.mesh.x_ref;
     element::CurrentStep current{std::numeric_limits<double>::infinity(), 0};
-    if (block.law.finite && check) {
+    if (block.corner_request.x_ref != nullptr) {  // begin_step's request, served by the element pass
+      const element::CornerChecks both = element::corner_checks_of_pass(block);
+      if (block.law.finite) current = both.step;
+      if (check) planned_inversion_[b] = both.inverted;
+    } else if (block.law.finite && check) {
       const element::CornerChecks both = element::check_corners(block, x_ref, state_.displacement);
       current = both.step, planned_inversion_[b] = both.inverted;
     } else if (block.law.finite) {

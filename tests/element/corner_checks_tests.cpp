@@ -14,6 +14,7 @@
 #include "element/element_block.hpp"
 #include "element/hex8.hpp"
 #include "element/hex8_constitutive.hpp"
+#include "material/material_law.hpp"
 
 namespace exdyn::element {
 namespace {
@@ -122,6 +123,84 @@ TEST(CornerChecks, TheLowestInvertedElementIsNamedWhicheverChunkHoldsIt) {
       EXPECT_EQ(packed.corner, simple.corner);
     }
   }
+}
+
+TEST(CornerChecks, TheClosedFormVolumeIsTheGaussSumOfDetJ) {
+  // Bricks of side 1 with every corner moved by up to 0.3: the length of the current
+  // configuration (closed-form volume, on one element and in the 8 lanes of a pack)
+  // against characteristic_length (2 x 2 x 2 Gauss sum of det J), to round-off.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  BasicElementVectors<Pack<8>> pack{BasicElementVectors<Pack<8>>::Uninitialized{}};
+  ElementVectors bricks[8];
+  for (int trial = 0; trial < 200; ++trial) {
+    ElementVectors& x = bricks[trial % 8];
+    for (int k = 0; k < 8; ++k) {
+      const Vector3& s = hex8::node_natural_coordinates[std::size_t(k)];
+      x.x[k] = 0.5 * s[0] + 0.3 * unit(rng), x.y[k] = 0.5 * s[1] + 0.3 * unit(rng),
+      x.z[k] = 0.5 * s[2] + 0.3 * unit(rng);
+      pack.x[k][trial % 8] = x.x[k], pack.y[k][trial % 8] = x.y[k], pack.z[k][trial % 8] = x.z[k];
+    }
+    const double gauss = hex8::characteristic_length(x);
+    EXPECT_NEAR(hex8::current_characteristic_length(x), gauss, 1e-14 * gauss) << "trial " << trial;
+    if (trial % 8 != 7) continue;
+    const Pack<8> lanes = hex8::current_characteristic_length(pack);
+    for (int lane = 0; lane < 8; ++lane)
+      EXPECT_NEAR(lanes[lane], hex8::characteristic_length(bricks[lane]), 1e-14 * lanes[lane]);
+  }
+  // The unit cube, exactly.
+  ElementVectors cube;
+  for (int k = 0; k < 8; ++k) {
+    const Vector3& s = hex8::node_natural_coordinates[std::size_t(k)];
+    cube.x[k] = 0.5 * (s[0] + 1.0), cube.y[k] = 0.5 * (s[1] + 1.0), cube.z[k] = 0.5 * (s[2] + 1.0);
+  }
+  EXPECT_EQ(hex8::current_characteristic_length(cube), 1.0);
+}
+
+// The checks the element pass of a law's 8-node loop runs on the corners it gathers
+// (request_corner_checks) are the pass over the corners alone, to the bit: steps,
+// inverted elements and safety radii, on 1 and 2 threads, with row packs and packs
+// across rows, some states with inverted elements.
+TEST(CornerChecks, TheElementPassRunsThemToTheBitOfTheCornerPass) {
+  const Box box = make_box(37, 5, 6, 1.0);
+  material::MaterialLaw law;
+  law.finite = true;
+  law.flow = material::FlowRule::hardening, law.hardening = material::Hardening::linear(400e6, 100e6);
+  const int threads = max_threads();
+  int found = 0;
+  for (const input::Formulation formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
+    const ElementBlock block =
+        make_element_block(formulation, steel, 0.05, 100, box.count, box.connectivity.data(), box.x_ref, law);
+    ASSERT_TRUE(block.corners_in_pass);
+    set_material_time_step(block, 1e-7);
+    std::mt19937_64 rng(7);
+    for (int trial = 0; trial < 24; ++trial) {
+      const NodalVectors u = shaken(box, 0.05 + 0.0125 * trial, rng);
+      const bool step = trial % 3 != 1, inversion = trial % 3 != 2;
+      for (const int t : {1, 2}) {
+        set_threads(t);
+        NodalVectors f(box.x_ref.size());
+        request_corner_checks(block, box.x_ref, step, inversion);
+        add_internal_forces(block, u, f, nullptr);
+        const CornerChecks fused = corner_checks_of_pass(block);
+        EXPECT_EQ(block.corner_request.x_ref, nullptr);  // the request is served once
+        const CornerChecks alone = check_corners(block, box.x_ref, u);
+        if (step) {
+          EXPECT_EQ(fused.step.dt, alone.step.dt) << "trial " << trial;
+          EXPECT_EQ(fused.step.element, alone.step.element);
+        }
+        if (inversion) {
+          EXPECT_EQ(fused.inverted.found, alone.inverted.found) << "trial " << trial;
+          EXPECT_EQ(fused.inverted.element, alone.inverted.element);
+          EXPECT_EQ(fused.inverted.corner, alone.inverted.corner);
+          EXPECT_EQ(fused.inverted.safety_radius, alone.inverted.safety_radius);
+          found += alone.inverted.found && t == 1 ? 1 : 0;
+        }
+      }
+    }
+  }
+  set_threads(threads);
+  EXPECT_GT(found, 2);  // inverted states seen
 }
 
 }  // namespace
