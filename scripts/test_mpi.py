@@ -148,6 +148,9 @@ def test_equal_fields(exdyn, work, quick):
              # contact at folds, the step following the deformation (2,592 bricks a rod)
              ("taylor_rods", ["parts[0].elements=[8, 4, 54]", "parts[1].elements=[8, 4, 54]",
                               "time.end_time=" + ("3.0e-6" if quick else "1.2e-5"), "output.every=500"]),
+             # plate nodes under a rod's end beside its curved side: the nearer edge point of
+             # a valley between the end's facets, on ranks that hold none of the rod's faces
+             ("rod_on_plate", ["time.end_time=1.5e-6", "output.every=50"]),
              # a rigid wall with friction, every point slipping
              ("oblique_impact", ["parts[0].elements=[80, 1, 40]", "time.end_time=3.0e-6", "output.every=100"]),
              # set up rank by rank: gravity and friction between two boxes; a spin with

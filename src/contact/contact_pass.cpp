@@ -31,6 +31,45 @@ double largest_motion_since_build(const ContactSurfaces& surfaces, const Contact
 
 namespace {
 
+// What the edges of slave point p's candidates say (edge_contact.hpp): its closest
+// boundary point (ties to the first), if nearer than `limit` and the surface goes on past
+// it, decides. Behind it, along the mean normal of the segments that meet there, the
+// point is in contact there (`contact` filled); in front of it, it is outside the
+// master body, whatever a face further away says.
+enum class FoldContact { none, contact, in_front };
+
+FoldContact fold_contact(const ContactSurfaces& surfaces, ContactPassState& state, const NodalVectors& x_ref,
+                         const NodalVectors& u, std::size_t p, double limit,
+                         ContactPassState::Contact& contact) {
+  if (surfaces.edges.empty()) return FoldContact::none;
+  const Vec3 point{state.slave_points.x[p], state.slave_points.y[p], state.slave_points.z[p]};
+  EdgeContact closest;
+  std::size_t closest_candidate = 0;
+  for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
+    const std::uint32_t segment = state.candidates[c].segment;
+    const EdgeContact edge = edge_contact(current_segment(surfaces.segments[segment], x_ref, u), point,
+                                          state.results[c], surfaces.edges[segment]);
+    state.edge_contacts[c] = edge;
+    if (edge.found && (!closest.found || edge.distance < closest.distance))
+      closest = edge, closest_candidate = c;
+  }
+  if (!closest.found || !closest.continued || !(closest.distance < limit)) return FoldContact::none;
+  const double same_point = 1.0e-9 * surfaces.normal_length[p];
+  Vec3 normal{};
+  for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c)
+    if (state.edge_contacts[c].found && norm(state.edge_contacts[c].y - closest.y) <= same_point)
+      normal = normal + state.edge_contacts[c].normal;
+  if (!(norm(normal) > 0.0)) return FoldContact::none;  // a sheet folded flat on itself: no side is behind
+  normal = (1.0 / norm(normal)) * normal;
+  const double depth = dot(point - closest.y, normal);  // the gap, m
+  if (!(depth < 0.0)) return FoldContact::in_front;
+  contact.segment = state.candidates[closest_candidate].segment;
+  contact.xi = closest.xi;
+  contact.gap = depth;
+  contact.normal = normal;
+  return FoldContact::contact;
+}
+
 // Global search: new candidates from the bucket grid; a pair that was a
 // candidate before keeps its point from the last step (both lists are sorted).
 // A quadrature point lies on its slave segment, so the motion of the slave nodes
@@ -282,39 +321,26 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         if (r.distance < best_distance) best_distance = r.distance, best = c;
       }
       auto& contact = state.contacts[p];
-      if (best == state.candidates.size()) {
-        // No projection inside a segment: the point may lie behind a fold of the
-        // surface (edge_contact.hpp). The closest boundary point of the candidates (ties
-        // to the first), if the surface goes on past it and the point lies behind it,
-        // along the mean normal of the segments that meet there.
-        if (surfaces.edges.empty()) continue;
-        const Vec3 point{state.slave_points.x[p], state.slave_points.y[p], state.slave_points.z[p]};
-        EdgeContact closest;
-        std::size_t closest_candidate = 0;
-        for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
-          const std::uint32_t segment = state.candidates[c].segment;
-          const EdgeContact edge = edge_contact(current_segment(surfaces.segments[segment], x_ref, u), point,
-                                                state.results[c], surfaces.edges[segment]);
-          state.edge_contacts[c] = edge;
-          if (edge.found && (!closest.found || edge.distance < closest.distance))
-            closest = edge, closest_candidate = c;
-        }
-        if (!closest.found || !closest.continued) continue;
-        const double same_point = 1.0e-9 * surfaces.normal_length[p];
-        Vec3 normal{};
-        for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c)
-          if (state.edge_contacts[c].found && norm(state.edge_contacts[c].y - closest.y) <= same_point)
-            normal = normal + state.edge_contacts[c].normal;
-        if (!(norm(normal) > 0.0)) continue;  // a sheet folded flat on itself: no side is behind
-        normal = (1.0 / norm(normal)) * normal;
-        const double depth = dot(point - closest.y, normal);  // the gap, m
-        if (!(depth < 0.0)) continue;
-        contact.segment = state.candidates[closest_candidate].segment;
-        contact.xi = closest.xi;
-        contact.gap = depth;
-        contact.normal = normal;
-        continue;
+      // A candidate whose plane is nearer than the best inside projection, its projection
+      // outside: the point may lie in the dead zone of a fold (no inside projection at
+      // all); or on a face's boundary, or in the dead zone of a shallow valley between
+      // two segments, while a face further away still takes it inside (a point under a
+      // rod's end face, beside its side). The nearer edge point decides then (a plane's
+      // distance is a lower bound of its segment's, so no other candidate is nearer).
+      // (Nearer by more than round-off: a point on an edge or corner between coplanar
+      // segments is as near to their planes as to the one that takes it inside.)
+      const bool none_inside = best == state.candidates.size();
+      const double nearer = best_distance - 1.0e-9 * surfaces.normal_length[p];
+      bool nearer_outside = none_inside;
+      for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1] && !nearer_outside; ++c) {
+        const ProjectionResult& r = state.results[c];
+        nearer_outside = r.converged && !r.inside && r.distance < nearer;
       }
+      if (nearer_outside) {
+        const FoldContact fold = fold_contact(surfaces, state, x_ref, u, p, nearer, contact);
+        if (fold != FoldContact::none) continue;  // in contact at the edge, or in front of it
+      }
+      if (none_inside) continue;
       const std::uint32_t segment = state.candidates[best].segment;
       contact.segment = segment;
       contact.xi = state.results[best].xi;

@@ -151,14 +151,18 @@ void own_segments(const contact::ContactSurfaces& whole, const PassPlace& place,
 }
 
 // This rank's share of one pass (`whole`, global node ids: the whole pass, or the pass
-// on the faces near this rank with its places in the whole pass, `place`).
+// on the faces near this rank with its places in the whole pass, `place`). folds: the
+// pass has contact at folds (a pair's pass: ContactSurfaces::edges), whether or not
+// this rank holds a master segment of it (a rank that holds none gets all its
+// segments, and their edges, from the others).
 PassShare make_share(const contact::ContactSurfaces& whole, const PassPlace& place, std::uint64_t index,
                      int me, const std::vector<std::uint32_t>& global_node, const Model& local,
                      const std::vector<std::uint32_t>& contact_nodes,
-                     const std::vector<std::vector<int>>& holders) {
+                     const std::vector<std::vector<int>>& holders, bool folds) {
   PassShare share;
   share.index = index;
-  share.edges = !whole.edges.empty();
+  share.edges = folds;
+  EXDYN_ASSERT(whole.edges.empty() || whole.edges.size() == whole.segments.size());
   contact::ContactSurfaces& own = share.own;
   own.quadrature = whole.quadrature;
   own.mortar = whole.mortar;
@@ -393,14 +397,14 @@ DistributedContact distribute_contact(ContactModel& contact, const mpi::Communic
   for (ContactPair& pair : contact.pairs) {
     for (std::size_t p = 0; p < pair.passes.size(); ++p) {
       dc.passes.push_back(make_share(pair.passes[p], p < pair.places.size() ? pair.places[p] : PassPlace{},
-                                     index++, comm.rank, global_node, local, contact_nodes, holders));
+                                     index++, comm.rank, global_node, local, contact_nodes, holders, true));
       pair.passes[p] = dc.passes.back().view;
     }
     pair.places = {};
   }
   for (RigidWall& wall : contact.walls) {
     dc.passes.push_back(make_share(wall.surfaces, wall.place, index++, comm.rank, global_node, local,
-                                   contact_nodes, holders));
+                                   contact_nodes, holders, false));
     wall.surfaces = dc.passes.back().view;
     wall.place = {};
   }

@@ -212,6 +212,27 @@ TEST(BlockDrop, CubeBouncesOffTheBlockWithSmallPenetration) {
   EXPECT_LE(run.summary.energy.max_relative_error, 0.01);
 }
 
+// ---------------------------------------------------------------- rod on plate
+
+// input/rod_on_plate.yaml: plate nodes under the rod's end, beside its curved side, take
+// the end (the nearer edge point of a valley between its facets, or of its edge on a
+// symmetry plane), not the side's facet that holds them 0.1-0.2 mm inside the rod.
+TEST(RodOnPlate, TheEndTakesThePlateThroughTheTouchNotTheSide) {
+  const ContactRun run("rod_on_plate.yaml");
+  const auto& c = run.summary.contact;
+  const auto v = run.field(run.summary.steps, "velocity");
+  constexpr std::size_t rod_nodes = 1281;  // the rod's mesh comes first
+  double rod_vz = 0.0;
+  for (std::size_t i = 0; i < rod_nodes; ++i) rod_vz += v[3 * i + 2] / double(rod_nodes);
+  std::printf("rod on plate: %ld steps, max penetration / h %.4f, energy error %.2e, rod mean vz %.1f m/s\n",
+              run.summary.steps, c.max_penetration_over_h, run.summary.energy.max_relative_error, rod_vz);
+  EXPECT_EQ(run.summary.status, "completed");
+  EXPECT_LT(c.max_penetration_over_h, 0.03);
+  EXPECT_LE(run.summary.energy.max_relative_error, 0.002);
+  EXPECT_GT(rod_vz, -140.0);  // slowed from -200 m/s
+  EXPECT_LT(rod_vz, -110.0);
+}
+
 // ---------------------------------------------------------------- every method
 
 class PlateImpactMethod : public ::testing::TestWithParam<const char*> {};

@@ -40,9 +40,9 @@ struct DeckRun : exdyn::testing::DeckRun {
 // spinning_block.yaml, plastic_wave.yaml, taylor_bar.yaml, taylor_wall.yaml, taylor_rods.yaml:
 // test_large_deformation.cpp (the
 // full Taylor meshes: scripts/taylor_study.py); sliding_block.yaml, oblique_impact.yaml,
-// block_on_rail.yaml: test_friction.cpp; plate_impact_gmsh.yaml, plate_impact_hex20_gmsh.yaml,
-// hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp; contact_patch_mortar.yaml:
-// test_mortar_contact.cpp.
+// block_on_rail.yaml: test_friction.cpp; rod_on_plate.yaml: test_contact.cpp; plate_impact_gmsh.yaml,
+// plate_impact_hex20_gmsh.yaml, hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp;
+// contact_patch_mortar.yaml: test_mortar_contact.cpp.
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "wave_bar.yaml",
                                           "shear_wave.yaml",
@@ -69,7 +69,8 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "plate_impact_gmsh.yaml",
                                           "plate_impact_hex20_gmsh.yaml",
                                           "hertz_ball_gmsh.yaml",
-                                          "tube_impact.yaml"};
+                                          "tube_impact.yaml",
+                                          "rod_on_plate.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;
