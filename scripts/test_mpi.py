@@ -3,7 +3,8 @@
 
 - equal fields: the plate contact (hex8, nodes), a hex20 contact deck (quadrature points
   on 8-node segments), a curved deck (the Hertz ball, hex20), friction on a curved rail,
-  the two Taylor rods (finite strain, plasticity, contact at folds), a rigid wall with
+  the two Taylor rods (finite strain, plasticity, contact at folds), single-surface
+  contact (the plates as `surface: all`, nodes and quadrature points), a rigid wall with
   friction, a mesh of 8- and 20-node elements (graded: many groups of equal Jacobians),
   gravity and friction between boxes, a spin with finite strain, hex8r plasticity, the
   hex20 plate impact (built and read from a Gmsh file, which rank 0 alone holds) and
@@ -151,6 +152,13 @@ def test_equal_fields(exdyn, work, quick):
              # plate nodes under a rod's end beside its curved side: the nearer edge point of
              # a valley between the end's facets, on ranks that hold none of the rod's faces
              ("rod_on_plate", ["time.end_time=1.5e-6", "output.every=50"]),
+             # single-surface contact, `surface: all`: every point of the plates' exterior
+             # faces against every segment sharing no node with it; nodes, and quadrature
+             # points on 8-node segments
+             ("plates_one_surface", ["time.end_time=1.2e-7", "output.every=56"]),
+             ("plates_one_surface", ["parts[0].formulation=hex20", "parts[1].formulation=hex20",
+                                     "parts[0].elements=[30, 1, 30]", "parts[1].elements=[30, 1, 30]",
+                                     "time.end_time=1.2e-7", "output.every=56"], "plates_one_surface_hex20"),
              # a rigid wall with friction, every point slipping
              ("oblique_impact", ["parts[0].elements=[80, 1, 40]", "time.end_time=3.0e-6", "output.every=100"]),
              # set up rank by rank: gravity and friction between two boxes; a spin with

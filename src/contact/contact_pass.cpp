@@ -9,6 +9,7 @@
 #include "contact/force_scatter.hpp"
 #include "contact/mortar_pass.hpp"
 #include "contact/penalty.hpp"
+#include "contact/single_surface.hpp"
 #include "contact/slave_points.hpp"
 
 namespace exdyn::contact {
@@ -38,6 +39,55 @@ namespace {
 // master body, whatever a face further away says.
 enum class FoldContact { none, contact, in_front };
 
+// Whether candidate pair c may touch: always, but on a single surface only where the
+// point and the segment face each other (admit_candidates).
+bool admitted(const ContactSurfaces& surfaces, const ContactPassState& state, std::size_t c) {
+  return !surfaces.single_surface || state.admitted[c] != 0;
+}
+
+// What the surface does past a segment's edges, for slave point p. On a single surface
+// it goes on past an edge only to a segment that p may touch there (a candidate it
+// faces), or across a symmetry plane: past a convex edge whose other face turns away
+// from the point (a rod's side beside its end), the point is beside the surface.
+SegmentEdges edges_for_point(const ContactSurfaces& surfaces, const ContactPassState& state, std::size_t p,
+                             std::uint32_t segment) {
+  SegmentEdges edges = surfaces.edges[segment];
+  if (!surfaces.single_surface) return edges;
+  const auto first = state.candidates.begin() + std::ptrdiff_t(state.point_begin[p]);
+  const auto last = state.candidates.begin() + std::ptrdiff_t(state.point_begin[p + 1]);
+  for (std::size_t e = 0; e < 4; ++e) {
+    const std::int32_t next = surfaces.edge_neighbours[segment][e];
+    if (edges.mirror_axis[e] >= 0 || next == -2) continue;  // a mirror, or several segments: goes on
+    const auto found =
+        next < 0
+            ? last
+            : std::lower_bound(first, last, std::uint32_t(next),
+                               [](const CandidatePair& pair, std::uint32_t s) { return pair.segment < s; });
+    if (found == last || found->segment != std::uint32_t(next) ||
+        state.admitted[std::size_t(found - state.candidates.begin())] == 0)
+      edges.continued &= static_cast<std::uint8_t>(~(1u << e));
+  }
+  return edges;
+}
+
+// A single surface's rule (single_surface.hpp): point p's candidates count where the
+// point's outward normal and the segment's at the projection (kept on the closed
+// segment) face each other, n_p . n_m < -facing_cosine, and the point is less than the
+// search distance behind the segment.
+void admit_candidates(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
+                      ContactPassState& state, std::size_t p, const NodalVectors& x_ref,
+                      const NodalVectors& u) {
+  if (state.point_begin[p] == state.point_begin[p + 1]) return;
+  const Vec3 n = point_normal(surfaces, p, x_ref, u);
+  for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
+    const ProjectionResult& r = state.results[c];
+    auto kept = [](double xi) { return std::isfinite(xi) ? std::clamp(xi, -1.0, 1.0) : 0.0; };
+    const Vec3 m = outward_normal(current_segment(surfaces.segments[state.candidates[c].segment], x_ref, u),
+                                  Xi{kept(r.xi[0]), kept(r.xi[1])});
+    state.admitted[c] = dot(n, m) < -facing_cosine && !(r.gap < -settings.search_distance);
+  }
+}
+
 FoldContact fold_contact(const ContactSurfaces& surfaces, ContactPassState& state, const NodalVectors& x_ref,
                          const NodalVectors& u, std::size_t p, double limit,
                          ContactPassState::Contact& contact) {
@@ -46,9 +96,11 @@ FoldContact fold_contact(const ContactSurfaces& surfaces, ContactPassState& stat
   EdgeContact closest;
   std::size_t closest_candidate = 0;
   for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
+    state.edge_contacts[c] = EdgeContact{};
+    if (!admitted(surfaces, state, c)) continue;
     const std::uint32_t segment = state.candidates[c].segment;
     const EdgeContact edge = edge_contact(current_segment(surfaces.segments[segment], x_ref, u), point,
-                                          state.results[c], surfaces.edges[segment]);
+                                          state.results[c], edges_for_point(surfaces, state, p, segment));
     state.edge_contacts[c] = edge;
     if (edge.found && (!closest.found || edge.distance < closest.distance))
       closest = edge, closest_candidate = c;
@@ -83,6 +135,19 @@ void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettin
       },
       surfaces.segments, settings.search_distance + settings.margin, state.boxes);
   bucket_search(state.slave_points, state.boxes, settings.cell_size, state.workspace, state.new_candidates);
+  // A single surface never checks a point against a segment that shares a node with it,
+  // nor against one that faces its way (single_surface.hpp, "search"): until the next
+  // search neither can turn to face the other.
+  if (surfaces.single_surface) {
+    std::size_t normal_of = std::numeric_limits<std::size_t>::max();  // the point n is of
+    Vec3 n{};
+    std::erase_if(state.new_candidates, [&](const CandidatePair& pair) {
+      if (shares_node(surfaces, pair.point, pair.segment)) return true;
+      if (pair.point != normal_of) normal_of = pair.point, n = point_normal(surfaces, pair.point, x_ref, u);
+      return dot(n, outward_normal(current_segment(surfaces.segments[pair.segment], x_ref, u),
+                                   Xi{0.0, 0.0})) >= same_way_cosine;
+    });
+  }
 
   // Carry the previous points over (merge of two sorted lists).
   state.new_previous_xi.assign(state.new_candidates.size(),
@@ -208,7 +273,10 @@ void point_force(const ContactSurfaces& surfaces, const ContactPassSettings& set
   const double slave_inverse_mass = motion.inverse_mass;
   const Vec3 n = contact.normal;
   const double normal_velocity = dot(slave_velocity - master_velocity, n);
-  double k = surfaces.stiffness[p];  // the point pair's stiffness
+  // The point pair's stiffness: a single surface's node takes its side's facing the contact.
+  double k = surfaces.single_surface && !surfaces.quadrature
+                 ? side_stiffness(surfaces, p, contact.normal, x_ref, u)
+                 : surfaces.stiffness[p];
   if (settings.automatic_stiffness) k *= settings.stiffness_growth;
   if (settings.automatic_stiffness && !surfaces.quadrature) {
     const double inverse_mass = slave_inverse_mass + master_inverse_mass;
@@ -274,6 +342,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     const auto candidates = static_cast<std::ptrdiff_t>(state.candidates.size());
     state.results.resize(state.candidates.size());
     state.edge_contacts.resize(state.candidates.size());
+    if (surfaces.single_surface) state.admitted.resize(state.candidates.size());
 #pragma omp parallel for schedule(dynamic, 64) if (candidates >= 512)
     for (std::ptrdiff_t k = 0; k < candidates; ++k) {
       const auto c = static_cast<std::size_t>(k);
@@ -298,6 +367,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     reduction(+ : projections, iterations, not_converged, saddle_points) reduction(max : max_iterations)
     for (std::ptrdiff_t q = 0; q < points; ++q) {
       const auto p = static_cast<std::size_t>(q);
+      if (surfaces.single_surface) admit_candidates(surfaces, settings, state, p, x_ref, u);
       double best_distance = std::numeric_limits<double>::infinity();
       std::size_t best = state.candidates.size();  // none
       for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
@@ -306,6 +376,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         iterations += r.iterations;
         max_iterations = std::max<long>(max_iterations, r.iterations);
         state.previous_xi[c] = std::isfinite(r.xi[0]) && std::isfinite(r.xi[1]) ? r.xi : Xi{0.0, 0.0};
+        if (!admitted(surfaces, state, c)) continue;
         if (!r.converged) {
           ++not_converged;
           continue;
@@ -334,7 +405,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       bool nearer_outside = none_inside;
       for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1] && !nearer_outside; ++c) {
         const ProjectionResult& r = state.results[c];
-        nearer_outside = r.converged && !r.inside && r.distance < nearer;
+        nearer_outside = admitted(surfaces, state, c) && r.converged && !r.inside && r.distance < nearer;
       }
       if (nearer_outside) {
         const FoldContact fold = fold_contact(surfaces, state, x_ref, u, p, nearer, contact);
@@ -382,17 +453,30 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     state.slave_force = state.slave_normal_force = state.slave_tangential_force = Vec3{};
     state.max_penetration = 0.0;
     state.slipping = state.sticking = 0;
+    // A single surface's force is the force on its first part from the others: its
+    // points' forces on the others' segments, less the forces of the others' points on
+    // its segments (their reactions); within one part they cancel (sums `reaction`).
+    Vec3 reaction_force{}, reaction_normal{}, reaction_tangential{};
     for (std::size_t p = 0; p < n_points; ++p) {
       const auto& contact = state.contacts[p];
       if (contact.segment < 0 || contact.gap >= 0.0) continue;
       if (friction && state.force_magnitude[p] > 0.0) {
-        state.slave_tangential_force = state.slave_tangential_force + state.tangential_force[p];
         state.friction_work += state.dissipation[p];
         ++(state.dissipation[p] > 0.0 ? state.slipping : state.sticking);
       }
-      state.slave_normal_force = state.slave_normal_force + state.force_magnitude[p] * contact.normal;
       statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
-      state.slave_force = state.slave_force + state.point_force[p];
+      const bool own_point = !surfaces.single_surface || surfaces.first_part_point[p] != 0;
+      const bool own_segment =
+          surfaces.single_surface && surfaces.first_part_segment[std::size_t(contact.segment)] != 0;
+      if (own_point != own_segment) {
+        Vec3& force_sum = own_point ? state.slave_force : reaction_force;
+        Vec3& normal_sum = own_point ? state.slave_normal_force : reaction_normal;
+        Vec3& tangential_sum = own_point ? state.slave_tangential_force : reaction_tangential;
+        if (friction && state.force_magnitude[p] > 0.0)
+          tangential_sum = tangential_sum + state.tangential_force[p];
+        normal_sum = normal_sum + state.force_magnitude[p] * contact.normal;
+        force_sum = force_sum + state.point_force[p];
+      }
       state.max_penetration = std::max(state.max_penetration, -contact.gap);
       if (const double depth = -contact.gap / surfaces.normal_length[p];
           depth > statistics.max_penetration_over_h) {
@@ -402,6 +486,9 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
                                 : surfaces.slave_nodes[p];
       }
     }
+    state.slave_force = state.slave_force - reaction_force;
+    state.slave_normal_force = state.slave_normal_force - reaction_normal;
+    state.slave_tangential_force = state.slave_tangential_force - reaction_tangential;
     // The forces and gaps onto the nodes: a surface of more than one chunk on the
     // threads, in the order of one process (force_scatter.hpp).
     if (records != nullptr)

@@ -33,6 +33,14 @@ struct QuadraturePoint {
   double weight = 0.0;  // Gauss weight (w1 w2) times the reference area element |a1 x a2|, m^2
 };
 
+// A segment at a slave node of a single surface: the segment, the node's place among
+// its nodes, and which of the node's sides (the faces it lies on) the segment is of.
+struct NodeCorner {
+  std::uint32_t segment = 0;
+  std::uint8_t corner = 0, side = 0;
+};
+inline constexpr std::size_t max_node_sides = 8;
+
 // The geometry of a pass, fixed for the run (global node ids).
 struct ContactSurfaces {
   bool quadrature = false;  // the slave points: Gauss points (true) or nodes
@@ -68,6 +76,23 @@ struct ContactSurfaces {
   // reduced mass point_mass[p] (kg).
   bool own_segment = false;
   std::vector<double> point_mass;
+
+  // Single-surface contact (single_surface.hpp): the slave points are the surface's and
+  // `segments` the same surface's (a Gauss point's slave segment k is master segment k).
+  // A slave node's corners (each segment at the node, the node's place in it and the
+  // side, i.e. the face, it belongs to among the node's) and its sides' stiffness, N/m.
+  // first_part_*: whether a point or a segment lies on the part of the surface's first
+  // face: the pass's force is the force on that part (the others' points add their
+  // reactions on its segments).
+  bool single_surface = false;
+  std::vector<std::uint32_t> corner_begin;  // node p's corners: [corner_begin[p], corner_begin[p + 1])
+  std::vector<NodeCorner> node_corners;
+  std::vector<std::uint32_t> side_begin;  // node p's sides: [side_begin[p], side_begin[p + 1])
+  std::vector<double> side_stiffness;
+  std::vector<std::uint8_t> first_part_point, first_part_segment;
+  // Per master segment, the segment across each edge (the order of SegmentEdges): -1
+  // none (on a rank: or not in its view), -2 more than one.
+  std::vector<std::array<std::int32_t, 4>> edge_neighbours;
 
   std::size_t point_count() const { return quadrature ? quadrature_points.size() : slave_nodes.size(); }
 };
@@ -181,7 +206,8 @@ struct ContactPassState {
     Vec3 normal{};
   };
   std::vector<Contact> contacts;
-  MortarState mortar;  // a mortar pass's (ContactSurfaces::mortar)
+  std::vector<std::uint8_t> admitted;  // single surface: whether each candidate pair may touch
+  MortarState mortar;                  // a mortar pass's (ContactSurfaces::mortar)
 };
 
 struct ContactStatistics {

@@ -197,16 +197,43 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
     const std::string pair_path = child_path(path, c);
     const YAML::Node entry = node[c];
     check_map(entry, pair_path,
-              {"name", "slave", "master", "two_pass", "slave_points", "quadrature", "penalty", "search",
-               "local_search", "friction"});
+              {"name", "slave", "master", "surface", "two_pass", "slave_points", "quadrature", "penalty",
+               "search", "local_search", "friction"});
     ContactOptions pair;
     pair.name = group_name(entry, path, c, "contact pair", "/history/contact/NAME", index_by_name);
-    pair.slave = face_list(required(entry, pair_path, "slave"), child_path(pair_path, "slave"), parts);
-    pair.master = face_list(required(entry, pair_path, "master"), child_path(pair_path, "master"), parts);
-    if (const YAML::Node two_pass = optional(entry, "two_pass"); two_pass.IsDefined())
-      pair.two_pass = boolean(two_pass, child_path(pair_path, "two_pass"));
-    if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined())
+    if (const YAML::Node surface = optional(entry, "surface"); surface.IsDefined()) {
+      // Single-surface contact: the surface is both sides, so naming a side is a contradiction.
+      for (const char* side : {"slave", "master"})
+        if (const YAML::Node named = optional(entry, side); named.IsDefined())
+          fail(named, child_path(pair_path, side),
+               std::string("a contact entry with `surface` (single-surface contact) names no `") + side +
+                   "`: give either `surface` or both `slave` and `master`");
+      const std::string surface_path = child_path(pair_path, "surface");
+      pair.single_surface = true;
+      if (surface.IsScalar() && !is_quoted(surface) && surface.Scalar() == "all")
+        pair.surface_all =
+            true;  // the faces follow from the parts and boundary conditions (deck_validator.cpp)
+      else if (surface.IsScalar())
+        fail(
+            surface, surface_path,
+            "expected `all` or a non-empty list of face names like [tube.surface], got " + describe(surface));
+      else
+        pair.slave = face_list(surface, surface_path, parts);
+      pair.master = pair.slave;
+    } else {
+      pair.slave = face_list(required(entry, pair_path, "slave"), child_path(pair_path, "slave"), parts);
+      pair.master = face_list(required(entry, pair_path, "master"), child_path(pair_path, "master"), parts);
+    }
+    if (const YAML::Node two_pass = optional(entry, "two_pass"); two_pass.IsDefined()) {
+      const bool both = boolean(two_pass, child_path(pair_path, "two_pass"));
+      if (!pair.single_surface) pair.two_pass = both;  // a surface is both sides already
+    }
+    if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined()) {
       pair.slave_points = slave_points(points, child_path(pair_path, "slave_points"));
+      if (pair.single_surface && pair.slave_points == SlavePoints::mortar)
+        fail(points, child_path(pair_path, "slave_points"),
+             "slave_points: mortar is for pairs: a `surface` takes nodes or quadrature (or auto)");
+    }
     // Accepted with slave_points: nodes too (unused there), so that batch runs can
     // switch the slave points with --set alone.
     // With mortar, the points of the rule on each triangle of a piece.

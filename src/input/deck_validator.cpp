@@ -305,8 +305,19 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
   result.parts = parts(required(root, "", "parts"), "parts", result.materials);
   if (const YAML::Node node = optional(root, "boundary_conditions"); node.IsDefined())
     result.boundary_conditions = boundary_conditions(node, "boundary_conditions", result.parts);
-  if (const YAML::Node node = optional(root, "contact"); node.IsDefined())
+  if (const YAML::Node node = optional(root, "contact"); node.IsDefined()) {
     result.contact = contact_pairs(node, "contact", result.parts);
+    // `surface: all`: every exterior face, which the boundary conditions decide.
+    for (std::size_t c = 0; c < result.contact.size(); ++c) {
+      ContactOptions& pair = result.contact[c];
+      if (!pair.surface_all) continue;
+      pair.slave = pair.master = exterior_faces(result);
+      if (pair.slave.empty())
+        fail(node[c]["surface"], child_path(child_path("contact", c), "surface"),
+             "`all` finds no exterior face: every face of every part is held normal to itself by a boundary "
+             "condition (a symmetry plane or a support)");
+    }
+  }
   if (const YAML::Node node = optional(root, "rigid_walls"); node.IsDefined())
     result.rigid_walls = rigid_walls(node, "rigid_walls", result.parts);
   if (const YAML::Node node = optional(root, "loads"); node.IsDefined())

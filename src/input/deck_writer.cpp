@@ -179,9 +179,11 @@ std::string to_yaml(const Deck& deck) {
     const PenaltyOptions& penalty = pair.penalty;
     const LocalSearchOptions& local = pair.local_search;
     out << "  - name: " << yaml_text(pair.name) << "\n"
-        << "    slave: " << yaml_faces(deck, pair.slave) << "\n"
-        << "    master: " << yaml_faces(deck, pair.master) << "\n"
-        << "    two_pass: " << (pair.two_pass ? "true" : "false") << "\n"
+        << (pair.surface_all      ? "    surface: all\n"
+            : pair.single_surface ? "    surface: " + yaml_faces(deck, pair.slave) + "\n"
+                                  : "    slave: " + yaml_faces(deck, pair.slave) + "\n" +
+                                        "    master: " + yaml_faces(deck, pair.master) + "\n" +
+                                        "    two_pass: " + (pair.two_pass ? "true" : "false") + "\n")
         << "    slave_points: " << name(pair.slave_points) << "\n"
         << (pair.quadrature ? "    quadrature: " + std::to_string(*pair.quadrature) + "\n" : std::string())
         << "    penalty: {"

@@ -1,5 +1,7 @@
 #include "input/options.hpp"
 
+#include <algorithm>
+
 #include "common/errors.hpp"
 
 namespace exdyn::input {
@@ -164,6 +166,55 @@ std::string face_name(const Deck& deck, const FaceRef& face) {
   return part + "." + name(face.side);
 }
 
+namespace {
+
+// The axis a flat face of a part is normal to (0 x, 1 y, 2 z), or -1 (curved, or a mesh's).
+int flat_face_axis(const PartOptions& part, PartFace side) {
+  switch (side) {
+    case PartFace::xmin:
+    case PartFace::xmax:
+    case PartFace::cut_x:
+      return 0;
+    case PartFace::ymin:
+    case PartFace::ymax:
+    case PartFace::cut_y:
+      return 1;
+    case PartFace::zmin:
+    case PartFace::zmax:
+    case PartFace::cut_z:
+      return 2;
+    case PartFace::start:
+    case PartFace::end:
+      return part.axis;
+    case PartFace::surface:
+    case PartFace::physical:
+      return -1;
+  }
+  return -1;
+}
+
+}  // namespace
+
+std::vector<FaceRef> exterior_faces(const Deck& deck) {
+  std::vector<FaceRef> faces;
+  for (std::size_t p = 0; p < deck.parts.size(); ++p) {
+    const PartOptions& part = deck.parts[p];
+    for (PartFace side : faces_of(part)) {
+      const FaceRef face{static_cast<int>(p), side};
+      const int axis = flat_face_axis(part, side);
+      const bool held =
+          axis >= 0 && std::any_of(deck.boundary_conditions.begin(), deck.boundary_conditions.end(),
+                                   [&](const auto& condition) {
+                                     return condition.fix[std::size_t(axis)] &&
+                                            std::find(condition.faces.begin(), condition.faces.end(), face) !=
+                                                condition.faces.end();
+                                   });
+      if (!held) faces.push_back(face);
+    }
+  }
+  return faces;
+}
+
 std::vector<std::string> side_names(const PartOptions& part) {
   std::vector<std::string> names;
   for (const PartFace side : faces_of(part)) names.emplace_back(name(side));
@@ -194,7 +245,8 @@ std::vector<std::string> deck_warnings(const Deck& deck) {
   };
   for (const ContactOptions& pair : deck.contact) {
     check("contact pair " + pair.name, pair.slave_points, pair.slave);
-    if (pair.two_pass) check("contact pair " + pair.name + " (second pass)", pair.slave_points, pair.master);
+    if (pair.two_pass && !pair.single_surface)
+      check("contact pair " + pair.name + " (second pass)", pair.slave_points, pair.master);
   }
   for (const RigidWallOptions& wall : deck.rigid_walls)
     check("rigid wall " + wall.name, wall.slave_points, wall.slave);

@@ -206,6 +206,11 @@ struct ContactOptions {
   std::vector<FaceRef> slave;
   std::vector<FaceRef> master;
   bool two_pass = true;
+  // `surface`: single-surface contact, slave and master the same faces (one pass, each
+  // point against the segments that share no node with it); surface_all: `surface: all`,
+  // the faces every part's exterior (exterior_faces).
+  bool single_surface = false;
+  bool surface_all = false;
   SlavePoints slave_points = SlavePoints::automatic;
   // Gauss points per direction on each slave segment (slave_points: quadrature),
   // 1 to max_quadrature; unset: 2 on 4-node and 3 on 8-node segments. With
@@ -328,6 +333,11 @@ std::vector<PartFace> faces_of(const PartOptions& part);
 const char* name(OutputField field);
 // "<part>.<side>"
 std::string face_name(const Deck& deck, const FaceRef& face);
+
+// `surface: all`: every face of every part (faces_of), less those on a symmetry plane or
+// a support: a flat face whose nodes a boundary condition holds normal to it (nothing
+// can reach it from outside).
+std::vector<FaceRef> exterior_faces(const Deck& deck);
 // The face names of a part after "<part>.": faces_of(part), then a mesh part's physical surfaces.
 std::vector<std::string> side_names(const PartOptions& part);
 // What a valid deck asks for that gives a poor answer (printed by `exdyn check` and

@@ -115,6 +115,14 @@ std::vector<contact::SegmentEdges> segment_edges(const Model& model,
   return edges;
 }
 
+}  // namespace
+
+mesh::Face contact_face(const Model& model, const input::FaceRef& f, const mesh::KeepSegment& keep) {
+  return keep ? mesh::cut_face(mesh::face_of(model.mesh, f), keep) : mesh::face_of(model.mesh, f);
+}
+
+namespace {
+
 // The node count (4 or 8) of the segments of face f: of its first, or, cut to none
 // (ContactScope), of its part's bricks.
 int face_segment_nodes(const Model& model, const input::FaceRef& f, const mesh::Face& face) {
@@ -157,11 +165,11 @@ void add_gauss_points(const NodalVectors& x, const contact::SegmentNodes& ids, i
 // The master faces' segments, keyed by their index in the whole pass; the modulus and
 // smallest length over them too. Returns whether a face has 8-node segments.
 bool add_master_faces(const input::Deck& deck, const Model& model, const std::vector<input::FaceRef>& master,
-                      PassGeometry& g) {
+                      const mesh::KeepSegment& keep, PassGeometry& g) {
   bool eight_node_segments = false;
   std::uint32_t first_segment = 0;  // of the face, in the whole pass
   for (const auto& f : master) {
-    const mesh::Face face = mesh::face_of(model.mesh, f);
+    const mesh::Face face = contact_face(model, f, keep);
     eight_node_segments = eight_node_segments || face_segment_nodes(model, f, face) == 8;
     for (std::size_t k = 0; k < face.segments.size(); ++k) {
       g.surfaces.segments.push_back(segment_nodes(face.segments[k]));
@@ -206,14 +214,14 @@ std::vector<double> spring_areas(const input::ContactOptions& options, const Nod
 
 PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const input::ContactOptions& options,
                            const std::vector<input::FaceRef>& slave,
-                           const std::vector<input::FaceRef>& master) {
+                           const std::vector<input::FaceRef>& master, const mesh::KeepSegment& keep) {
   PassGeometry g;
   auto& s = g.surfaces;
   const NodalVectors& x = model.mesh.x_ref;
   std::vector<mesh::Face> slave_faces;
   bool eight_node_segments = false;
   for (const auto& f : slave) {
-    slave_faces.push_back(mesh::face_of(model.mesh, f));
+    slave_faces.push_back(contact_face(model, f, keep));
     eight_node_segments = eight_node_segments || face_segment_nodes(model, f, slave_faces.back()) == 8;
     s.slave_nodes.insert(s.slave_nodes.end(), slave_faces.back().nodes.begin(),
                          slave_faces.back().nodes.end());
@@ -262,7 +270,7 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
   }
   if (s.quadrature || s.mortar) g.spring_area = spring_areas(options, x, s.slave_segments, s.slave_nodes);
   if (!s.quadrature && !s.mortar) s.normal_length = node_length;
-  eight_node_segments = add_master_faces(deck, model, master, g) || eight_node_segments;
+  eight_node_segments = add_master_faces(deck, model, master, keep, g) || eight_node_segments;
   // Mortar's triangle rule: the deck's, or by the faces of both sides.
   if (s.mortar)
     s.triangle_points =

@@ -25,9 +25,13 @@ struct PassGeometry {
 
 // A pass's slave points (nodes, Gauss points of its slave segments, or mortar's slave
 // segments), master segments, edges and moving nodes, from the deck's faces.
+// keep: the segments of the faces that count (none: all).
 PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const input::ContactOptions& options,
                            const std::vector<input::FaceRef>& slave,
-                           const std::vector<input::FaceRef>& master);
+                           const std::vector<input::FaceRef>& master, const mesh::KeepSegment& keep = {});
+
+// Face f of the model, cut to the segments `keep` keeps (none: whole).
+mesh::Face contact_face(const Model& model, const input::FaceRef& f, const mesh::KeepSegment& keep);
 
 // The spring area of each of `nodes` (sorted) over `segments` (m^2): the sum over the
 // n x n Gauss points of the segments at each node of |N_I| w sum_J |N_J|, n as

@@ -13,6 +13,7 @@
 #include "contact/quadrature.hpp"
 #include "material/elastic.hpp"
 #include "model/contact_geometry.hpp"
+#include "model/single_surface_setup.hpp"
 
 namespace exdyn::solver {
 
@@ -244,18 +245,32 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
   for (const auto& options : deck.contact) {
     ContactPair pair;
     pair.name = options.name;
-    const int pass_count = options.two_pass ? 2 : 1;
+    // A single surface is one pass in which every contact is seen from both sides, as a
+    // two-pass pair's: each of its springs carries half.
+    const int pass_count = options.two_pass || options.single_surface ? 2 : 1;
     double smallest_length = std::numeric_limits<double>::infinity();
     std::vector<PassGeometry> geometry;
-    for (int p = 0; p < pass_count; ++p) {
-      geometry.push_back(p == 0 ? pass_geometry(deck, model, options, options.slave, options.master)
-                                : pass_geometry(deck, model, options, options.master, options.slave));
-      smallest_length = std::min(smallest_length, geometry.back().smallest_length);
-      slave_point_stiffness(options, model, geometry.back(), dt, dt / critical_dt, scope);
+    if (options.single_surface) {
+      const input::ContactOptions resolved = resolved_surface_options(model, options);
+      geometry = surface_face_geometries(deck, model, resolved);
+      for (PassGeometry& face : geometry)
+        slave_point_stiffness(resolved, model, face, dt, dt / critical_dt, scope);
+    } else {
+      for (int p = 0; p < pass_count; ++p) {
+        geometry.push_back(p == 0 ? pass_geometry(deck, model, options, options.slave, options.master)
+                                  : pass_geometry(deck, model, options, options.master, options.slave));
+        slave_point_stiffness(options, model, geometry.back(), dt, dt / critical_dt, scope);
+      }
     }
+    for (const PassGeometry& g : geometry) smallest_length = std::min(smallest_length, g.smallest_length);
     if (options.penalty.stiffness)
       refuse_unstable_stiffness(deck, model, pair, geometry, options, contact.pairs.size(), dt,
                                 dt / critical_dt, scope);
+    if (options.single_surface) {
+      PassGeometry surface = merge_surface_faces(model, resolved_surface_options(model, options), geometry);
+      geometry.clear();
+      geometry.push_back(std::move(surface));
+    }
     pair.slave_points = geometry.front().surfaces.mortar       ? input::SlavePoints::mortar
                         : geometry.front().surfaces.quadrature ? input::SlavePoints::quadrature
                                                                : input::SlavePoints::nodes;

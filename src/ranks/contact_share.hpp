@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <type_traits>
 #include <vector>
@@ -32,6 +33,10 @@ struct SegmentPayload {
   contact::SegmentNodes nodes;
   contact::SegmentEdges edges;
   double area_per_mass = 0.0;  // mortar: the mean a / m of its nodes (ContactSurfaces), m^2/kg
+  // A single surface: whether it lies on the first part, and the segments across its
+  // edges by index in the whole pass (ContactSurfaces::edge_neighbours).
+  std::uint8_t first_part = 0;
+  std::array<std::int32_t, 4> neighbours{-1, -1, -1, -1};
 };
 // A node the receiver does not hold: its owner and its data at the search.
 struct NodePayload {
@@ -74,6 +79,11 @@ std::vector<std::vector<T>> all_to_all(DistributedContact& dc, const std::vector
   }
   return from;
 }
+
+// A single surface's view: its node corners and edge neighbours from indices in the whole
+// pass (PassShare::own) to those of the view's segments (PassShare::known); a neighbour
+// not in the view is -1 (no segment the point may touch there).
+void index_single_surface(PassShare& share);
 
 // A node's place in the store (global id in), or store.global.size().
 std::size_t store_index(const ContactStore& store, std::uint32_t node);

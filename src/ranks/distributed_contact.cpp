@@ -88,6 +88,24 @@ void add_segment_nodes(const std::vector<contact::SegmentNodes>& segments,
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
 }
 
+// A single surface's slave node p of `whole` as an own point: its sides, and its corners
+// with each segment's index in the whole pass (the view's own and ghost segments hold
+// them all after a search: each contains the node, so each overlaps this rank's box).
+void own_node_sides(const contact::ContactSurfaces& whole, const PassPlace& place, std::size_t p,
+                    contact::ContactSurfaces& own) {
+  if (own.side_begin.empty()) own.side_begin.push_back(0), own.corner_begin.push_back(0);
+  own.side_stiffness.insert(own.side_stiffness.end(), whole.side_stiffness.begin() + whole.side_begin[p],
+                            whole.side_stiffness.begin() + whole.side_begin[p + 1]);
+  own.side_begin.push_back(std::uint32_t(own.side_stiffness.size()));
+  for (std::uint32_t k = whole.corner_begin[p]; k < whole.corner_begin[p + 1]; ++k) {
+    contact::NodeCorner corner = whole.node_corners[k];
+    corner.segment = place.segment_ids.empty() ? corner.segment : place.segment_ids[corner.segment];
+    own.node_corners.push_back(corner);
+  }
+  own.corner_begin.push_back(std::uint32_t(own.node_corners.size()));
+  own.first_part_point.push_back(whole.first_part_point[p]);
+}
+
 // The share's own slave points: (mortar) the slave segments this rank owns, each keyed
 // by its index in the whole pass; the slave nodes it owns; or the quadrature points of
 // the slave segments it owns.
@@ -113,6 +131,7 @@ void own_points(const contact::ContactSurfaces& whole, const PassPlace& place, c
       share.point_keys.push_back(node);  // slave nodes ascend: the order of one process
       own.stiffness.push_back(whole.stiffness[p]);
       own.normal_length.push_back(whole.normal_length[p]);
+      if (whole.single_surface) own_node_sides(whole, place, p, own);
     }
   } else {
     std::vector<std::int64_t> renumbered(whole.slave_segments.size(), -1);
@@ -129,6 +148,7 @@ void own_points(const contact::ContactSurfaces& whole, const PassPlace& place, c
       share.point_keys.push_back(place.point_keys.empty() ? std::uint32_t(p) : place.point_keys[p]);
       own.stiffness.push_back(whole.stiffness[p]);
       own.normal_length.push_back(whole.normal_length[p]);
+      if (whole.single_surface) own.first_part_point.push_back(whole.first_part_point[p]);
     }
     add_segment_nodes(own.slave_segments, own.slave_nodes);
   }
@@ -145,6 +165,13 @@ void own_segments(const contact::ContactSurfaces& whole, const PassPlace& place,
       share.segment_ids.push_back(place.segment_ids.empty() ? std::uint32_t(s) : place.segment_ids[s]);
       if (!whole.edges.empty()) own.edges.push_back(whole.edges[s]);
       if (whole.mortar) own.master_area_per_mass.push_back(whole.master_area_per_mass[s]);
+      if (whole.single_surface) {  // the segments across its edges by their index in the whole pass
+        own.first_part_segment.push_back(whole.first_part_segment[s]);
+        std::array<std::int32_t, 4> next = whole.edge_neighbours[s];
+        for (std::int32_t& n : next)
+          if (n >= 0 && !place.segment_ids.empty()) n = std::int32_t(place.segment_ids[std::size_t(n)]);
+        own.edge_neighbours.push_back(next);
+      }
     }
   own.moving_nodes = own.slave_nodes;
   add_segment_nodes(own.segments, own.moving_nodes);
@@ -167,6 +194,7 @@ PassShare make_share(const contact::ContactSurfaces& whole, const PassPlace& pla
   own.quadrature = whole.quadrature;
   own.mortar = whole.mortar;
   own.triangle_points = whole.triangle_points;
+  own.single_surface = whole.single_surface;
   const Holders h{me, contact_nodes, holders};
   own_points(whole, place, h, share);
   own_segments(whole, place, h, share);
@@ -194,6 +222,7 @@ PassShare make_share(const contact::ContactSurfaces& whole, const PassPlace& pla
   for (contact::SegmentNodes& s : view.segments) s = in_store(s, store);
   for (std::uint32_t& node : view.moving_nodes) node = std::uint32_t(index_in(store.global, node));
   share.known = share.segment_ids;
+  if (own.single_surface) shares::index_single_surface(share);
   return share;
 }
 

@@ -116,6 +116,10 @@ GhostExchange exchange_ghosts(DistributedContact& dc, const PassShare& share,
       segments_out[r].push_back({share.segment_ids[i], s,
                                  share.own.edges.empty() ? contact::SegmentEdges{} : share.own.edges[i],
                                  share.own.mortar ? share.own.master_area_per_mass[i] : 0.0});
+      if (share.own.single_surface) {
+        segments_out[r].back().first_part = share.own.first_part_segment[i];
+        segments_out[r].back().neighbours = share.own.edge_neighbours[i];
+      }
       for (int k = 0; k < contact::node_count(s.type); ++k) {
         const std::uint32_t g = s.nodes[std::size_t(k)];
         const std::vector<int>& h = dc.holders[index_in(dc.held, g)];
@@ -139,6 +143,8 @@ struct KnownSegments {
   std::vector<contact::SegmentNodes> segments;
   std::vector<contact::SegmentEdges> edges;
   std::vector<double> area_per_mass;
+  std::vector<std::uint8_t> first_part;                 // single surface
+  std::vector<std::array<std::int32_t, 4>> neighbours;  // single surface: by whole-pass index
 };
 KnownSegments merge_known(const PassShare& share, const std::vector<SegmentPayload>& ghosts) {
   KnownSegments known;
@@ -150,12 +156,18 @@ KnownSegments merge_known(const PassShare& share, const std::vector<SegmentPaylo
       known.segments.push_back(share.own.segments[i]);
       known.edges.push_back(share.own.edges.empty() ? contact::SegmentEdges{} : share.own.edges[i]);
       known.area_per_mass.push_back(share.own.mortar ? share.own.master_area_per_mass[i] : 0.0);
+      if (share.own.single_surface) {
+        known.first_part.push_back(share.own.first_part_segment[i]);
+        known.neighbours.push_back(share.own.edge_neighbours[i]);
+      }
       ++i;
     } else {
       known.ids.push_back(ghosts[j].id);
       known.segments.push_back(ghosts[j].nodes);
       known.edges.push_back(ghosts[j].edges);
       known.area_per_mass.push_back(ghosts[j].area_per_mass);
+      known.first_part.push_back(ghosts[j].first_part);
+      known.neighbours.push_back(ghosts[j].neighbours);
       ++j;
     }
   }
@@ -252,6 +264,11 @@ void renumber_state(PassShare& share, KnownSegments known, contact::ContactPassS
   view.edges.clear();
   if (share.edges) view.edges = std::move(known.edges);
   if (view.mortar) view.master_area_per_mass = std::move(known.area_per_mass);
+  if (view.single_surface) {
+    view.first_part_segment = std::move(known.first_part);
+    view.edge_neighbours = std::move(known.neighbours);
+    index_single_surface(share);
+  }
   auto renumber = [&](std::uint32_t old) -> std::int64_t {
     const std::size_t k = index_in(share.known, old_known[old]);
     return k < share.known.size() ? std::int64_t(k) : -1;
@@ -288,6 +305,34 @@ void renumber_state(PassShare& share, KnownSegments known, contact::ContactPassS
 }
 
 }  // namespace
+
+void index_single_surface(PassShare& share) {
+  contact::ContactSurfaces& view = share.view;
+  const contact::ContactSurfaces& own = share.own;
+  if (view.edge_neighbours.size() != view.segments.size()) {  // the first view: the own segments
+    view.first_part_segment = own.first_part_segment;
+    view.edge_neighbours = own.edge_neighbours;
+  }
+  for (auto& next : view.edge_neighbours)
+    for (std::int32_t& n : next)
+      if (n >= 0) {
+        const std::size_t k = index_in(share.known, std::uint32_t(n));
+        n = k < share.known.size() ? std::int32_t(k) : -1;
+      }
+  // The corners: those whose segment is in the view (after a search, all of them).
+  view.node_corners.clear();
+  view.corner_begin.assign(1, 0);
+  for (std::size_t p = 0; p + 1 < own.corner_begin.size(); ++p) {
+    for (std::uint32_t c = own.corner_begin[p]; c < own.corner_begin[p + 1]; ++c) {
+      contact::NodeCorner corner = own.node_corners[c];
+      const std::size_t k = index_in(share.known, corner.segment);
+      if (k == share.known.size()) continue;
+      corner.segment = std::uint32_t(k);
+      view.node_corners.push_back(corner);
+    }
+    view.corner_begin.push_back(std::uint32_t(view.node_corners.size()));
+  }
+}
 
 // A new candidate search of one pass (every rank together): the box exchange, the
 // ghost segments and their nodes, the view and the store; the pass's candidates and

@@ -156,6 +156,38 @@ TEST(Cli, MortarKeysAreCheckedAndBadOnesExitTwoWritingNothing) {
   expect_echo_checks_to_itself(good, directory);
 }
 
+// Single-surface contact: a `surface` beside a named side, an empty one or one with a
+// face that does not exist exit 2, the key named, nothing written; a good one checks
+// and echoes `surface:`, and its echo checks to the same text.
+TEST(Cli, SurfaceKeysAreCheckedAndBadOnesExitTwoWritingNothing) {
+  exdyn::testing::TempDir directory;
+  const std::string out = directory.file("out");
+  const std::vector<std::array<std::string, 3>> bad{
+      {"plate_impact.yaml", "--set contact[0].surface=all", "contact[0].slave"},
+      {"u_shape.yaml", "--set 'contact[0].surface=[]'", "contact[0].surface"},
+  };
+  for (const auto& [file, set, key] : bad) {
+    const auto result = exdyn("run " + deck(file) + " " + set + " --output " + out);
+    EXPECT_EQ(result.status, 2) << set << ": " << result.output;
+    EXPECT_NE(result.output.find(key), std::string::npos) << result.output;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  const auto unknown = exdyn("run " + deck("u_shape.yaml") +
+                             " --set 'contact[0].surface=[u.inner_left, u.inside]' --output " + out);
+  EXPECT_EQ(unknown.status, 2) << unknown.output;
+  EXPECT_NE(unknown.output.find("contact[0].surface[1]"), std::string::npos) << unknown.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  const auto good = exdyn("check " + deck("u_shape.yaml"));
+  ASSERT_EQ(good.status, 0) << good.output;
+  EXPECT_NE(good.output.find("surface: [u.inner_left, u.inner_right, u.inner_base]"), std::string::npos)
+      << good.output;
+  expect_echo_checks_to_itself(good, directory);
+  const auto all = exdyn("check " + deck("u_shape.yaml") + " --set contact[0].surface=all");
+  ASSERT_EQ(all.status, 0) << all.output;
+  EXPECT_NE(all.output.find("surface: all"), std::string::npos) << all.output;
+  expect_echo_checks_to_itself(all, directory);
+}
+
 // A mesh part: every kind of bad mesh exits 2, names the file and what is wrong, and
 // writes nothing; a good one checks, and its echo checks to the same text.
 TEST(Cli, MeshPartsOfBadMeshesExitTwoNamingTheFileAndWriteNothing) {

@@ -84,6 +84,13 @@ const BadDeck bad_decks[] = {
     {"cell_size_word.yaml", "contact[0].search.cell_size", 21,
      "expected a number > 0 or auto, got automatic"},
     {"two_pass_word.yaml", "contact[0].two_pass", 20, "expected true or false, got maybe"},
+    {"surface_with_slave.yaml", "contact[0].slave", 19,
+     "a contact entry with `surface` (single-surface contact) names no `slave`"},
+    {"surface_empty.yaml", "contact[0].surface", 18, "expected a non-empty list of face names"},
+    {"surface_unknown_face.yaml", "contact[0].surface[1]", 18,
+     "unknown side 'xmni' of the box part 'plate_b' in face 'plate_b.xmni'; did you mean 'plate_b.xmin'?"},
+    {"surface_word.yaml", "contact[0].surface", 18, "expected `all` or a non-empty list of face names"},
+    {"surface_all_held.yaml", "contact[0].surface", 21, "`all` finds no exterior face"},
     {"perturbation_fraction_half.yaml", "parts[0].perturbation.fraction", 10,
      "expected a number in [0, 0.5) (a fraction of the element length h), got 0.5: at 0.5 or more a node can "
      "reach or pass its neighbour"},

@@ -42,7 +42,8 @@ struct DeckRun : exdyn::testing::DeckRun {
 // full Taylor meshes: scripts/taylor_study.py); sliding_block.yaml, oblique_impact.yaml,
 // block_on_rail.yaml: test_friction.cpp; rod_on_plate.yaml: test_contact.cpp; plate_impact_gmsh.yaml,
 // plate_impact_hex20_gmsh.yaml, hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp;
-// contact_patch_mortar.yaml: test_mortar_contact.cpp.
+// contact_patch_mortar.yaml: test_mortar_contact.cpp; u_shape.yaml, plates_one_surface.yaml:
+// test_single_surface.cpp.
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "wave_bar.yaml",
                                           "shear_wave.yaml",
@@ -70,7 +71,9 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "plate_impact_hex20_gmsh.yaml",
                                           "hertz_ball_gmsh.yaml",
                                           "tube_impact.yaml",
-                                          "rod_on_plate.yaml"};
+                                          "rod_on_plate.yaml",
+                                          "u_shape.yaml",
+                                          "plates_one_surface.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;

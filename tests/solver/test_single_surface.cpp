@@ -1,0 +1,159 @@
+// Single-surface contact through whole runs: where only two known faces ever touch it
+// gives the fields of the two-pass pair between them (the two plates of the seed paper
+// as one `surface: all`, the arms of a U as one surface), and faces that share nodes
+// never touch (an L whose inner corner closes).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "../support/deck_run.hpp"
+#include "input/deck_reader.hpp"
+
+namespace {
+
+using exdyn::input::Deck;
+using exdyn::input::Override;
+using exdyn::testing::DeckRun;
+
+// The deck with its first contact pair made `surface: all`.
+Deck as_surface_all(Deck deck) {
+  auto& pair = deck.contact.front();
+  pair.single_surface = pair.surface_all = true;
+  pair.slave = pair.master = exterior_faces(deck);
+  return deck;
+}
+
+// The largest difference between two fields over the largest entry of the first.
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  double largest = 0.0, difference = 0.0;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+    largest = std::max(largest, std::abs(a[i]));
+    difference = std::max(difference, std::abs(a[i] - b[i]));
+  }
+  return largest > 0.0 ? difference / largest : difference;
+}
+
+// Every field of the last step the same bits; the penetration history and, between two
+// parts, the contact force histories to 1e-12 of their largest (one pass's sums against
+// two passes': the bits too, as it is). Within one part a surface's force is zero (the
+// force on its first part from the others), where a pair's is the force on its slave side.
+void expect_same_run(const DeckRun& pair, const DeckRun& surface, const std::string& contact,
+                     bool two_parts) {
+  ASSERT_EQ(pair.summary.status, "completed");
+  ASSERT_EQ(surface.summary.status, "completed");
+  ASSERT_EQ(pair.summary.steps, surface.summary.steps);
+  for (const char* field : {"displacement", "velocity", "stress", "contact_force"})
+    EXPECT_EQ(pair.final(field), surface.final(field)) << field;
+  for (const char* history : {"force", "normal_force", "max_penetration"}) {
+    if (!two_parts && history != std::string("max_penetration")) continue;
+    const std::string name = "contact/" + contact + "/" + history;
+    EXPECT_LE(relative_difference(pair.history(name), surface.history(name)), 1.0e-12) << name;
+  }
+  EXPECT_GT(pair.summary.contact.max_penetration_over_h, 0.0);  // they did touch
+}
+
+struct PlateCase {
+  std::string name;
+  const char* deck;
+  std::vector<Override> overrides;
+};
+
+class TwoPlatesAsOneSurface : public ::testing::TestWithParam<PlateCase> {};
+
+// The seed's plate impact as input/plates_one_surface.yaml gives it, `surface: all`, at
+// its size: the fields of plate_impact.yaml's two-pass pair, bit for bit.
+TEST(SingleSurface, ThePlatesDeckGivesThePairsFields) {
+  const DeckRun pair("plate_impact.yaml");
+  const DeckRun single("plates_one_surface.yaml");
+  ASSERT_EQ(single.deck.contact.front().slave.size(), 6u);  // xmin, xmax, zmax of each plate
+  expect_same_run(pair, single, "interface", true);
+}
+
+// The same on smaller meshes on to c1 t / d = 0.96, with nodes and with quadrature
+// points, hex8 and hex20 (the deck's pair made `surface: all`).
+TEST_P(TwoPlatesAsOneSurface, GiveTheFieldsOfTheTwoPassPair) {
+  const PlateCase& c = GetParam();
+  const Deck deck = exdyn::input::read_deck(DeckRun::source_path(c.deck), c.overrides);
+  const DeckRun pair(deck);
+  const Deck surface = as_surface_all(deck);
+  ASSERT_EQ(surface.contact.front().slave.size(), 6u);
+  const DeckRun single(surface);
+  expect_same_run(pair, single, "interface", true);
+}
+
+const std::vector<Override> hex8_plates{
+    {"parts[0].elements", "[20, 1, 20]"}, {"parts[1].elements", "[20, 1, 20]"}, {"time.end_time", "4.0e-7"}};
+const std::vector<Override> hex20_plates{
+    {"parts[0].elements", "[12, 1, 12]"}, {"parts[1].elements", "[12, 1, 12]"}, {"time.end_time", "4.0e-7"}};
+
+std::vector<Override> with(std::vector<Override> overrides, const char* points) {
+  overrides.push_back({"contact[0].slave_points", points});
+  return overrides;
+}
+
+std::string case_name(const ::testing::TestParamInfo<PlateCase>& param) { return param.param.name; }
+
+INSTANTIATE_TEST_SUITE_P(
+    PlateImpact, TwoPlatesAsOneSurface,
+    ::testing::Values(PlateCase{"hex8_nodes", "plate_impact.yaml", hex8_plates},
+                      PlateCase{"hex8_quadrature", "plate_impact.yaml", with(hex8_plates, "quadrature")},
+                      PlateCase{"hex20_quadrature", "plate_impact_hex20.yaml", hex20_plates},
+                      PlateCase{"hex20_nodes", "plate_impact_hex20.yaml", with(hex20_plates, "nodes")}),
+    case_name);
+
+// input/u_shape.yaml: the arms of a U bent together touch; the U's inner faces as one
+// surface give the fields of a pair declared between the arms' facing faces.
+TEST(SingleSurface, TheArmsOfAUTouchAsThePairBetweenThemSays) {
+  const Deck deck = exdyn::input::read_deck(DeckRun::source_path("u_shape.yaml"));
+  const DeckRun single(deck);
+  Deck as_pair = deck;
+  auto& pair = as_pair.contact.front();
+  pair.single_surface = false;
+  pair.slave = {deck.contact.front().slave[0]};   // u.inner_left
+  pair.master = {deck.contact.front().slave[1]};  // u.inner_right
+  pair.two_pass = true;
+  const DeckRun paired(as_pair);
+  expect_same_run(paired, single, "self", false);
+  const auto& c = single.summary.contact;
+  std::printf("u shape: %ld steps, max penetration / h %.4f, energy error %.2e\n", single.summary.steps,
+              c.max_penetration_over_h, single.summary.energy.max_relative_error);
+  EXPECT_LT(c.max_penetration_over_h, 0.03);
+  EXPECT_LE(single.summary.energy.max_relative_error, 0.01);
+  // Within one part the contact force on it is zero: its points' forces and their reactions.
+  for (double f : single.history("contact/self/force")) EXPECT_EQ(f, 0.0);
+}
+
+// The L (the U without its right arm; input/meshes/u_shape.geo, right = 0): its arm
+// pushed at the tip bends towards the base, so the inner corner closes. With every face
+// of the body in one surface, no point touches anything: the corner's faces share its
+// nodes, and no other faces face each other.
+TEST(SingleSurface, AnLWhoseInnerCornerClosesTakesNoContact) {
+  const Deck deck = exdyn::input::read_deck(DeckRun::source_path("u_shape.yaml"),
+                                            {{"parts[0].mesh.file", "meshes/l_shape_hex8.msh"},
+                                             {"contact[0].surface", "all"},
+                                             {"rigid_walls[1].slave", "[u.tip_left]"},
+                                             {"rigid_walls[1].velocity", "[0, 0, 0]"},
+                                             {"rigid_walls[1].point", "[-1.0, 0, 0]"},
+                                             {"rigid_walls[1].normal", "[1, 0, 0]"}});
+  const DeckRun run(deck);
+  ASSERT_EQ(run.summary.status, "completed");
+  // The corner closed: the arm's inner face turned towards the base (its node at the
+  // top of the inner face moved 1.5 mm or more in x, the corner's not).
+  const auto u = run.final("displacement");
+  double tip_ux = 0.0;
+  for (std::size_t i = 0; i < u.size() / 3; ++i) tip_ux = std::max(tip_ux, u[3 * i]);
+  EXPECT_GT(tip_ux, 1.5e-3);
+  // (contact_force holds the wall's forces too: no point of the surface pressed is no
+  // penetration at any step.)
+  for (double depth : run.history("contact/self/max_penetration")) EXPECT_EQ(depth, 0.0);
+  ASSERT_EQ(run.summary.contact.pairs.size(), 1u);
+  EXPECT_EQ(run.summary.contact.pairs[0].figures.max_penetration_over_h, 0.0);
+  EXPECT_GT(run.summary.contact.pairs[0].figures.projections,
+            0);  // points were checked: it could have failed
+}
+
+}  // namespace
