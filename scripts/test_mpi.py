@@ -4,7 +4,7 @@
 - equal fields: the plate contact (hex8, nodes), a hex20 contact deck (quadrature points
   on 8-node segments), a curved deck (the Hertz ball, hex20), friction on a curved rail,
   the two Taylor rods (finite strain, plasticity, contact at folds), single-surface
-  contact (the plates as `surface: all`, nodes and quadrature points), a rigid wall with
+  contact (the plates as `surface: all`, nodes, quadrature points and mortar), a rigid wall with
   friction, a mesh of 8- and 20-node elements (graded: many groups of equal Jacobians),
   gravity and friction between boxes, a spin with finite strain, hex8r plasticity, the
   hex20 plate impact (built and read from a Gmsh file, which rank 0 alone holds) and
@@ -159,6 +159,8 @@ def test_equal_fields(exdyn, work, quick):
              ("plates_one_surface", ["parts[0].formulation=hex20", "parts[1].formulation=hex20",
                                      "parts[0].elements=[30, 1, 30]", "parts[1].elements=[30, 1, 30]",
                                      "time.end_time=1.2e-7", "output.every=56"], "plates_one_surface_hex20"),
+             ("plates_one_surface", ["contact[0].slave_points=mortar", "time.end_time=1.2e-7", "output.every=56"],
+              "plates_one_surface_mortar"),
              # a rigid wall with friction, every point slipping
              ("oblique_impact", ["parts[0].elements=[80, 1, 40]", "time.end_time=3.0e-6", "output.every=100"]),
              # set up rank by rank: gravity and friction between two boxes; a spin with

@@ -81,9 +81,9 @@ struct ContactSurfaces {
   // `segments` the same surface's (a Gauss point's slave segment k is master segment k).
   // A slave node's corners (each segment at the node, the node's place in it and the
   // side, i.e. the face, it belongs to among the node's) and its sides' stiffness, N/m.
-  // first_part_*: whether a point or a segment lies on the part of the surface's first
-  // face: the pass's force is the force on that part (the others' points add their
-  // reactions on its segments).
+  // first_part_*: whether a point (mortar: a slave segment) or a segment lies on the part
+  // of the surface's first face: the pass's force is the force on that part (the
+  // others' points add their reactions on its segments).
   bool single_surface = false;
   std::vector<std::uint32_t> corner_begin;  // node p's corners: [corner_begin[p], corner_begin[p + 1])
   std::vector<NodeCorner> node_corners;

@@ -7,6 +7,7 @@
 
 #include "common/errors.hpp"
 #include "common/timer.hpp"
+#include "contact/single_surface.hpp"
 #include "contact/slave_points.hpp"
 
 namespace exdyn::contact {
@@ -53,6 +54,13 @@ void search_segment_pairs(const ContactSurfaces& surfaces, const ContactPassSett
   std::erase_if(m.pairs, [&](const CandidatePair& pair) {
     return !overlap(m.slave_boxes[pair.point], m.master_boxes[pair.segment]);
   });
+  // A single surface: no pair of segments that share a node or face the same way
+  // (single_surface.hpp; a point's own rule then runs on each piece's points).
+  if (surfaces.single_surface)
+    std::erase_if(m.pairs, [&](const CandidatePair& pair) {
+      return segments_excluded(surfaces.slave_segments[pair.point], surfaces.segments[pair.segment], x_ref,
+                               u);
+    });
   m.pair_begin.assign(n_slave + 1, 0);
   for (const CandidatePair& pair : m.pairs) ++m.pair_begin[pair.point + 1];
   for (std::size_t s = 0; s < n_slave; ++s) m.pair_begin[s + 1] += m.pair_begin[s];
@@ -70,6 +78,8 @@ void search_segment_pairs(const ContactSurfaces& surfaces, const ContactPassSett
   m.view.slave_segments = surfaces.slave_segments;
   m.view.segments = surfaces.segments;
   m.view.moving_nodes = surfaces.moving_nodes;  // the scatter's slots (force_scatter.hpp)
+  m.view.single_surface = surfaces.single_surface;
+  m.view.first_part_segment = surfaces.first_part_segment;
 }
 
 // Cuts the slave segments chunk by chunk on the threads, each chunk into its own list
@@ -117,6 +127,7 @@ void fill_view(const ContactSurfaces& surfaces, ContactPassState& state) {
   view.stiffness.resize(n_points);
   view.normal_length.resize(n_points);
   view.point_mass.resize(n_points);
+  if (view.single_surface) view.first_part_point.resize(n_points);
   std::swap(m.identity, m.previous_identity);
   m.identity.resize(n_points);
   state.candidates.resize(n_points);
@@ -137,6 +148,7 @@ void fill_view(const ContactSurfaces& surfaces, ContactPassState& state) {
         // The dashpot's reduced mass: mu w, 1 / mu = 1 / mu_s + 1 / mu_m.
         view.point_mass[p] =
             point.weight / (surfaces.slave_area_per_mass[s] + surfaces.master_area_per_mass[piece.master]);
+        if (view.single_surface) view.first_part_point[p] = surfaces.first_part_point[s];
         m.identity[p] = {std::uint32_t(s), piece.master, piece.index};
         state.candidates[p] = {std::uint32_t(p), piece.master};
         state.previous_xi[p] = point.master_xi;

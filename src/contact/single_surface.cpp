@@ -48,6 +48,15 @@ bool shares_node(const ContactSurfaces& surfaces, std::size_t p, std::uint32_t s
   return false;
 }
 
+bool segments_excluded(const SegmentNodes& slave, const SegmentNodes& master, const NodalVectors& x_ref,
+                       const NodalVectors& u) {
+  for (int i = 0; i < node_count(slave.type); ++i)
+    if (has_node(master, slave.nodes[std::size_t(i)])) return true;
+  const Vec3 n_s = outward_normal(current_segment(slave, x_ref, u), Xi{0.0, 0.0});
+  const Vec3 n_m = outward_normal(current_segment(master, x_ref, u), Xi{0.0, 0.0});
+  return dot(n_s, n_m) >= same_way_cosine;
+}
+
 Vec3 point_normal(const ContactSurfaces& surfaces, std::size_t p, const NodalVectors& x_ref,
                   const NodalVectors& u) {
   if (surfaces.quadrature) {

@@ -39,6 +39,12 @@ inline constexpr double same_way_cosine = 0.7;
 // Whether slave point p of a single surface shares a node with master segment s.
 bool shares_node(const ContactSurfaces& surfaces, std::size_t p, std::uint32_t segment);
 
+// Mortar's global search on a single surface: whether a slave segment and a master segment
+// are no pair, because they share a node or face the same way (their normals at the
+// centres, n_s . n_m >= same_way_cosine).
+bool segments_excluded(const SegmentNodes& slave, const SegmentNodes& master, const NodalVectors& x_ref,
+                       const NodalVectors& u);
+
 // The outward unit normal of slave point p at the current configuration (zero where
 // its segments cancel, a sheet folded flat).
 Vec3 point_normal(const ContactSurfaces& surfaces, std::size_t p, const NodalVectors& x_ref,

@@ -228,12 +228,8 @@ std::vector<ContactOptions> DeckValidator::contact_pairs(const YAML::Node& node,
       const bool both = boolean(two_pass, child_path(pair_path, "two_pass"));
       if (!pair.single_surface) pair.two_pass = both;  // a surface is both sides already
     }
-    if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined()) {
+    if (const YAML::Node points = optional(entry, "slave_points"); points.IsDefined())
       pair.slave_points = slave_points(points, child_path(pair_path, "slave_points"));
-      if (pair.single_surface && pair.slave_points == SlavePoints::mortar)
-        fail(points, child_path(pair_path, "slave_points"),
-             "slave_points: mortar is for pairs: a `surface` takes nodes or quadrature (or auto)");
-    }
     // Accepted with slave_points: nodes too (unused there), so that batch runs can
     // switch the slave points with --set alone.
     // With mortar, the points of the rule on each triangle of a piece.

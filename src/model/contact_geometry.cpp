@@ -176,6 +176,7 @@ bool add_master_faces(const input::Deck& deck, const Model& model, const std::ve
       g.place.segment_ids.push_back(first_segment + face.index_in_whole(k));
     }
     first_segment += static_cast<std::uint32_t>(face.whole_count());
+    g.master_face_end.push_back(g.surfaces.segments.size());
     g.modulus = std::min(g.modulus, dilatational_modulus(deck, f.part));
     g.smallest_length = std::min(g.smallest_length, face.normal_length);
   }

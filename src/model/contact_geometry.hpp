@@ -20,7 +20,8 @@ struct PassGeometry {
   std::vector<double> spring_area;
   double modulus = std::numeric_limits<double>::infinity();          // smallest M of the parts involved, Pa
   double smallest_length = std::numeric_limits<double>::infinity();  // m
-  PassPlace place;  // the points' and segments' places in the whole pass
+  PassPlace place;                           // the points' and segments' places in the whole pass
+  std::vector<std::size_t> master_face_end;  // where each master face's segments end
 };
 
 // A pass's slave points (nodes, Gauss points of its slave segments, or mortar's slave

@@ -86,23 +86,12 @@ void quadrature_stiffness(const input::ContactOptions& options, const Model& mod
 void mortar_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g, double dt,
                       double courant, const ContactScope& scope) {
   auto& s = g.surfaces;
-  std::vector<std::uint32_t> master_nodes;
-  for (const contact::SegmentNodes& ids : s.segments)
-    master_nodes.insert(master_nodes.end(), ids.nodes.begin(),
-                        ids.nodes.begin() + contact::node_count(ids.type));
-  std::sort(master_nodes.begin(), master_nodes.end());
-  master_nodes.erase(std::unique(master_nodes.begin(), master_nodes.end()), master_nodes.end());
-  const std::vector<double> master_area = spring_areas(options, model.mesh.x_ref, s.segments, master_nodes);
   // a / m of a node (a halo node's mass is infinite: 0; its own rank has its figure).
   auto area_per_mass = [&](const std::vector<std::uint32_t>& nodes, const std::vector<double>& area,
                            std::uint32_t node) {
     const auto at = std::size_t(std::lower_bound(nodes.begin(), nodes.end(), node) - nodes.begin());
     return area[at] / model.mass[node];
   };
-  double largest_master = 0.0;
-  for (std::size_t i = 0; i < master_nodes.size(); ++i)
-    largest_master = std::max(largest_master, master_area[i] / model.mass[master_nodes[i]]);
-  largest_master = over_ranks(scope, largest_master);
   auto segment_mean = [&](const contact::SegmentNodes& ids, const std::vector<std::uint32_t>& nodes,
                           const std::vector<double>& area) {
     double sum = 0.0;
@@ -110,9 +99,29 @@ void mortar_stiffness(const input::ContactOptions& options, const Model& model, 
       sum += area_per_mass(nodes, area, ids.nodes[std::size_t(k)]);
     return sum / contact::node_count(ids.type);
   };
+  // The master nodes' spring areas over the master side, or, on a single surface, over
+  // each face by itself (a node on two faces is pressed through one of them, as in a
+  // pair on that face).
+  std::vector<std::size_t> group_end{s.segments.size()};
+  if (options.single_surface) group_end = g.master_face_end;
+  double largest_master = 0.0;
   s.master_area_per_mass.clear();
-  for (const contact::SegmentNodes& ids : s.segments)
-    s.master_area_per_mass.push_back(segment_mean(ids, master_nodes, master_area));
+  for (std::size_t group = 0, begin = 0; group < group_end.size(); begin = group_end[group++]) {
+    const std::vector<contact::SegmentNodes> segments(s.segments.begin() + std::ptrdiff_t(begin),
+                                                      s.segments.begin() + std::ptrdiff_t(group_end[group]));
+    std::vector<std::uint32_t> master_nodes;
+    for (const contact::SegmentNodes& ids : segments)
+      master_nodes.insert(master_nodes.end(), ids.nodes.begin(),
+                          ids.nodes.begin() + contact::node_count(ids.type));
+    std::sort(master_nodes.begin(), master_nodes.end());
+    master_nodes.erase(std::unique(master_nodes.begin(), master_nodes.end()), master_nodes.end());
+    const std::vector<double> master_area = spring_areas(options, model.mesh.x_ref, segments, master_nodes);
+    for (std::size_t i = 0; i < master_nodes.size(); ++i)
+      largest_master = std::max(largest_master, master_area[i] / model.mass[master_nodes[i]]);
+    for (const contact::SegmentNodes& ids : segments)
+      s.master_area_per_mass.push_back(segment_mean(ids, master_nodes, master_area));
+  }
+  largest_master = over_ranks(scope, largest_master);
   s.slave_area_per_mass.clear();
   s.segment_kappa.clear();
   for (std::size_t seg = 0; seg < s.slave_segments.size(); ++seg) {

@@ -137,6 +137,9 @@ PassGeometry merge_surface_faces(const Model& model, const input::ContactOptions
   const contact::ContactSurfaces& whole = faces.front().surfaces;  // its master side is the surface
   s.single_surface = true;
   s.quadrature = whole.quadrature;
+  s.mortar = whole.mortar;
+  s.triangle_points = whole.triangle_points;
+  s.master_area_per_mass = whole.master_area_per_mass;
   s.segments = whole.segments;
   s.edges = whole.edges;
   s.moving_nodes = whole.moving_nodes;
@@ -156,6 +159,17 @@ PassGeometry merge_surface_faces(const Model& model, const input::ContactOptions
     s.first_part_segment.insert(s.first_part_segment.end(), face.segments.size(), first);
     const contact::ContactSurfaces& own = faces[k].surfaces;
     s.slave_nodes.insert(s.slave_nodes.end(), own.slave_nodes.begin(), own.slave_nodes.end());
+    if (s.mortar) {  // face k's slave segments after the earlier faces', keyed by their index
+      s.slave_segments.insert(s.slave_segments.end(), own.slave_segments.begin(), own.slave_segments.end());
+      for (auto field : {&contact::ContactSurfaces::segment_kappa, &contact::ContactSurfaces::segment_length,
+                         &contact::ContactSurfaces::slave_area_per_mass})
+        (s.*field).insert((s.*field).end(), (own.*field).begin(), (own.*field).end());
+      s.first_part_point.insert(s.first_part_point.end(), own.slave_segments.size(), first);
+      for (std::uint32_t key : faces[k].place.point_keys)
+        g.place.point_keys.push_back(static_cast<std::uint32_t>(first_point + key));
+      first_point += face.whole_count();
+      continue;
+    }
     if (!s.quadrature) continue;
     // Gauss points: face k's after the earlier faces'; its slave segments are its
     // master segments, in the same order.
@@ -178,7 +192,7 @@ PassGeometry merge_surface_faces(const Model& model, const input::ContactOptions
   s.edge_neighbours = edge_neighbours(s.segments);
   std::sort(s.slave_nodes.begin(), s.slave_nodes.end());
   s.slave_nodes.erase(std::unique(s.slave_nodes.begin(), s.slave_nodes.end()), s.slave_nodes.end());
-  if (!s.quadrature) {
+  if (!s.quadrature && !s.mortar) {
     add_node_sides(faces, segment_face, s);
     // A node lies on the first part when any face of it there holds it.
     s.first_part_point.assign(s.slave_nodes.size(), 0);

@@ -120,6 +120,7 @@ void own_points(const contact::ContactSurfaces& whole, const PassPlace& place, c
       own.segment_kappa.push_back(whole.segment_kappa[s]);
       own.segment_length.push_back(whole.segment_length[s]);
       own.slave_area_per_mass.push_back(whole.slave_area_per_mass[s]);
+      if (whole.single_surface) own.first_part_point.push_back(whole.first_part_point[s]);
     }
     add_segment_nodes(own.slave_segments, own.slave_nodes);
   } else if (!whole.quadrature) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,8 @@ struct PlateCase {
   std::vector<Override> overrides;
 };
 
+void PrintTo(const PlateCase& c, std::ostream* out) { *out << c.name; }
+
 class TwoPlatesAsOneSurface : public ::testing::TestWithParam<PlateCase> {};
 
 // The seed's plate impact as input/plates_one_surface.yaml gives it, `surface: all`, at
@@ -73,8 +76,8 @@ TEST(SingleSurface, ThePlatesDeckGivesThePairsFields) {
   expect_same_run(pair, single, "interface", true);
 }
 
-// The same on smaller meshes on to c1 t / d = 0.96, with nodes and with quadrature
-// points, hex8 and hex20 (the deck's pair made `surface: all`).
+// The same on smaller meshes on to c1 t / d = 0.96, with nodes, quadrature points and
+// mortar, hex8 and hex20 (the deck's pair made `surface: all`).
 TEST_P(TwoPlatesAsOneSurface, GiveTheFieldsOfTheTwoPassPair) {
   const PlateCase& c = GetParam();
   const Deck deck = exdyn::input::read_deck(DeckRun::source_path(c.deck), c.overrides);
@@ -102,7 +105,9 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(PlateCase{"hex8_nodes", "plate_impact.yaml", hex8_plates},
                       PlateCase{"hex8_quadrature", "plate_impact.yaml", with(hex8_plates, "quadrature")},
                       PlateCase{"hex20_quadrature", "plate_impact_hex20.yaml", hex20_plates},
-                      PlateCase{"hex20_nodes", "plate_impact_hex20.yaml", with(hex20_plates, "nodes")}),
+                      PlateCase{"hex20_nodes", "plate_impact_hex20.yaml", with(hex20_plates, "nodes")},
+                      PlateCase{"hex8_mortar", "plate_impact.yaml", with(hex8_plates, "mortar")},
+                      PlateCase{"hex20_mortar", "plate_impact_hex20.yaml", with(hex20_plates, "mortar")}),
     case_name);
 
 // input/u_shape.yaml: the arms of a U bent together touch; the U's inner faces as one
