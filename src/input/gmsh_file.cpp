@@ -7,6 +7,8 @@
 #include <mutex>
 #include <utility>
 
+#include "common/parallel.hpp"
+
 namespace exdyn::input {
 
 namespace {
@@ -70,7 +72,12 @@ GmshMesh read_gmsh(const std::string& file, const SourceLocation& where, const s
   GmshMesh result;
   result.file = file;
   std::string error;
+  // gmsh::initialize sets OpenMP's thread count to General.NumThreads (1): without
+  // setting it back, every later parallel region of a deck with a mesh file would run
+  // on one thread, whatever --threads asked for.
+  const int threads = max_threads();
   read(file.c_str(), &result, &error);
+  set_threads(threads);
   if (!error.empty()) fail("Gmsh cannot read '" + file + "': " + error);
   if (result.node_tags.empty()) fail("'" + file + "' has no nodes: is it a mesh (gmsh -3)?");
   return result;

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "../fuzz/fuzz_mesh_input.hpp"
+#include "common/parallel.hpp"
 #include "input/deck_reader.hpp"
 #include "input/gmsh_file.hpp"
 #include "mesh/imported.hpp"
@@ -144,6 +145,16 @@ TEST(ImportedFaces, PhysicalSurfacesBecomeOutwardFacesOfEachVolumeTheyBound) {
 
 // Two physical volumes that share the nodes of their common surface in the file are two
 // bodies: each part has nodes of its own, and no element of one names a node of the other.
+// The Gmsh library sets OpenMP's thread count to its own (one) when it starts: a
+// reader that left it so ran every deck with a mesh file on one thread.
+TEST(ImportedFaces, ReadingAFileKeepsTheThreadsThatWereAskedFor) {
+  const int before = max_threads();
+  if (set_threads(2) != 2 || max_threads() != 2) GTEST_SKIP() << "built without OpenMP";
+  (void)input::read_gmsh(meshes + "tube_hex8.msh", {}, "");
+  EXPECT_EQ(max_threads(), 2);
+  set_threads(before);
+}
+
 TEST(ImportedFaces, TwoVolumesThatShareNodesInTheFileShareNoneAsParts) {
   const std::string deck_text = R"(name: two
 materials:
