@@ -19,6 +19,8 @@ mesh plate_impact_hex20.msh plate_impact.geo -setnumber n 50 -setnumber t 5e-5 "
 mesh hertz_ball_hex20.msh hertz_ball.geo "${quadratic[@]}"
 mesh hertz_ball_coarse_hex20.msh hertz_ball.geo -setnumber na 8 -setnumber nr 2 "${quadratic[@]}"
 mesh tube_hex8.msh tube.geo
+mesh tube_crush_hex8.msh tube.geo -setnumber ri 9.2e-3 -setnumber L 40e-3 -setnumber z0 0 \
+  -setnumber na 24 -setnumber nz 100
 mesh u_shape_hex8.msh u_shape.geo
 mesh l_shape_hex8.msh u_shape.geo -setnumber right 0
 # The bad-input tests' meshes (tests/mesh/meshes/).

@@ -1,4 +1,5 @@
-// A hollow steel tube (input/tube_impact.yaml), a shape no built-in block makes:
+// A hollow steel tube (input/tube_impact.yaml; thinner, input/tube_crush.yaml), a
+// shape no built-in block makes:
 // inner radius ri, outer radius ro, length L along z from z0, a quarter (x >= 0,
 // y >= 0) by symmetry. The quarter annulus is one transfinite patch: na elements
 // around, nr across the wall; nz layers along the axis.

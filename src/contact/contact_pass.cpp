@@ -136,16 +136,20 @@ void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettin
       surfaces.segments, settings.search_distance + settings.margin, state.boxes);
   bucket_search(state.slave_points, state.boxes, settings.cell_size, state.workspace, state.new_candidates);
   // A single surface never checks a point against a segment that shares a node with it,
-  // nor against one that faces its way (single_surface.hpp, "search"): until the next
-  // search neither can turn to face the other.
+  // nor against one that faces its way, nor one it lies far behind (single_surface.hpp):
+  // until the next search none of them can turn to face it within the search distance.
   if (surfaces.single_surface) {
     std::size_t normal_of = std::numeric_limits<std::size_t>::max();  // the point n is of
     Vec3 n{};
+    const double behind = settings.search_distance + settings.margin;
     std::erase_if(state.new_candidates, [&](const CandidatePair& pair) {
       if (shares_node(surfaces, pair.point, pair.segment)) return true;
       if (pair.point != normal_of) normal_of = pair.point, n = point_normal(surfaces, pair.point, x_ref, u);
-      return dot(n, outward_normal(current_segment(surfaces.segments[pair.segment], x_ref, u),
-                                   Xi{0.0, 0.0})) >= same_way_cosine;
+      const Segment segment = current_segment(surfaces.segments[pair.segment], x_ref, u);
+      const Vec3 point{state.slave_points.x[pair.point], state.slave_points.y[pair.point],
+                       state.slave_points.z[pair.point]};
+      return dot(n, outward_normal(segment, Xi{0.0, 0.0})) >= same_way_cosine ||
+             behind_beyond(segment, point, behind);
     });
   }
 

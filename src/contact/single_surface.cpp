@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "contact/slave_points.hpp"
 
@@ -38,6 +39,17 @@ Vec3 unit(Vec3 v) {
 }
 
 }  // namespace
+
+bool behind_beyond(const Segment& segment, Vec3 point, double depth) {
+  const Vec3 n = outward_normal(evaluate(segment, Xi{0.0, 0.0}));
+  double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+  for (int i = 0; i < node_count(segment.type); ++i) {
+    const double a = dot(segment.nodes[std::size_t(i)], n);
+    lowest = std::min(lowest, a), highest = std::max(highest, a);
+  }
+  if (segment.type == SegmentType::quad8) lowest -= highest - lowest;
+  return dot(point, n) < lowest - depth;
+}
 
 bool shares_node(const ContactSurfaces& surfaces, std::size_t p, std::uint32_t segment) {
   const SegmentNodes& master = surfaces.segments[segment];

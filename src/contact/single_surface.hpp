@@ -36,6 +36,18 @@ inline constexpr double facing_cosine = 0.5;
 // (a few degrees): short of the 74 degrees from 46 to facing (120).
 inline constexpr double same_way_cosine = 0.7;
 
+// Whether `point` lies behind `segment` by more than `depth` (m) along the segment's
+// centre normal n, the whole segment in front of it: x_p . n < min_i x_i . n - depth
+// over its nodes, less for an 8-node segment the spread max - min of x_i . n (its
+// corner shape functions go down to -1/4 each, and the surface can bulge beyond its
+// nodes' hull by that much). The distance from the point to the segment is then more
+// than depth (a projection onto n is 1-Lipschitz), and behind it: the global search
+// drops such a pair with depth = search distance + margin, since before the next
+// search the two move closer by less than the margin, and the point stays more than
+// the search distance behind, where the facing rule never admits it. This is the
+// other side of every wall: a thin wall's inner nodes behind its outer segments.
+bool behind_beyond(const Segment& segment, Vec3 point, double depth);
+
 // Whether slave point p of a single surface shares a node with master segment s.
 bool shares_node(const ContactSurfaces& surfaces, std::size_t p, std::uint32_t segment);
 

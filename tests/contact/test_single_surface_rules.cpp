@@ -132,3 +132,52 @@ TEST(SingleSurfaceRules, ASegmentSharingANodeIsNeverChecked) {
 }
 
 }  // namespace
+
+// behind_beyond: a point lies behind a segment by more than a depth along its centre
+// normal only where every point of the segment is that far in front of it; an 8-node
+// segment whose corners are raised bulges below its nodes at its centre, by their spread.
+TEST(SingleSurfaceRules, APointFarBehindASegmentIsBehindEveryPointOfIt) {
+  Segment flat;  // the unit square z = 0, outward +z
+  flat.nodes = {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{1, 1, 0}, Vec3{0, 1, 0}};
+  EXPECT_TRUE(behind_beyond(flat, Vec3{0.5, 0.5, -0.31}, 0.3));
+  EXPECT_FALSE(behind_beyond(flat, Vec3{0.5, 0.5, -0.29}, 0.3));
+  EXPECT_FALSE(behind_beyond(flat, Vec3{0.5, 0.5, 2.0}, 0.3));  // in front
+  EXPECT_TRUE(behind_beyond(flat, Vec3{5.0, 5.0, -0.31}, 0.3));  // beside and behind
+
+  Segment bowl;  // corners at z = 0.4, mid-sides at 0: the centre at -0.4
+  bowl.type = SegmentType::quad8;
+  bowl.nodes = {Vec3{0, 0, 0.4}, Vec3{1, 0, 0.4}, Vec3{1, 1, 0.4}, Vec3{0, 1, 0.4},
+                Vec3{0.5, 0, 0}, Vec3{1, 0.5, 0}, Vec3{0.5, 1, 0}, Vec3{0, 0.5, 0}};
+  EXPECT_NEAR(evaluate(bowl, Xi{0.0, 0.0}).y.z, -0.4, 1e-15);
+  // 0.2 below every node, yet 0.2 in front of the centre: not behind.
+  EXPECT_FALSE(behind_beyond(bowl, Vec3{0.5, 0.5, -0.2}, 0.1));
+  EXPECT_TRUE(behind_beyond(bowl, Vec3{0.5, 0.5, -0.51}, 0.1));
+
+  // Warped and curved segments, points around them: wherever the rule says behind, every
+  // point of a 41 x 41 grid on the segment is further than the depth along the normal.
+  std::uint64_t state = 12345;
+  auto random = [&state] {  // in [-1, 1)
+    state = state * 6364136223846793005ull + 1442695040888963407ull;
+    return double(state >> 11) * 0x1.0p-52 - 1.0;
+  };
+  int behind = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    Segment s;
+    s.type = trial % 2 == 0 ? SegmentType::quad4 : SegmentType::quad8;
+    for (int i = 0; i < node_count(s.type); ++i) {
+      const Xi xi = node_xi[std::size_t(i)];
+      s.nodes[std::size_t(i)] = Vec3{xi[0] + 0.2 * random(), xi[1] + 0.2 * random(), 0.3 * random()};
+    }
+    const Vec3 n = outward_normal(evaluate(s, Xi{0.0, 0.0}));
+    const Vec3 point{2.0 * random(), 2.0 * random(), 1.5 * random()};
+    const double depth = 0.2;
+    if (!behind_beyond(s, point, depth)) continue;
+    ++behind;
+    for (int a = 0; a <= 40; ++a)
+      for (int b = 0; b <= 40; ++b) {
+        const Vec3 y = evaluate(s, Xi{-1.0 + a / 20.0, -1.0 + b / 20.0}).y;
+        ASSERT_GT(dot(y - point, n), depth) << "trial " << trial;
+      }
+  }
+  EXPECT_GT(behind, 50);  // the rule was put to the test
+}

@@ -43,7 +43,8 @@ struct DeckRun : exdyn::testing::DeckRun {
 // block_on_rail.yaml: test_friction.cpp; rod_on_plate.yaml: test_contact.cpp; plate_impact_gmsh.yaml,
 // plate_impact_hex20_gmsh.yaml, hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp;
 // contact_patch_mortar.yaml: test_mortar_contact.cpp; u_shape.yaml, plates_one_surface.yaml:
-// test_single_surface.cpp.
+// test_single_surface.cpp; tube_crush.yaml: scripts/tube_crush_study.py --check (ctest
+// tube_crush_folds).
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "wave_bar.yaml",
                                           "shear_wave.yaml",
@@ -73,7 +74,8 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "tube_impact.yaml",
                                           "rod_on_plate.yaml",
                                           "u_shape.yaml",
-                                          "plates_one_surface.yaml"};
+                                          "plates_one_surface.yaml",
+                                          "tube_crush.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;
