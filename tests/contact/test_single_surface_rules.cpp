@@ -141,7 +141,7 @@ TEST(SingleSurfaceRules, APointFarBehindASegmentIsBehindEveryPointOfIt) {
   flat.nodes = {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{1, 1, 0}, Vec3{0, 1, 0}};
   EXPECT_TRUE(behind_beyond(flat, Vec3{0.5, 0.5, -0.31}, 0.3));
   EXPECT_FALSE(behind_beyond(flat, Vec3{0.5, 0.5, -0.29}, 0.3));
-  EXPECT_FALSE(behind_beyond(flat, Vec3{0.5, 0.5, 2.0}, 0.3));  // in front
+  EXPECT_FALSE(behind_beyond(flat, Vec3{0.5, 0.5, 2.0}, 0.3));   // in front
   EXPECT_TRUE(behind_beyond(flat, Vec3{5.0, 5.0, -0.31}, 0.3));  // beside and behind
 
   Segment bowl;  // corners at z = 0.4, mid-sides at 0: the centre at -0.4
