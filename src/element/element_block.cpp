@@ -72,13 +72,18 @@ void build_schedule(ElementBlock& block, std::size_t node_count) {
 void allocate_material_state(ElementBlock& block) {
   MaterialState& state = block.material_state;
   state.plastic_strain.assign(block.count, 0.0);
+  const std::size_t lanes = std::size_t(lanes_for(selected_isa()));
+  const std::size_t packs = (block.count + lanes - 1) / lanes;
+  if (block.formulation == input::Formulation::hex8r && !block.law.linear_small() &&
+      block.hourglass.model == input::HourglassModel::assumed_strain) {
+    const std::vector<double> zero(packs * lanes * std::size_t(hex8r::hourglass_state_size), 0.0);
+    state.hourglass = {zero, zero};
+  }
   const int size = block.law.state_size();
   if (size == 0) return;
   state.points_per_element = block.formulation == input::Formulation::hex8r   ? 1
                              : block.formulation == input::Formulation::hex20 ? 27
                                                                               : 8;
-  const std::size_t lanes = std::size_t(lanes_for(selected_isa()));
-  const std::size_t packs = (block.count + lanes - 1) / lanes;
   const std::size_t per_pack = lanes * std::size_t(state.points_per_element) * std::size_t(size);
   double initial[material::j2_state_size];
   material::initial_state(block.law.finite, initial);
@@ -91,7 +96,7 @@ void allocate_material_state(ElementBlock& block) {
 }  // namespace
 
 ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
-                                double hourglass_coefficient, std::uint32_t first_element,
+                                input::HourglassControl hourglass, std::uint32_t first_element,
                                 std::uint32_t count, const std::uint32_t* connectivity,
                                 const NodalVectors& x_ref, const material::MaterialLaw& law,
                                 WholeBlock whole) {
@@ -101,7 +106,7 @@ ElementBlock make_element_block(input::Formulation formulation, const material::
   block.nodes_per_element = block.family->nodes_per_element;
   block.material = material;
   block.law = law;
-  block.hourglass_coefficient = hourglass_coefficient;
+  block.hourglass = hourglass;
   block.first_element = first_element;
   block.count = count;
   block.connectivity = connectivity;
@@ -125,7 +130,8 @@ WholeBlock element_layout(input::Formulation formulation, std::uint32_t count,
 }
 
 void commit_material_state(const ElementBlock& block) {
-  if (!block.material_state.points[0].empty()) block.material_state.committed ^= 1;
+  const MaterialState& s = block.material_state;
+  if (!s.points[0].empty() || !s.hourglass[0].empty()) block.material_state.committed ^= 1;
 }
 
 void set_material_time_step(const ElementBlock& block, double dt) { block.material_state.dt = dt; }
@@ -172,7 +178,7 @@ ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint3
   slice.material = block.material;
   slice.law = block.law;
   slice.step_scale = block.step_scale;
-  slice.hourglass_coefficient = block.hourglass_coefficient;
+  slice.hourglass = block.hourglass;
   slice.first_element = first_element;
   slice.connectivity = connectivity;
   slice.shared = block.shared;

@@ -38,6 +38,10 @@ struct MaterialState {
   std::array<std::vector<double>, 2> points;  // per element pack and point, interleaved by lane
   int committed = 0;                          // index of the committed array
   int points_per_element = 0;
+  // hex8r with assumed-strain hourglass control under a law: per element pack, the
+  // hourglass forces, amplitudes and work (hex8r::hourglass_state_size values,
+  // interleaved by lane), committed and written as the points.
+  std::array<std::vector<double>, 2> hourglass;
   std::vector<double> plastic_strain;  // per element: the last pass's mean equivalent plastic strain
   double dt = 0.0;                     // the step of the pass's strain increment, s (rate laws)
 };
@@ -109,7 +113,7 @@ struct ElementBlock {
   // The family's stable step over the corner-based one, L_e / c1 with L_e from the 8
   // corners, on the reference mesh (1 for 8-node elements): current_time_step scales by it.
   double step_scale = 1.0;
-  double hourglass_coefficient = 0.0;           // hex8r only
+  input::HourglassControl hourglass;            // hex8r only
   std::uint32_t first_element = 0;              // global index of the block's first element
   std::uint32_t count = 0;                      // number of elements
   const std::uint32_t* connectivity = nullptr;  // nodes_per_element ids per element (VTK order)
@@ -158,7 +162,7 @@ struct ElementBlock {
 // coordinates. `connectivity` must outlive the block. `whole`: the whole block's layout
 // and groups where this block is a rank's part of it.
 ElementBlock make_element_block(input::Formulation formulation, const material::ElasticConstants& material,
-                                double hourglass_coefficient, std::uint32_t first_element,
+                                input::HourglassControl hourglass, std::uint32_t first_element,
                                 std::uint32_t count, const std::uint32_t* connectivity,
                                 const NodalVectors& x_ref, const material::MaterialLaw& law = {},
                                 WholeBlock whole = {});

@@ -11,6 +11,7 @@
 #include "element/constitutive.hpp"
 #include "element/hex8.hpp"
 #include "element/hex8r.hpp"
+#include "element/hourglass.hpp"
 
 namespace exdyn::element {
 
@@ -124,49 +125,116 @@ inline ConstitutiveResult<Real> constitutive_forces(const double* reference,
                                                     const Flow& flow, const BasicElementVectors<Real>& u,
                                                     BasicElementVectors<Real>& f, const double* state_old,
                                                     double* state_new, double dt, Real& hourglass_energy) {
-  const hex8::BasicElementModes<Real> c = hex8::modes_from_nodal(u);
-  std::array<Real, 21> beta;
-  for (int k = 0; k < 21; ++k) beta[k] = load<Real>(reference, k);
-  std::array<Real, 12> g;
-  for (int k = 0; k < 12; ++k) g[k] = load<Real>(reference, 21 + k);
-  const Real volume = load<Real>(reference, 33), inverse_volume = load<Real>(reference, 34),
-             k = load<Real>(reference, 35);
-  std::array<std::array<Real, 9>, 1> h{};
-  for (int m = 1; m < 8; ++m) {
-    const std::array<Real, 3> cm = c[m];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) h[0][3 * i + j] += cm[i] * beta[3 * (m - 1) + j];
-  }
-  Real q[4][3];
+  const OnePoint<Real> point = one_point(reference, hex8::modes_from_nodal(u));
+  const Real volume = load<Real>(reference, 33), k = load<Real>(reference, 35);
+  Real force[4][3];
   Real q_squared{};
-  for (int alpha = 0; alpha < 4; ++alpha) {
-    const std::array<Real, 3> ch = c[4 + alpha];
+  for (int alpha = 0; alpha < 4; ++alpha)
     for (int i = 0; i < 3; ++i) {
-      q[alpha][i] = 8.0 * ch[i] - (g[3 * alpha] * h[0][3 * i] + g[3 * alpha + 1] * h[0][3 * i + 1] +
-                                   g[3 * alpha + 2] * h[0][3 * i + 2]);
-      q_squared += q[alpha][i] * q[alpha][i];
+      force[alpha][i] = k * point.q[alpha][i];
+      q_squared += point.q[alpha][i] * point.q[alpha][i];
     }
-  }
   hourglass_energy = 0.5 * k * q_squared;
+  std::array<std::array<Real, 9>, 1> h{point.h};
   const std::array<Real, 1> w{volume};
   const ConstitutiveResult<Real> result =
       integrate_points<Flow, Finite, 1>(elastic, flow, false, h, w, state_old, state_new, dt);
-  const std::array<Real, 9>& p = h[0];  // V P
-  const Real k_over_volume = k * inverse_volume;
-  std::array<Real, 8> fm[3] = {};
-  for (int i = 0; i < 3; ++i) {
-    Real s[3];
-    for (int j = 0; j < 3; ++j)
-      s[j] = 0.125 * p[3 * i + j] -
-             (0.125 * volume) * k_over_volume *
-                 (q[0][i] * g[j] + q[1][i] * g[3 + j] + q[2][i] * g[6 + j] + q[3][i] * g[9 + j]);
-    for (int m = 1; m < 8; ++m)
-      fm[i][m] = s[0] * beta[3 * (m - 1)] + s[1] * beta[3 * (m - 1) + 1] + s[2] * beta[3 * (m - 1) + 2];
-    for (int alpha = 0; alpha < 4; ++alpha) fm[i][4 + alpha] += k * q[alpha][i];
+  one_point_forces(point, h[0], force, f);  // h[0] is now V P
+  return result;
+}
+
+// The hourglass state per element (assumed-strain law kernel): the plastic parts
+// P^_alpha,j of the forces (12, N, element axes), the amplitudes q^_alpha,j they were
+// last updated to (12, m) and the hourglass work so far (1, J).
+inline constexpr int hourglass_state_size = 25;
+
+// hex8r with the assumed-strain hourglass control (hourglass.hpp) under a law: the
+// mean-gradient point as constitutive_forces, and the hourglass forces in rate form on
+// the element's axes T, with k and Q_p of its current shape (the reference one in
+// small strain):
+//   q^_alpha = T^T q_alpha
+//   P^ = clamp(P^_old + (1 - beta) k (q^ - q^_old), -Q_p, Q_p),
+//   Q_p = limit sqrt(max(sigma_y(eps_p)^2 - sigma_vm^2, 0))    (what the mean stress leaves)
+//   Q^ = P^ + beta k q^,  Q_alpha = T Q^_alpha   (f_I = sum_alpha gamma_alpha,I Q_alpha)
+// beta = hourglass::elastic_share. The axes turn with the element, so P^ and q^ do not
+// change under a rigid rotation; the clamp makes the modes' plastic parts perfectly
+// plastic (NoYield: no clamp, Q^ = k q^). The hourglass work
+// W += (Q^_old + Q^) . (q^ - q^_old) / 2 is reported as the hourglass energy: stored and
+// dissipated together.
+template <class Flow, bool Finite, class Real>
+inline ConstitutiveResult<Real> assumed_strain_forces(const double* reference,
+                                                      const material::ElasticConstants& elastic,
+                                                      const Flow& flow, const BasicElementVectors<Real>& u,
+                                                      BasicElementVectors<Real>& f, const double* state_old,
+                                                      double* state_new, const double* hourglass_old,
+                                                      double* hourglass_new, double dt, Real& hourglass_energy) {
+  constexpr int lanes = lanes_of<Real>;
+  const hex8::BasicElementModes<Real> c = hex8::modes_from_nodal(u);
+  const OnePoint<Real> point = one_point(reference, c);
+  const Real volume = load<Real>(reference, 33);
+  std::array<std::array<Real, 9>, 1> h{point.h};
+  const auto& q = point.q;
+  // The element's shape: c_j of the coordinates, current (finite) or reference (small).
+  Real shape[3][3];
+  Real shape_volume = volume;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      shape[j][i] = load<Real>(reference, 35 + 3 * j + i);
+      if constexpr (Finite) shape[j][i] += c[1 + j][i];
+    }
+  if constexpr (Finite) {
+    const std::array<Real, 9>& d = h[0];  // V_current = V det(I + H)
+    const Real f0 = d[0] + 1.0, f4 = d[4] + 1.0, f8 = d[8] + 1.0;
+    shape_volume = volume * (f0 * (f4 * f8 - d[5] * d[7]) - d[1] * (d[3] * f8 - d[5] * d[6]) +
+                             d[2] * (d[3] * d[7] - f4 * d[6]));
   }
-  f.x = hex8::nodal_from_modes(fm[0]);
-  f.y = hex8::nodal_from_modes(fm[1]);
-  f.z = hex8::nodal_from_modes(fm[2]);
+  Real axes[9], inverse_a2[3], k[12], limit[12];
+  hourglass::element_axes(shape, axes, inverse_a2);
+  hourglass::mode_constants(inverse_a2, shape_volume, load<Real>(reference, 44), load<Real>(reference, 45), k,
+                            limit);
+  const std::array<Real, 1> w{volume};
+  const ConstitutiveResult<Real> result =
+      integrate_points<Flow, Finite, 1>(elastic, flow, false, h, w, state_old, state_new, dt);
+  // What the mean stress leaves to the modes, sqrt(sigma_y^2 - sigma_vm^2) (Pa), and so
+  // the limit of each mode's plastic part.
+  Real reserve{};
+  if constexpr (Flow::plastic) {
+    const Real yield = flow.yield_at(result.eps_p);
+    const std::array<Real, 6>& t = result.mean_stress;
+    const Real pressure = (1.0 / 3.0) * (t[0] + t[1] + t[2]);
+    const Real s0 = t[0] - pressure, s1 = t[1] - pressure, s2 = t[2] - pressure;
+    const Real vm2 = 1.5 * (s0 * s0 + s1 * s1 + s2 * s2 + 2.0 * (t[3] * t[3] + t[4] * t[4] + t[5] * t[5]));
+    reserve = lane_sqrt(lane_max(yield * yield - vm2, Real{}));
+  }
+  constexpr double kept = hourglass::elastic_share, limited = 1.0 - hourglass::elastic_share;
+  Real work = load<Real>(hourglass_old, 24);
+  Real force[4][3];
+  for (int alpha = 0; alpha < 4; ++alpha) {
+    Real local[3];
+    for (int j = 0; j < 3; ++j) {
+      const int index = 3 * alpha + j;
+      const Real amplitude = axes[j] * q[alpha][0] + axes[3 + j] * q[alpha][1] + axes[6 + j] * q[alpha][2];
+      const Real old_amplitude = load<Real>(hourglass_old, 12 + index);
+      const Real old_plastic = load<Real>(hourglass_old, index);
+      const Real change = amplitude - old_amplitude;
+      Real next = old_plastic + (limited * k[index]) * change;
+      if constexpr (Flow::plastic) {
+        const Real cap = reserve * limit[index];
+        next = lane_max(-cap, -lane_max(-next, -cap));  // clamp to [-cap, cap]
+      }
+      const Real total = next + (kept * k[index]) * amplitude;
+      const Real old_total = old_plastic + (kept * k[index]) * old_amplitude;
+      work += 0.5 * (old_total + total) * change;
+      store(hourglass_new + lanes * index, next);
+      store(hourglass_new + lanes * (12 + index), amplitude);
+      local[j] = total;
+    }
+    for (int i = 0; i < 3; ++i)
+      force[alpha][i] = axes[3 * i] * local[0] + axes[3 * i + 1] * local[1] + axes[3 * i + 2] * local[2];
+  }
+  store(hourglass_new + lanes * 24, work);
+  hourglass_energy = work;
+  one_point_forces(point, h[0], force, f);  // h[0] is now V P
   return result;
 }
 

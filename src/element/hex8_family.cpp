@@ -113,7 +113,9 @@ ElementEnergies hex8_law_loop(const ElementBlock& block, std::uint32_t begin, st
       });
 }
 
-template <class Flow, bool Finite, int Lanes>
+// AssumedStrain: the rate-form kernel with the hourglass state (law_reference_size);
+// otherwise Flanagan-Belytschko's total form (reference_size).
+template <class Flow, bool Finite, bool AssumedStrain, int Lanes>
 ElementEnergies hex8r_law_loop(const ElementBlock& block, std::uint32_t begin, std::uint32_t end,
                                const NodalVectors& u, NodalVectors& f_int, double* stress) {
   using Real = Pack<Lanes>;
@@ -121,15 +123,26 @@ ElementEnergies hex8r_law_loop(const ElementBlock& block, std::uint32_t begin, s
   const material::ElasticConstants elastic = block.material;
   const double dt = block.material_state.dt;
   const double* data = block.reference.data();
+  constexpr std::size_t stride = AssumedStrain ? hex8r::law_reference_size : hex8r::reference_size;
   return element_pack_loop<8, Lanes, true>(
       block, begin, end, u, f_int, stress,
       [&](std::uint32_t pack, const BasicElementVectors<Real>& u_local, BasicElementVectors<Real>& f_local,
           std::array<Real, 6>& s) {
         const PackStates<Flow, Lanes> states(block, pack, 1);
         Real hourglass{};
-        const ConstitutiveResult<Real> r = hex8r::constitutive_forces<Flow, Finite>(
-            data + std::size_t(Lanes) * hex8r::reference_size * pack, elastic, flow, u_local, f_local,
-            states.old_state, states.new_state, dt, hourglass);
+        const double* reference = data + std::size_t(Lanes) * stride * pack;
+        ConstitutiveResult<Real> r;
+        if constexpr (AssumedStrain) {
+          MaterialState& m = block.material_state;
+          const std::size_t offset = std::size_t(Lanes) * hex8r::hourglass_state_size * pack;
+          r = hex8r::assumed_strain_forces<Flow, Finite>(
+              reference, elastic, flow, u_local, f_local, states.old_state, states.new_state,
+              m.hourglass[std::size_t(m.committed)].data() + offset,
+              m.hourglass[std::size_t(m.committed ^ 1)].data() + offset, dt, hourglass);
+        } else {
+          r = hex8r::constitutive_forces<Flow, Finite>(reference, elastic, flow, u_local, f_local,
+                                                       states.old_state, states.new_state, dt, hourglass);
+        }
         s = r.mean_stress;
         store_plastic_strain(block, pack, r.eps_p);
         return std::array<Real, 3>{r.internal, hourglass, r.plastic};
@@ -148,6 +161,7 @@ void fill_reference(ElementBlock& block, const NodalVectors& x_ref, std::size_t 
   block.reference.assign(stride * stored, 0.0);
   block.reference_per_element = stride;
   static_assert(hex8::reference_size >= hex8r::reference_size &&
+                hex8::reference_size >= hex8r::law_reference_size &&
                 hex8::reference_size >= hex8r::parallelepiped_reference_size &&
                 hex8::reference_size >= hex8::parallelepiped_reference_size);
   std::array<double, hex8::reference_size> scratch{};  // one element's data, the largest layout
@@ -243,17 +257,26 @@ void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
   const Isa isa = selected_isa();
   block.constant_jacobian =
       block.whole.parallelepipeds && all_parallelepipeds(block.count, block.connectivity, x_ref);
-  const double mu = block.material.mu, coefficient = block.hourglass_coefficient;
+  const material::ElasticConstants& elastic = block.material;
+  const hex8r::Stabilization stabilization{block.hourglass.model, block.hourglass.coefficient,
+                                           elastic.mu * (3.0 * elastic.lambda + 2.0 * elastic.mu) /
+                                               (elastic.lambda + elastic.mu),
+                                           elastic.mu};
   if (!block.law.linear_small()) {
+    const bool assumed_strain = block.hourglass.model == input::HourglassModel::assumed_strain;
     block.constant_jacobian = false;
-    block.loop = law_loop(block.law, [isa]<class Flow, bool Finite>() {
-      return packed_for_isa<hex8r_law_loop<Flow, Finite, 2>, hex8r_law_loop<Flow, Finite, 4>,
-                            hex8r_law_loop<Flow, Finite, 8>>(isa);
+    block.loop = law_loop(block.law, [isa, assumed_strain]<class Flow, bool Finite>() {
+      return assumed_strain ? packed_for_isa<hex8r_law_loop<Flow, Finite, true, 2>,
+                                             hex8r_law_loop<Flow, Finite, true, 4>,
+                                             hex8r_law_loop<Flow, Finite, true, 8>>(isa)
+                            : packed_for_isa<hex8r_law_loop<Flow, Finite, false, 2>,
+                                             hex8r_law_loop<Flow, Finite, false, 4>,
+                                             hex8r_law_loop<Flow, Finite, false, 8>>(isa);
     });
     block.corners_in_pass = true;
-    fill_reference(block, x_ref, hex8r::reference_size, lanes_for(isa),
-                   [mu, coefficient](const ElementVectors& x, double* r) {
-                     return hex8r::make_reference(x, mu, coefficient, r);
+    fill_reference(block, x_ref, assumed_strain ? hex8r::law_reference_size : hex8r::reference_size,
+                   lanes_for(isa), [stabilization, assumed_strain](const ElementVectors& x, double* r) {
+                     return hex8r::make_reference(x, stabilization, r, assumed_strain);
                    });
     mark_row_packs(block, lanes_for(isa));
     return;
@@ -261,14 +284,14 @@ void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
   if (block.constant_jacobian) {
     block.loop = packed_for_isa<hex8r_loop<true, 2>, hex8r_loop<true, 4>, hex8r_loop<true, 8>>(isa);
     fill_reference(block, x_ref, hex8r::parallelepiped_reference_size, lanes_for(isa),
-                   [mu, coefficient](const ElementVectors& x, double* r) {
-                     return hex8r::make_parallelepiped_reference(x, mu, coefficient, r);
+                   [stabilization](const ElementVectors& x, double* r) {
+                     return hex8r::make_parallelepiped_reference(x, stabilization, r);
                    });
   } else {
     block.loop = packed_for_isa<hex8r_loop<false, 2>, hex8r_loop<false, 4>, hex8r_loop<false, 8>>(isa);
     fill_reference(block, x_ref, hex8r::reference_size, lanes_for(isa),
-                   [mu, coefficient](const ElementVectors& x, double* r) {
-                     return hex8r::make_reference(x, mu, coefficient, r);
+                   [stabilization](const ElementVectors& x, double* r) {
+                     return hex8r::make_reference(x, stabilization, r);
                    });
   }
   mark_row_packs(block, lanes_for(isa));

@@ -352,8 +352,17 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
            std::string("hourglass applies to hex8r parts (and is accepted, unused, on hex8); this part is ") +
                name(result.formulation) +
                ", whose Gauss points leave no hourglass mode to control: remove the key");
-    check_map(hourglass, hourglass_path, {"coefficient"});
-    if (const YAML::Node coefficient = optional(hourglass, "coefficient"); coefficient.IsDefined())
+    check_map(hourglass, hourglass_path, {"model", "coefficient"});
+    const YAML::Node model = optional(hourglass, "model");
+    const YAML::Node coefficient = optional(hourglass, "coefficient");
+    // `coefficient` alone keeps the meaning it had before `model`: Flanagan-Belytschko.
+    if (model.IsDefined())
+      result.hourglass_model = all_hourglass_models[choice(model, child_path(hourglass_path, "model"),
+                                                           "hourglass model", names_of(all_hourglass_models))];
+    else if (coefficient.IsDefined())
+      result.hourglass_model = HourglassModel::flanagan_belytschko;
+    result.hourglass_coefficient = result.hourglass_model == HourglassModel::flanagan_belytschko ? 0.05 : 1.0;
+    if (coefficient.IsDefined())
       result.hourglass_coefficient =
           number_where(coefficient, child_path(hourglass_path, "coefficient"), "a number >= 0", non_negative);
   }

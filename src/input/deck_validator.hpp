@@ -33,6 +33,8 @@ inline constexpr std::array<Kinematics, 3> all_kinematics{Kinematics::automatic,
                                                           Kinematics::finite};
 inline constexpr std::array<Formulation, 4> all_formulations{Formulation::hex8, Formulation::hex8r,
                                                              Formulation::hex20, Formulation::hex20r};
+inline constexpr std::array<HourglassModel, 2> all_hourglass_models{HourglassModel::assumed_strain,
+                                                                    HourglassModel::flanagan_belytschko};
 inline constexpr std::array<SlavePoints, 4> all_slave_points{SlavePoints::automatic, SlavePoints::nodes,
                                                              SlavePoints::quadrature, SlavePoints::mortar};
 inline constexpr std::array<PartFace, 6> box_faces{PartFace::xmin, PartFace::xmax, PartFace::ymin,

@@ -148,7 +148,8 @@ std::string to_yaml(const Deck& deck) {
         << "    formulation: " << name(part.formulation) << "\n"
         << (is_quadratic(part.formulation)
                 ? std::string()
-                : "    hourglass: {coefficient: " + yaml_number(part.hourglass_coefficient) + "}\n")
+                : std::string("    hourglass: {model: ") + name(part.hourglass_model) +
+                      ", coefficient: " + yaml_number(part.hourglass_coefficient) + "}\n")
         << "    initial_velocity: " << yaml_vector(part.initial_velocity) << "\n"
         << (part.initial_angular_velocity
                 ? "    initial_angular_velocity: {axis_point: " +

@@ -35,6 +35,16 @@ Kinematics resolved_kinematics(const PartOptions& part, const MaterialOptions& m
   return material.model == MaterialModel::linear_elastic ? Kinematics::small : Kinematics::finite;
 }
 
+const char* name(HourglassModel model) {
+  switch (model) {
+    case HourglassModel::assumed_strain:
+      return "assumed_strain";
+    case HourglassModel::flanagan_belytschko:
+      return "flanagan_belytschko";
+  }
+  return "?";
+}
+
 const char* name(Formulation formulation) {
   switch (formulation) {
     case Formulation::hex8:

@@ -43,7 +43,7 @@ struct MaterialOptions {
 
 enum class Formulation {
   hex8,    // 8-node brick, 2x2x2 Gauss points
-  hex8r,   // 8-node brick, one point, Flanagan-Belytschko hourglass stiffness
+  hex8r,   // 8-node brick, one point, hourglass stiffness (HourglassModel)
   hex20,   // 20-node serendipity brick, 3x3x3 Gauss points
   hex20r,  // 20-node serendipity brick, 2x2x2 Gauss points
 };
@@ -69,6 +69,24 @@ struct MeshFileOptions {
   bool reorder = true;
 
   bool operator==(const MeshFileOptions&) const = default;
+};
+
+// How hex8r resists its hourglass modes (docs/theory.md, "hex8r"): the assumed-strain
+// stiffness of each mode and direction from the strain field it is in a rectangular
+// brick, perfectly plastic at the flow stress in a plastic material (coefficient 1 is
+// physical); or Flanagan-Belytschko's one isotropic, elastic stiffness (coefficient
+// 0.05 by default there).
+enum class HourglassModel { assumed_strain, flanagan_belytschko };
+
+// A part's hourglass control as the element blocks take it. A bare number is a
+// Flanagan-Belytschko coefficient, as a deck's `coefficient` without `model`.
+struct HourglassControl {
+  HourglassModel model = HourglassModel::assumed_strain;
+  double coefficient = 1.0;
+  HourglassControl() = default;
+  HourglassControl(HourglassModel m, double c) : model(m), coefficient(c) {}
+  HourglassControl(double flanagan_belytschko) // NOLINT(google-explicit-constructor): a number is FB's
+      : model(HourglassModel::flanagan_belytschko), coefficient(flanagan_belytschko) {}
 };
 
 // How a part's strains are measured (docs/theory.md, "Finite strain"): small strain on
@@ -98,7 +116,10 @@ struct PartOptions {
   std::string material;     // a key of `materials`
   int material_index = -1;  // index into Deck::materials
   Formulation formulation = Formulation::hex8;
-  double hourglass_coefficient = 0.05;  // hex8 and hex8r only (an error on a 20-node part)
+  // hex8 and hex8r only (an error on a 20-node part). A deck that gives `coefficient`
+  // without `model` gets Flanagan-Belytschko, the meaning the key had before `model`.
+  HourglassModel hourglass_model = HourglassModel::assumed_strain;
+  double hourglass_coefficient = 1.0;
   Vec3 initial_velocity{};
   // initial_angular_velocity: omega x (x - axis_point) is added to each node's velocity.
   std::optional<std::array<Vec3, 2>> initial_angular_velocity;  // {axis_point (m), omega (rad/s)}
@@ -320,6 +341,7 @@ struct Deck {
 const char* name(MaterialModel model);
 const char* name(Formulation formulation);
 const char* name(Kinematics kinematics);
+const char* name(HourglassModel model);
 // A part's kinematics with `automatic` resolved by its material.
 Kinematics resolved_kinematics(const PartOptions& part, const MaterialOptions& material);
 const char* name(SlavePoints points);

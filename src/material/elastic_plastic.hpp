@@ -49,6 +49,15 @@ struct Hardening {
     return stress[std::size_t(k)] + slope[std::size_t(k)] * (eps_p - strain[std::size_t(k)]);
   }
 
+  // sigma_y at each lane's eps_p, Pa.
+  template <class Real>
+  Real yield_at(const Real& eps_p) const {
+    if (segments == 1) return stress[0] + slope[0] * eps_p;
+    Real out{};
+    for (int l = 0; l < lanes_of<Real>; ++l) set_lane(out, l, flow_stress(lane(eps_p, l)));
+    return out;
+  }
+
   // The increment d >= 0 of eps_p that returns the trial state to the yield surface:
   //   q_trial - three_mu d = sigma_y(eps_p + d)   (0 when q_trial <= sigma_y(eps_p)),
   // with q_trial the trial von Mises stress and three_mu = 3 G (small strain) or

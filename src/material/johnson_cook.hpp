@@ -27,6 +27,14 @@ struct JohnsonCook {
     return strain_part * (ratio > 1.0 ? 1.0 + c * std::log(ratio) : 1.0);
   }
 
+  // The quasi-static sigma_y (rate term 1) at each lane's eps_p, Pa.
+  template <class Real>
+  Real yield_at(const Real& eps_p) const {
+    Real out{};
+    for (int l = 0; l < lanes_of<Real>; ++l) set_lane(out, l, flow_stress(lane(eps_p, l), 0.0));
+    return out;
+  }
+
   // The increment d >= 0 of eps_p with q_trial - three_mu d = sigma_y(eps_p + d, d / dt)
   // (0 when q_trial <= sigma_y(eps_p, 0)); each lane on its own.
   template <class Real>

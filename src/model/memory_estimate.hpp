@@ -26,9 +26,11 @@ namespace exdyn::solver {
 //     and the part index 4 B (mesh); stress 6 doubles and von Mises 1 (time loop,
 //     step writer) and their copies in the frame 7; the int64 connectivity written to
 //     HDF5 64 B
-//   reference data per element (hex8_family.cpp): the parallelepiped kernels'
-//     at most 11 doubles for a regular box; a distorted part (perturbation) runs the
-//     general kernels, 81 doubles (hex8) or 36 (hex8r)
+//   reference data per element (hex8_family.cpp): the parallelepiped kernels' 10
+//     doubles (hex8) or 34 (hex8r) for a regular box; a distorted part (perturbation)
+//     runs the general kernels, 81 doubles (hex8) or 59 (hex8r; its law kernels 36 or
+//     46, and the assumed-strain hourglass state, 2 x 25, is not counted, as the
+//     point states of a plastic law are not)
 //   20-node parts (hex20_family.cpp): 20 node ids, the int64 connectivity, and the
 //     general reference data while the block is built, 271 doubles (hex20) or 81
 //     (hex20r); a part has about 4 nodes per element

@@ -181,7 +181,8 @@ double blocks_of_rank(const input::Deck& deck, const SetupParts& deck_parts, con
     m.blocks.push_back(element::make_element_block(
         options.formulation,
         material::elastic_constants(material.youngs_modulus, material.poissons_ratio, material.density),
-        options.hourglass_coefficient, first_element, part_count[p], connectivity, m.mesh.x_ref, law,
+        input::HourglassControl(options.hourglass_model, options.hourglass_coefficient), first_element,
+        part_count[p], connectivity, m.mesh.x_ref, law,
         std::move(whole)));
     element::ElementBlock& block = m.blocks.back();
     block_of_part[p] = m.blocks.size() - 1;

@@ -35,7 +35,8 @@ TEST(DeckReader, SpecExamplePlateImpactReadsToItsValues) {
   EXPECT_EQ(plate_a.material, "steel");
   EXPECT_EQ(plate_a.material_index, 0);
   EXPECT_EQ(plate_a.formulation, Formulation::hex8);
-  EXPECT_EQ(plate_a.hourglass_coefficient, 0.05);
+  EXPECT_EQ(plate_a.hourglass_model, HourglassModel::assumed_strain);
+  EXPECT_EQ(plate_a.hourglass_coefficient, 1.0);
   EXPECT_EQ(plate_a.initial_velocity, (Vec3{1.0, 0.0, 0.0}));
   const PartOptions& plate_b = deck.parts[1];
   EXPECT_EQ(plate_b.name, "plate_b");
@@ -91,7 +92,8 @@ TEST(DeckReader, MinimalDeckGetsEveryDefault) {
   const PartOptions& bar = deck.parts[0];
   EXPECT_EQ(bar.material_index, 0);
   EXPECT_EQ(bar.formulation, Formulation::hex8);
-  EXPECT_EQ(bar.hourglass_coefficient, 0.05);
+  EXPECT_EQ(bar.hourglass_model, HourglassModel::assumed_strain);
+  EXPECT_EQ(bar.hourglass_coefficient, 1.0);
   EXPECT_EQ(bar.initial_velocity, (Vec3{0.0, 0.0, 0.0}));
   EXPECT_TRUE(deck.boundary_conditions.empty());
   EXPECT_TRUE(deck.contact.empty());
@@ -158,6 +160,7 @@ output: {directory: "out dir", every: 3, fields: [gap, stress], history_every: 5
   const PartOptions& block = deck.parts[0];
   EXPECT_EQ(block.material_index, 1);
   EXPECT_EQ(block.formulation, Formulation::hex8r);
+  EXPECT_EQ(block.hourglass_model, HourglassModel::flanagan_belytschko);  // a coefficient alone
   EXPECT_EQ(block.hourglass_coefficient, 0.1);
   EXPECT_EQ(block.elements, (std::array<int, 3>{2, 3, 4}));
   EXPECT_EQ(block.initial_velocity, (Vec3{1.5, -2.0, 3.0}));
@@ -189,6 +192,31 @@ TEST(DeckReader, HourglassBlockIsAcceptedForFullIntegration) {
   const Deck deck = parse_deck(with_hourglass, "inline.yaml");
   EXPECT_EQ(deck.parts[0].formulation, Formulation::hex8);
   EXPECT_EQ(deck.parts[0].hourglass_coefficient, 0.1);
+}
+
+TEST(DeckReader, HourglassModelSetsItsOwnDefaultCoefficient) {
+  const std::string text = read_text(test_deck_path("decks/minimal.yaml"));
+  const auto part_with = [&](const std::string& hourglass) {
+    std::string deck = text;
+    deck.replace(deck.find("    material: steel\n"), 20,
+                 "    material: steel\n    formulation: hex8r\n    hourglass: " + hourglass + "\n");
+    return parse_deck(deck, "inline.yaml").parts[0];
+  };
+  const PartOptions fb = part_with("{model: flanagan_belytschko}");
+  EXPECT_EQ(fb.hourglass_model, HourglassModel::flanagan_belytschko);
+  EXPECT_EQ(fb.hourglass_coefficient, 0.05);
+  const PartOptions scaled = part_with("{model: assumed_strain, coefficient: 0.5}");
+  EXPECT_EQ(scaled.hourglass_model, HourglassModel::assumed_strain);
+  EXPECT_EQ(scaled.hourglass_coefficient, 0.5);
+  const PartOptions physical = part_with("{model: assumed_strain}");
+  EXPECT_EQ(physical.hourglass_coefficient, 1.0);
+  try {
+    part_with("{model: puso}");
+    ADD_FAILURE() << "an unknown hourglass model was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("parts[0].hourglass.model"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("assumed_strain"), std::string::npos) << e.what();
+  }
 }
 
 TEST(DeckReader, EmptyOptionalSectionsTakeTheirDefaults) {

@@ -265,6 +265,16 @@ TEST(HourglassBlock, OnePointBrickConservesEnergyAndKeepsHourglassEnergySmall) {
   std::printf("hourglass / internal energy at the end: %.4f\n", ratio);
   EXPECT_GT(hourglass.back(), 0.0);  // the 3D field excites the hourglass modes
   EXPECT_LT(ratio, 0.01);            // measured 0.0065
+
+  // The assumed-strain stiffness is linear and symmetric too: the same conservation.
+  const DeckRun assumed("hourglass_block.yaml", {{"parts[0].hourglass.model", "assumed_strain"},
+                                                 {"parts[0].hourglass.coefficient", "1"}});
+  EXPECT_LE(assumed.summary.energy.max_relative_error, 1e-10);
+  const double assumed_hourglass = assumed.history("hourglass_energy").back();
+  std::printf("assumed strain: hourglass / internal energy at the end: %.4f\n",
+              assumed_hourglass / assumed.history("internal_energy").back());
+  EXPECT_GT(assumed_hourglass, 0.0);
+  EXPECT_LT(assumed_hourglass, 0.05 * assumed.history("internal_energy").back());
 }
 
 // Runs a deck that must fail; returns the failure (its message, step and time).
