@@ -108,8 +108,7 @@ std::unique_ptr<Model> make_quadratic_model(int m, Formulation formulation, bool
   const std::uint32_t count = static_cast<std::uint32_t>(m) * m * m;
   const auto steel = exdyn::material::elastic_constants(2.1e11, 0.3, 7800.0);
   model->block = element::make_element_block(formulation, steel, exdyn::input::HourglassControl{}, 0, count,
-                                             model->connectivity.data(),
-                                             model->x_ref);
+                                             model->connectivity.data(), model->x_ref);
   std::mt19937_64 rng(7);
   load(*model, 2 * h * m, count, rng);
   return model;

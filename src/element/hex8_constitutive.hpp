@@ -167,7 +167,8 @@ inline ConstitutiveResult<Real> assumed_strain_forces(const double* reference,
                                                       const Flow& flow, const BasicElementVectors<Real>& u,
                                                       BasicElementVectors<Real>& f, const double* state_old,
                                                       double* state_new, const double* hourglass_old,
-                                                      double* hourglass_new, double dt, Real& hourglass_energy) {
+                                                      double* hourglass_new, double dt,
+                                                      Real& hourglass_energy) {
   constexpr int lanes = lanes_of<Real>;
   const hex8::BasicElementModes<Real> c = hex8::modes_from_nodal(u);
   const OnePoint<Real> point = one_point(reference, c);

@@ -258,10 +258,9 @@ void prepare_hex8r(ElementBlock& block, const NodalVectors& x_ref) {
   block.constant_jacobian =
       block.whole.parallelepipeds && all_parallelepipeds(block.count, block.connectivity, x_ref);
   const material::ElasticConstants& elastic = block.material;
-  const hex8r::Stabilization stabilization{block.hourglass.model, block.hourglass.coefficient,
-                                           elastic.mu * (3.0 * elastic.lambda + 2.0 * elastic.mu) /
-                                               (elastic.lambda + elastic.mu),
-                                           elastic.mu};
+  const hex8r::Stabilization stabilization{
+      block.hourglass.model, block.hourglass.coefficient,
+      elastic.mu * (3.0 * elastic.lambda + 2.0 * elastic.mu) / (elastic.lambda + elastic.mu), elastic.mu};
   if (!block.law.linear_small()) {
     const bool assumed_strain = block.hourglass.model == input::HourglassModel::assumed_strain;
     block.constant_jacobian = false;

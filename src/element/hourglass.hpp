@@ -6,9 +6,9 @@
 //
 // Element axes: T = [t_0 t_1 t_2] from c_1, c_2, c_3 by Gram-Schmidt (x = c_0 +
 // c_1 xi + c_2 eta + c_3 zeta + ..., the modes of the coordinates), half lengths
-// a_j = |c_j| (m), volume V (m^3); on the current configuration under finite strain. Hourglass modes alpha = 0..3 are
-// eta zeta, xi zeta, xi eta, xi eta zeta; a displacement u = c t_j h_alpha has the
-// amplitude q = h_alpha . u = 8 c along t_j.
+// a_j = |c_j| (m), volume V (m^3); on the current configuration under finite strain. Hourglass modes alpha =
+// 0..3 are eta zeta, xi zeta, xi eta, xi eta zeta; a displacement u = c t_j h_alpha has the amplitude q =
+// h_alpha . u = 8 c along t_j.
 //   bending   (alpha = 0..2, j one of the mode's two coordinates, r the other):
 //       eps_jj = c xi_r / a_j  -> uniaxial stress, E:
 //       k = E V / (192 a_j^2),      Q_p = sigma_y V / (8 sqrt(3) a_j)
@@ -43,14 +43,16 @@ namespace exdyn::element::hourglass {
 // with the element, so forces on them are objective.
 template <class Real>
 inline void element_axes(const Real c[3][3], Real axes[9], Real inverse_a2[3]) {
-  for (int j = 0; j < 3; ++j) inverse_a2[j] = 1.0 / (c[j][0] * c[j][0] + c[j][1] * c[j][1] + c[j][2] * c[j][2]);
+  for (int j = 0; j < 3; ++j)
+    inverse_a2[j] = 1.0 / (c[j][0] * c[j][0] + c[j][1] * c[j][1] + c[j][2] * c[j][2]);
   const Real n0 = lane_sqrt(inverse_a2[0]);
   const Real t0[3] = {n0 * c[0][0], n0 * c[0][1], n0 * c[0][2]};
   const Real along = t0[0] * c[1][0] + t0[1] * c[1][1] + t0[2] * c[1][2];
   Real t1[3] = {c[1][0] - along * t0[0], c[1][1] - along * t0[1], c[1][2] - along * t0[2]};
   const Real n1 = 1.0 / lane_sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
   for (Real& v : t1) v = v * n1;
-  const Real t2[3] = {t0[1] * t1[2] - t0[2] * t1[1], t0[2] * t1[0] - t0[0] * t1[2], t0[0] * t1[1] - t0[1] * t1[0]};
+  const Real t2[3] = {t0[1] * t1[2] - t0[2] * t1[1], t0[2] * t1[0] - t0[0] * t1[2],
+                      t0[0] * t1[1] - t0[1] * t1[0]};
   for (int i = 0; i < 3; ++i) {
     axes[3 * i] = t0[i];
     axes[3 * i + 1] = t1[i];
@@ -104,8 +106,8 @@ struct AssumedStrain {
 
 // x_modes: the modes of the reference coordinates; youngs and mu in Pa; coefficient
 // scales k (1: the physical stiffness).
-inline AssumedStrain assumed_strain(const hex8::ElementModes& x_modes, double volume, double youngs, double mu,
-                                    double coefficient) {
+inline AssumedStrain assumed_strain(const hex8::ElementModes& x_modes, double volume, double youngs,
+                                    double mu, double coefficient) {
   AssumedStrain out;
   double c[3][3], inverse_a2[3];
   for (int j = 0; j < 3; ++j)

@@ -357,8 +357,8 @@ PartOptions DeckValidator::part(const YAML::Node& node, const std::string& path,
     const YAML::Node coefficient = optional(hourglass, "coefficient");
     // `coefficient` alone keeps the meaning it had before `model`: Flanagan-Belytschko.
     if (model.IsDefined())
-      result.hourglass_model = all_hourglass_models[choice(model, child_path(hourglass_path, "model"),
-                                                           "hourglass model", names_of(all_hourglass_models))];
+      result.hourglass_model = all_hourglass_models[choice(
+          model, child_path(hourglass_path, "model"), "hourglass model", names_of(all_hourglass_models))];
     else if (coefficient.IsDefined())
       result.hourglass_model = HourglassModel::flanagan_belytschko;
     result.hourglass_coefficient = result.hourglass_model == HourglassModel::flanagan_belytschko ? 0.05 : 1.0;

@@ -85,7 +85,7 @@ struct HourglassControl {
   double coefficient = 1.0;
   HourglassControl() = default;
   HourglassControl(HourglassModel m, double c) : model(m), coefficient(c) {}
-  HourglassControl(double flanagan_belytschko) // NOLINT(google-explicit-constructor): a number is FB's
+  HourglassControl(double flanagan_belytschko)  // NOLINT(google-explicit-constructor): a number is FB's
       : model(HourglassModel::flanagan_belytschko), coefficient(flanagan_belytschko) {}
 };
 

@@ -39,9 +39,10 @@ std::uint64_t bytes_per_element(const input::PartOptions& part) {
   // distorted box and a mapped part are not.
   const bool hex8 = part.formulation == input::Formulation::hex8;
   const bool general = part.perturbation_fraction > 0.0 || part.geometry != input::Geometry::box;
-  const int reference_doubles =
-      general ? (hex8 ? element::hex8::reference_size : element::hex8r::reference_size)
-              : (hex8 ? element::hex8::parallelepiped_reference_size : element::hex8r::parallelepiped_reference_size);
+  const int reference_doubles = general
+                                    ? (hex8 ? element::hex8::reference_size : element::hex8r::reference_size)
+                                    : (hex8 ? element::hex8::parallelepiped_reference_size
+                                            : element::hex8r::parallelepiped_reference_size);
   return bytes_per_element_besides_reference + 8 * static_cast<std::uint64_t>(reference_doubles);
 }
 

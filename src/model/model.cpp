@@ -24,8 +24,7 @@ Model build_model(const input::Deck& deck) {
     model.blocks.push_back(element::make_element_block(
         part.formulation, material::elastic_constants(m.youngs_modulus, m.poissons_ratio, m.density),
         input::HourglassControl(part.hourglass_model, part.hourglass_coefficient), range.first_element,
-        range.element_count,
-        model.mesh.connectivity.data() + range.first_connectivity, model.mesh.x_ref,
+        range.element_count, model.mesh.connectivity.data() + range.first_connectivity, model.mesh.x_ref,
         material::make_law(m, input::resolved_kinematics(part, m), part.f_bar)));
     element::add_lumped_mass(model.blocks.back(), model.mesh.x_ref, model.mass);
   }

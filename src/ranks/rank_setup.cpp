@@ -182,8 +182,7 @@ double blocks_of_rank(const input::Deck& deck, const SetupParts& deck_parts, con
         options.formulation,
         material::elastic_constants(material.youngs_modulus, material.poissons_ratio, material.density),
         input::HourglassControl(options.hourglass_model, options.hourglass_coefficient), first_element,
-        part_count[p], connectivity, m.mesh.x_ref, law,
-        std::move(whole)));
+        part_count[p], connectivity, m.mesh.x_ref, law, std::move(whole)));
     element::ElementBlock& block = m.blocks.back();
     block_of_part[p] = m.blocks.size() - 1;
     first_element += part_count[p];

@@ -62,8 +62,8 @@ TEST(AssumedStrainHourglass, PureBendingStoresTheBeamEnergy) {
   const auto bending = [kappa](const Eigen::Vector3d& p) {
     return Eigen::Vector3d(kappa * p(0) * p(1), -0.5 * kappa * p(0) * p(0), 0.0);
   };
-  for (const Eigen::Matrix3d& r : {Eigen::Matrix3d(Eigen::Matrix3d::Identity()),
-                                   rotation(0.7, Eigen::Vector3d(1, -2, 0.5))}) {
+  for (const Eigen::Matrix3d& r :
+       {Eigen::Matrix3d(Eigen::Matrix3d::Identity()), rotation(0.7, Eigen::Vector3d(1, -2, 0.5))}) {
     ElementVectors x, u, f;
     oriented_brick(a, r, Eigen::Vector3d(1e-3, 2e-3, -1e-3), bending, x, u);
     const hex8r::Energies e = linear(x, u, f);
@@ -81,8 +81,9 @@ TEST(AssumedStrainHourglass, WarpingStoresTheExactShearEnergy) {
   const double volume = 8 * a[0] * a[1] * a[2];
   const double exact = 2 * steel.mu * kappa * kappa / 4 * (a[0] * a[0] + a[1] * a[1]) / 3 * volume;
   ElementVectors x, u, f;
-  oriented_brick(a, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(),
-                 [kappa](const Eigen::Vector3d& p) { return Eigen::Vector3d(0, 0, kappa * p(0) * p(1)); }, x, u);
+  oriented_brick(
+      a, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(),
+      [kappa](const Eigen::Vector3d& p) { return Eigen::Vector3d(0, 0, kappa * p(0) * p(1)); }, x, u);
   const hex8r::Energies e = linear(x, u, f);
   EXPECT_NEAR(e.hourglass + e.strain, exact, 1e-12 * exact);
 }
@@ -99,7 +100,8 @@ TEST(AssumedStrainHourglass, LinearKernelsAreSymmetricAndAgree) {
     linear(x, v, fv);
     const double a = to_vector(fu).dot(to_vector(v)), b = to_vector(fv).dot(to_vector(u));
     EXPECT_NEAR(a, b, 1e-12 * std::abs(a) + 1e-12 * to_vector(fu).norm() * 1e-6);
-    EXPECT_NEAR(e.strain + e.hourglass, 0.5 * to_vector(fu).dot(to_vector(u)), 1e-12 * (e.strain + e.hourglass));
+    EXPECT_NEAR(e.strain + e.hourglass, 0.5 * to_vector(fu).dot(to_vector(u)),
+                1e-12 * (e.strain + e.hourglass));
 
     const ElementVectors p = random_parallelepiped(rng, 1e-3);
     ElementVectors general, fast;
@@ -131,10 +133,9 @@ LawPass law_pass(const ElementVectors& x, const ElementVectors& u, const Flow& f
   material::initial_state(Finite, old_state.data());
   const std::array<double, hex8r::hourglass_state_size> old_hourglass{};
   LawPass pass;
-  pass.result = hex8r::assumed_strain_forces<Flow, Finite>(reference.data(), steel, flow, u, pass.f,
-                                                           old_state.data(), new_state.data(),
-                                                           old_hourglass.data(), pass.hourglass.data(), 1e-8,
-                                                           pass.hourglass_work);
+  pass.result = hex8r::assumed_strain_forces<Flow, Finite>(
+      reference.data(), steel, flow, u, pass.f, old_state.data(), new_state.data(), old_hourglass.data(),
+      pass.hourglass.data(), 1e-8, pass.hourglass_work);
   return pass;
 }
 
@@ -147,10 +148,12 @@ TEST(AssumedStrainHourglass, ModesFlowAtThePlasticLimit) {
   const material::Hardening flow = material::Hardening::linear(sigma_y, 0.0);
   const double kappa = 20.0;  // bending strain kappa a1 = 2 %, ten times the yield strain
   ElementVectors x, u;
-  oriented_brick(a, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(),
-                 [kappa](const Eigen::Vector3d& p) {
-                   return Eigen::Vector3d(kappa * p(0) * p(1), -0.5 * kappa * p(0) * p(0), 0.0);
-                 }, x, u);
+  oriented_brick(
+      a, Eigen::Matrix3d::Identity(), Eigen::Vector3d::Zero(),
+      [kappa](const Eigen::Vector3d& p) {
+        return Eigen::Vector3d(kappa * p(0) * p(1), -0.5 * kappa * p(0) * p(0), 0.0);
+      },
+      x, u);
   const LawPass bent = law_pass<material::Hardening, false>(x, u, flow);
   const double limit = sigma_y * 8 * a[0] * a[1] * a[2] / (8 * std::sqrt(3.0) * a[0]);
   // u_x in the xi eta mode (alpha 2), direction x (j 0): index 6.
@@ -184,7 +187,8 @@ TEST(AssumedStrainHourglass, ForcesTurnWithTheBody) {
   const LawPass a = law_pass<material::NoYield, true>(x, u, elastic);
   const LawPass b = law_pass<material::NoYield, true>(x, turned, elastic);
   double largest = 0.0;
-  for (int I = 0; I < 8; ++I) largest = std::max(largest, Eigen::Vector3d(a.f.x[I], a.f.y[I], a.f.z[I]).norm());
+  for (int I = 0; I < 8; ++I)
+    largest = std::max(largest, Eigen::Vector3d(a.f.x[I], a.f.y[I], a.f.z[I]).norm());
   for (int I = 0; I < 8; ++I) {
     const Eigen::Vector3d expected = r * Eigen::Vector3d(a.f.x[I], a.f.y[I], a.f.z[I]);
     EXPECT_LT((expected - Eigen::Vector3d(b.f.x[I], b.f.y[I], b.f.z[I])).norm(), 1e-9 * largest);

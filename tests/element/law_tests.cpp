@@ -57,9 +57,9 @@ material::MaterialLaw law(bool finite, bool plastic, bool f_bar = true) {
 }
 
 ElementBlock block_of(const mesh::Mesh& mesh, const Variant& v, const material::MaterialLaw& l) {
-  ElementBlock block = make_element_block(v.formulation, copper, v.hourglass, 0,
-                                          std::uint32_t(mesh.element_count()), mesh.connectivity.data(),
-                                          mesh.x_ref, l);
+  ElementBlock block =
+      make_element_block(v.formulation, copper, v.hourglass, 0, std::uint32_t(mesh.element_count()),
+                         mesh.connectivity.data(), mesh.x_ref, l);
   set_material_time_step(block, 1e-8);
   return block;
 }
@@ -129,7 +129,8 @@ TEST(LawKernels, RigidRotationMakesNoForceAndNoStress) {
 // assumed-strain control: its rate form on the turning element axes has no potential.
 TEST(LawKernels, ForcesAreTheDerivativeOfTheEnergy) {
   for (const Variant& v : all_variants) {
-    if (v.hourglass.model == input::HourglassModel::assumed_strain && v.formulation == Formulation::hex8r) continue;
+    if (v.hourglass.model == input::HourglassModel::assumed_strain && v.formulation == Formulation::hex8r)
+      continue;
     for (const bool f_bar : {true, false}) {
       if (!f_bar && v.formulation != Formulation::hex8) continue;
       const mesh::Mesh mesh = distorted_box(v.formulation);
@@ -167,8 +168,7 @@ TEST(LawKernels, TinyStrainsGiveTheLinearKernelsForces) {
     const double scale = largest(linear.f);
     for (int c = 0; c < 3; ++c)
       for (std::size_t i = 0; i < mesh.node_count(); ++i)
-        EXPECT_NEAR(finite.f.component(c)[i], linear.f.component(c)[i], 1e-5 * scale)
-            << v.name;
+        EXPECT_NEAR(finite.f.component(c)[i], linear.f.component(c)[i], 1e-5 * scale) << v.name;
   }
 }
 
@@ -196,20 +196,21 @@ TEST(LawKernels, ElasticStatesOfThePlasticLawEqualTheLinearKernels) {
 // twice gives the same bits; after a commit the next pass starts from the new states.
 TEST(LawKernels, APassCanBeRepeatedAndCommitMovesOn) {
   for (const Variant& v : all_variants) {
-  if (v.formulation != Formulation::hex8r) continue;
-  const mesh::Mesh mesh = distorted_box(Formulation::hex8r);
-  const ElementBlock block = block_of(mesh, v, law(true, true));
-  const NodalVectors u = smooth_field(mesh, 2e-4);  // about 6 % strain: plastic
-  const Result first = forces(block, mesh, u), again = forces(block, mesh, u);
-  for (int c = 0; c < 3; ++c) EXPECT_EQ(first.f.component(c), again.f.component(c));
-  const double eps = *std::max_element(block.material_state.plastic_strain.begin(),
-                                       block.material_state.plastic_strain.end());
-  EXPECT_GT(eps, 0.01);
-  EXPECT_GT(first.energies.plastic, 0.0);
-  commit_material_state(block);
-  const Result after = forces(block, mesh, u);  // the same u from the committed plastic state: no new flow
-  EXPECT_NEAR(after.energies.plastic, first.energies.plastic, 1e-9 * first.energies.plastic);
-  EXPECT_NEAR(after.energies.hourglass, first.energies.hourglass, 1e-9 * std::abs(first.energies.hourglass));
+    if (v.formulation != Formulation::hex8r) continue;
+    const mesh::Mesh mesh = distorted_box(Formulation::hex8r);
+    const ElementBlock block = block_of(mesh, v, law(true, true));
+    const NodalVectors u = smooth_field(mesh, 2e-4);  // about 6 % strain: plastic
+    const Result first = forces(block, mesh, u), again = forces(block, mesh, u);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(first.f.component(c), again.f.component(c));
+    const double eps = *std::max_element(block.material_state.plastic_strain.begin(),
+                                         block.material_state.plastic_strain.end());
+    EXPECT_GT(eps, 0.01);
+    EXPECT_GT(first.energies.plastic, 0.0);
+    commit_material_state(block);
+    const Result after = forces(block, mesh, u);  // the same u from the committed plastic state: no new flow
+    EXPECT_NEAR(after.energies.plastic, first.energies.plastic, 1e-9 * first.energies.plastic);
+    EXPECT_NEAR(after.energies.hourglass, first.energies.hourglass,
+                1e-9 * std::abs(first.energies.hourglass));
   }
 }
 

@@ -26,9 +26,10 @@ TEST(ToYaml, MinimalDeckRoundTripsWithEveryDefaultWritten) {
   EXPECT_EQ(round_trip(deck), deck);
   const std::string text = to_yaml(deck);
   for (const char* line :
-       {"formulation: hex8\n", "hourglass: {model: assumed_strain, coefficient: 1}\n", "initial_velocity: [0, 0, 0]\n",
-        "perturbation: {fraction: 0, seed: 1}\n", "boundary_conditions: []\n", "contact: []\n",
-        "courant: 0.9\n", "directory: results\n", "every: 100\n",
+       {"formulation: hex8\n", "hourglass: {model: assumed_strain, coefficient: 1}\n",
+        "initial_velocity: [0, 0, 0]\n", "perturbation: {fraction: 0, seed: 1}\n",
+        "boundary_conditions: []\n", "contact: []\n", "courant: 0.9\n", "directory: results\n",
+        "every: 100\n",
         "fields: [displacement, velocity, acceleration, stress, von_mises, contact_force, gap, "
         "plastic_strain]\n",
         "kinematics: auto\n", "f_bar: true\n", "min_dt_ratio: 0.001\n", "history_every: 1\n",
