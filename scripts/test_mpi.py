@@ -3,7 +3,8 @@
 
 - equal fields: the plate contact (hex8, nodes), a hex20 contact deck (quadrature points
   on 8-node segments), a curved deck (the Hertz ball, hex20), friction on a curved rail,
-  the two Taylor rods (finite strain, plasticity, contact at folds), single-surface
+  the two Taylor rods (finite strain, plasticity, contact at folds), a bar pulled apart at a
+  prescribed velocity until every element has eroded, single-surface
   contact (the plates as `surface: all`, nodes, quadrature points and mortar), a rigid wall with
   friction, a mesh of 8- and 20-node elements (graded: many groups of equal Jacobians),
   gravity and friction between boxes, a spin with finite strain, hex8r plasticity, the
@@ -182,6 +183,12 @@ def test_equal_fields(exdyn, work, quick):
              # master segments; friction with a sliding start (anchors kept by piece)
              ("contact_patch_mortar", ["contact[0].friction={coefficient: 0.3}", "output.every=8",
                                        "parts[1].initial_velocity=[0.3, 0.1, -1.0]"], "mortar_patch"),
+             # damage and erosion: a bar of 1,536 bricks pulled apart at a prescribed
+             # velocity until every layer has failed (the reactions summed over the ranks)
+             ("tension_failure", ["parts[0].elements=[8, 8, 24]",
+                                  "parts[0].box={min: [0, 0, 0], max: [0.01, 0.01, 0.03]}",
+                                  "parts[0].kinematics=finite", "boundary_conditions[3].velocity={z: 100.0}",
+                                  "time={end_time: 6.0e-5}", "output.every=25"], "eroding_bar"),
              # mortar on curved 8-node segments, one pass
              ("hertz_ball", ["contact[0].slave_points=mortar", "contact[0].penalty={scale: 1.0}",
                              "time.end_time=6.0e-6", "output.every=100"],

@@ -84,6 +84,14 @@ void for_each_chunk(std::size_t n, Body&& body, std::size_t chunk = node_chunk) 
 }
 
 // The sum of partial[0..] in order.
+// Neumaier's compensated sum: after the terms are added one by one, sum + error is their
+// sum to a few units in the last place of it, however much they cancel.
+inline void add_compensated(double& sum, double& error, double term) {
+  const double t = sum + term;
+  error += (sum < 0 ? -sum : sum) >= (term < 0 ? -term : term) ? (sum - t) + term : (term - t) + sum;
+  sum = t;
+}
+
 inline double ordered_sum(const std::vector<double>& partial) {
   double sum = 0.0;
   for (const double p : partial) sum += p;

@@ -53,15 +53,32 @@ BasicElementVectors<Pack<Lanes>> gather_corners(const ElementBlock& block, const
   return x;
 }
 
+// An eroded element's corners in its reference shape (ElementFailure), as the
+// element pass has them: it sets no step of its own and never inverts.
+template <int Lanes>
+void reference_shape_of_eroded(const ElementBlock& block, const NodalVectors& x_ref, std::uint32_t first,
+                               BasicElementVectors<Pack<Lanes>>& x) {
+  for (int lane = 0; lane < Lanes; ++lane) {
+    const std::uint32_t e = std::min(first + std::uint32_t(lane), block.count - 1);
+    if (block.failure.status[e] != ElementStatus::eroded) continue;
+    const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
+    for (int k = 0; k < 8; ++k)
+      x.x[k][lane] = x_ref.x[nodes[k]], x.y[k][lane] = x_ref.y[nodes[k]], x.z[k][lane] = x_ref.z[nodes[k]];
+  }
+}
+
 // The elements [begin, end) of a chunk (begin a multiple of Lanes) in packs of Lanes.
 template <int Lanes, bool Step, bool Inversion>
 CornerChecks corner_packs(const ElementBlock& block, const NodalVectors& x_ref, const NodalVectors& u,
                           std::uint32_t begin, std::uint32_t end) {
   PackCorners<Lanes> corners(block, begin);
   const bool rows = block.row_pack.size() == (std::size_t(block.count) + Lanes - 1) / Lanes;
-  for (std::uint32_t first = begin; first < end; first += Lanes)
-    corners.add(gather_corners<Lanes>(block, x_ref, u, first, rows && block.row_pack[first / Lanes] != 0),
-                block, first, end, Step, Inversion);
+  for (std::uint32_t first = begin; first < end; first += Lanes) {
+    BasicElementVectors<Pack<Lanes>> x =
+        gather_corners<Lanes>(block, x_ref, u, first, rows && block.row_pack[first / Lanes] != 0);
+    if (block.failure.any_not_alive) reference_shape_of_eroded<Lanes>(block, x_ref, first, x);
+    corners.add(x, block, first, end, Step, Inversion);
+  }
   return corners.finish(Inversion);
 }
 
@@ -177,6 +194,7 @@ InvertedElement find_inverted_element(const ElementBlock& block, std::uint32_t e
   EXDYN_ASSERT(element_begin <= element_end && element_end <= block.count);
   double smallest_ratio = std::numeric_limits<double>::infinity();  // det J / ||J||_F^2, m
   for (std::uint32_t e = element_begin; e < element_end; ++e) {
+    if (block.failure.any_not_alive && block.failure.status[e] == ElementStatus::eroded) continue;
     const std::uint32_t* nodes = block.connectivity + std::size_t(block.nodes_per_element) * e;
     NodeValues<8> x0, du;  // the corners
     gather<8>(x_ref, nodes, x0);

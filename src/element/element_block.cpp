@@ -79,6 +79,11 @@ void allocate_material_state(ElementBlock& block) {
     const std::vector<double> zero(packs * lanes * std::size_t(hex8r::hourglass_state_size), 0.0);
     state.hourglass = {zero, zero};
   }
+  if (block.law.failure.active()) {
+    block.failure.status.assign(block.count, ElementStatus::alive);
+    block.failure.damage.assign(block.count, 0.0);
+    block.failure.plastic_strain.assign(block.count, 0.0);
+  }
   const int size = block.law.state_size();
   if (size == 0) return;
   state.points_per_element = block.formulation == input::Formulation::hex8r   ? 1
@@ -140,7 +145,46 @@ ElementEnergies add_internal_forces(const ElementBlock& block, std::uint32_t ele
                                     std::uint32_t element_end, const NodalVectors& u, NodalVectors& f_int,
                                     double* stress) {
   EXDYN_ASSERT(element_begin <= element_end && element_end <= block.count);
-  return block.loop(block, element_begin, element_end, u, f_int, stress);
+  // A failing block writes its stresses every step: the damage pass reads them.
+  return block.loop(block, element_begin, element_end, u, f_int,
+                    stress != nullptr ? stress : block.failure.stress);
+}
+
+// Each element on its own: on the threads in the block's chunks, each chunk's counts
+// kept apart and added in chunk order.
+std::uint32_t update_damage(const ElementBlock& block, double dt) {
+  ElementFailure& f = block.failure;
+  if (f.status.empty()) return 0;
+  EXDYN_ASSERT(f.stress != nullptr);
+  const material::Failure& law = block.law.failure;
+  const std::vector<double>& eps_p = block.material_state.plastic_strain;
+  const std::size_t chunks = block.chunk_begin.size() - 1;
+  f.chunk_counts.assign(2 * chunks, 0);  // per chunk: failed now, not alive
+  parallel_for_static(std::ptrdiff_t(chunks), [&](std::ptrdiff_t k) {
+    std::uint32_t failed = 0, not_alive = 0;
+    for (std::uint32_t e = block.chunk_begin[std::size_t(k)]; e < block.chunk_begin[std::size_t(k) + 1];
+         ++e) {
+      if (f.status[e] != ElementStatus::alive) {
+        f.status[e] = ElementStatus::eroded;  // a failed element's energy is booked
+        ++not_alive;
+        continue;
+      }
+      const double increment = std::max(eps_p[e] - f.plastic_strain[e], 0.0);
+      f.plastic_strain[e] = eps_p[e];
+      const double* stress = f.stress + 6 * (std::size_t(block.first_element) + e);
+      f.damage[e] = std::min(
+          law.damage_after(f.damage[e], eps_p[e], increment, dt, material::Failure::triaxiality(stress)),
+          1.0);
+      if (f.damage[e] >= 1.0) f.status[e] = ElementStatus::failed, ++failed, ++not_alive;
+    }
+    f.chunk_counts[2 * std::size_t(k)] = failed;
+    f.chunk_counts[2 * std::size_t(k) + 1] = not_alive;
+  });
+  std::uint32_t failed = 0, not_alive = 0;
+  for (std::size_t k = 0; k < chunks; ++k)
+    failed += f.chunk_counts[2 * k], not_alive += f.chunk_counts[2 * k + 1];
+  f.any_not_alive = not_alive > 0;
+  return failed;
 }
 
 ElementEnergies add_internal_forces(const ElementBlock& block, const NodalVectors& u, NodalVectors& f_int,
@@ -177,6 +221,7 @@ ElementBlock slice_block(const ElementBlock& block, const std::vector<std::uint3
   slice.nodes_per_element = block.nodes_per_element;
   slice.material = block.material;
   slice.law = block.law;
+  slice.failure.stress = block.failure.stress;
   slice.step_scale = block.step_scale;
   slice.hourglass = block.hourglass;
   slice.first_element = first_element;

@@ -21,12 +21,45 @@ struct ElementEnergies {
   double strain = 0.0;     // internal energy: stored elastic energy plus plastic work, J
   double hourglass = 0.0;  // sum of hourglass spring energies (hex8r), J
   double plastic = 0.0;    // plastic work so far (a part of `strain`), J
+  // The energy of the elements that left the model in this pass (ElementStatus::failed),
+  // J: see ElementFailure.
+  double eroded = 0.0;
   ElementEnergies& operator+=(const ElementEnergies& other) {
     strain += other.strain;
     hourglass += other.hourglass;
     plastic += other.plastic;
+    eroded += other.eroded;
     return *this;
   }
+};
+
+// An element of a block whose material fails (material/failure.hpp).
+enum ElementStatus : std::uint8_t {
+  eroded = 0,  // gone: no force, no energy, no stable step or inversion check of its own
+  alive = 1,
+  failed = 2,  // its damage reached 1 at the last step: this pass books its energy, then eroded
+};
+
+// Damage and erosion of a block (docs/theory.md, "Damage and erosion"), per element;
+// empty vectors where the material does not fail. The solver's damage pass
+// (update_damage) sets them after each step's element pass from the elements' mean
+// plastic strain and stress. An element that fails at step n carried its force at n;
+// the pass of step n+1 does not scatter it and books the energy that leaves with it,
+// E = U^{n+1} + H^{n+1} - dt/2 f^{n+1}.v^{n+1/2} (= U^n + H^n + dt/2 f^n.v^{n+1/2} to the
+// order of the step: the energy at the half step, with which the balance closes to
+// round-off for a linear element). Its mass stays on its nodes: a node with no element
+// left flies on with it, in contact as before.
+struct ElementFailure {
+  std::vector<std::uint8_t> status;    // ElementStatus
+  std::vector<double> damage;          // D, 0 .. 1
+  std::vector<double> plastic_strain;  // the mean eps_p at the last damage update
+  // What the element pass reads for the failing elements: v^{n+1/2} (set by the solver
+  // before the pass), and where a failing block writes its element stresses every step
+  // (the damage pass reads them).
+  const NodalVectors* velocity = nullptr;
+  double* stress = nullptr;
+  bool any_not_alive = false;               // some element is failed or eroded (the loops check then)
+  std::vector<std::uint32_t> chunk_counts;  // scratch of update_damage
 };
 
 // The integration-point states of a block whose law has them (material/j2.hpp), and
@@ -114,6 +147,7 @@ struct ElementBlock {
   // corners, on the reference mesh (1 for 8-node elements): current_time_step scales by it.
   double step_scale = 1.0;
   input::HourglassControl hourglass;            // hex8r only
+  mutable ElementFailure failure;               // law.failure.active() only
   std::uint32_t first_element = 0;              // global index of the block's first element
   std::uint32_t count = 0;                      // number of elements
   const std::uint32_t* connectivity = nullptr;  // nodes_per_element ids per element (VTK order)
@@ -180,6 +214,12 @@ WholeBlock element_layout(input::Formulation formulation, std::uint32_t count,
 std::vector<std::uint32_t> jacobian_group_starts(input::Formulation formulation, std::uint32_t count,
                                                  const std::uint32_t* connectivity,
                                                  const NodalVectors& x_ref);
+
+// After the element pass of a step (stresses written to block.failure.stress): each
+// live element's damage from the increment of its mean plastic strain over dt (s) and
+// its mean stress; one that reaches 1 fails (ElementStatus::failed), and those that
+// failed at the step before become eroded. Returns how many failed at this step.
+std::uint32_t update_damage(const ElementBlock& block, double dt);
 
 // Makes the states the last element pass wrote the committed ones (the solver, once
 // per step before its element pass; nothing for a block without states), and undoes

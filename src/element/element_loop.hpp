@@ -196,6 +196,22 @@ void add_pack_corners(PackCorners<Lanes>& checks, const ElementBlock& block,
   checks.add(x, block, first, end, request.step, request.inversion);
 }
 
+// The energy that leaves with an element that failed at the last step, in the pass
+// after (ElementFailure): its energy U + H at u^{n+1} less dt/2 f^{n+1}.v^{n+1/2}, J.
+template <int Nodes, class Real>
+double failed_energy(const ElementBlock& block, const NodeValues<Nodes, Real>& f, int lane,
+                     const std::uint32_t* nodes, double energy) {
+  const NodalVectors& v = *block.failure.velocity;
+  double power = 0.0;  // f.v, W
+  for (int k = 0; k < Nodes; ++k) {
+    const std::uint32_t n = nodes[k];
+    assert(n < v.size());
+    power += lane_value(f.x[std::size_t(k)], lane) * v.x[n] + lane_value(f.y[std::size_t(k)], lane) * v.y[n] +
+             lane_value(f.z[std::size_t(k)], lane) * v.z[n];
+  }
+  return energy - 0.5 * block.material_state.dt * power;
+}
+
 // The element loop over packs of Lanes consecutive elements: kernel(pack, u, f, stress)
 // on the elements Lanes pack .. Lanes pack + Lanes - 1 at once returns their energies
 // (strain, hourglass, and plastic work for the kernels of a material law); it finds the pack's reference data
@@ -225,16 +241,29 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
       const std::uint32_t present = element[lane] < block.count ? element[lane] : Lanes * pack;
       nodes[lane] = block.connectivity + Nodes * static_cast<std::size_t>(present);
     }
+    // Erosion (ElementFailure): a pack holding an element that is not alive.
+    const std::uint8_t* status = block.failure.any_not_alive ? block.failure.status.data() : nullptr;
+    bool all_alive = true;
+    if (status != nullptr)
+      for (int lane = 0; lane < Lanes; ++lane)
+        all_alive =
+            all_alive && (element[lane] >= block.count || status[element[lane]] == ElementStatus::alive);
     // A whole row pack inside the range: vector gather and scatter.
     bool row = false;
     Vectors u_local{typename Vectors::Uninitialized{}};
     if constexpr (Nodes == 8) {
       row = !block.row_pack.empty() && block.row_pack[pack] != 0 && element[0] >= begin &&
-            element[Lanes - 1] < end;
+            element[Lanes - 1] < end && all_alive;
       u_local = row ? gather_row_pack<Lanes>(u, nodes[0]) : gather_pack<Nodes, Lanes>(u, nodes);
     } else {
       u_local = gather_pack<Nodes, Lanes>(u, nodes);
     }
+    // An eroded element runs in its reference shape (u = 0): it stays finite however
+    // its nodes move, and its corners set no step and invert never.
+    if (!all_alive)
+      for (int lane = 0; lane < Lanes; ++lane)
+        if (element[lane] < block.count && status[element[lane]] == ElementStatus::eroded)
+          for (int k = 0; k < Nodes; ++k) u_local.x[k][lane] = u_local.y[k][lane] = u_local.z[k][lane] = 0.0;
     if constexpr (Corners) {
       if (corners) add_pack_corners<Lanes>(checks, block, u_local, nodes, row, Lanes * pack, end);
     }
@@ -246,6 +275,16 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
     }
     for (int lane = 0; lane < Lanes; ++lane) {
       if (element[lane] < begin || element[lane] >= end) continue;
+      if (!all_alive && status[element[lane]] != ElementStatus::alive) {
+        if (status[element[lane]] == ElementStatus::failed)
+          total.eroded += failed_energy(block, f_local, lane, nodes[lane],
+                                        lane_value(energies[0], lane) + lane_value(energies[1], lane));
+        if (stress != nullptr) {
+          double* out = stress + 6 * (static_cast<std::size_t>(block.first_element) + element[lane]);
+          for (int k = 0; k < 6; ++k) out[k] = 0.0;
+        }
+        continue;
+      }
       if (!row) scatter_add_lane(f_local, lane, nodes[lane], f_int);
       total.strain += lane_value(energies[0], lane);
       total.hourglass += lane_value(energies[1], lane);

@@ -37,7 +37,8 @@ std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, co
                                       "B",
                                       "n",
                                       "C",
-                                      "reference_strain_rate"};
+                                      "reference_strain_rate",
+                                      "failure"};
   std::vector<MaterialOptions> result;
   std::map<std::string, YAML::Node> seen;
   for (auto entry = node.begin(); entry != node.end(); ++entry) {
@@ -65,6 +66,7 @@ std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, co
                                            child_path(material_path, "poissons_ratio"),
                                            "a number in (-1, 0.5)", poissons_ratio_range);
     plasticity(body, material_path, material);
+    failure(body, material_path, material);
     result.push_back(std::move(material));
   }
   return result;
@@ -485,25 +487,48 @@ std::vector<BoundaryConditionOptions> DeckValidator::boundary_conditions(
     const YAML::Node& node, const std::string& path, const std::vector<PartOptions>& parts) const {
   std::vector<BoundaryConditionOptions> result;
   if (node.IsNull()) return result;
-  check_sequence(node, path, "a list of boundary conditions {faces: [...], fix: [...]}");
+  check_sequence(node, path, "a list of boundary conditions {faces: [...], fix: [...]} or {faces, velocity}");
+  const std::vector<std::string> components(component_names.begin(), component_names.end());
   for (std::size_t b = 0; b < node.size(); ++b) {
     const std::string bc_path = child_path(path, b);
     const YAML::Node entry = node[b];
-    check_map(entry, bc_path, {"faces", "fix"});
+    check_map(entry, bc_path, {"faces", "fix", "velocity"});
     BoundaryConditionOptions condition;
     condition.faces = face_list(required(entry, bc_path, "faces"), child_path(bc_path, "faces"), parts);
-    const std::string fix_path = child_path(bc_path, "fix");
-    const YAML::Node fix = required(entry, bc_path, "fix");
-    const std::string expected = "a non-empty list of components among x, y, z";
-    check_sequence(fix, fix_path, expected);
-    if (fix.size() == 0) fail(fix, fix_path, "expected " + expected + ", got an empty list");
-    const std::vector<std::string> components(component_names.begin(), component_names.end());
-    for (std::size_t i = 0; i < fix.size(); ++i) {
-      const std::string component_path = child_path(fix_path, i);
-      const std::size_t axis = choice(fix[i], component_path, "component", components);
-      if (condition.fix[axis])
-        fail(fix[i], component_path, "component '" + components[axis] + "' is listed twice");
-      condition.fix[axis] = true;
+    const YAML::Node fix = optional(entry, "fix");
+    const YAML::Node velocity = optional(entry, "velocity");
+    if (fix.IsDefined() && velocity.IsDefined())
+      fail(velocity, child_path(bc_path, "velocity"),
+           "give either fix (held at rest) or velocity (a prescribed motion), not both");
+    if (!fix.IsDefined() && !velocity.IsDefined())
+      fail(entry, bc_path,
+           "expected fix: [components] or velocity: {component: value}, e.g. fix: [z] or velocity: {z: "
+           "-10.0}");
+    if (fix.IsDefined()) {
+      const std::string fix_path = child_path(bc_path, "fix");
+      const std::string expected = "a non-empty list of components among x, y, z";
+      check_sequence(fix, fix_path, expected);
+      if (fix.size() == 0) fail(fix, fix_path, "expected " + expected + ", got an empty list");
+      for (std::size_t i = 0; i < fix.size(); ++i) {
+        const std::string component_path = child_path(fix_path, i);
+        const std::size_t axis = choice(fix[i], component_path, "component", components);
+        if (condition.fix[axis])
+          fail(fix[i], component_path, "component '" + components[axis] + "' is listed twice");
+        condition.fix[axis] = true;
+      }
+    } else {
+      const std::string velocity_path = child_path(bc_path, "velocity");
+      const std::string expected =
+          "a non-empty map of components among x, y, z to velocities, e.g. {z: -10.0}";
+      if (!velocity.IsMap() || velocity.size() == 0)
+        fail(velocity, velocity_path, "expected " + expected + ", got " + describe(velocity));
+      check_map(velocity, velocity_path, components);
+      for (std::size_t axis = 0; axis < 3; ++axis)
+        if (const YAML::Node value = optional(velocity, components[axis]); value.IsDefined()) {
+          condition.fix[axis] = true;
+          condition.velocity[axis] =
+              number(value, child_path(velocity_path, components[axis]), "a velocity (m/s)");
+        }
     }
     result.push_back(std::move(condition));
   }

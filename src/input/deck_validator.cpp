@@ -323,8 +323,13 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
   if (const YAML::Node node = optional(root, "loads"); node.IsDefined())
     result.loads = loads(node, "loads", result.parts);
   result.time = time(required(root, "", "time"), "time");
-  if (const YAML::Node node = optional(root, "output"); node.IsDefined())
-    result.output = output(node, "output");
+  const YAML::Node output_node = optional(root, "output");
+  if (output_node.IsDefined()) result.output = output(output_node, "output");
+  const bool fails = std::any_of(result.materials.begin(), result.materials.end(),
+                                 [](const MaterialOptions& m) { return m.failure != FailureModel::none; });
+  if (fails &&
+      !(output_node.IsDefined() && output_node.IsMap() && optional(output_node, "fields").IsDefined()))
+    result.output.fields.insert(result.output.fields.end(), {OutputField::damage, OutputField::status});
   if (const YAML::Node node = optional(root, "guards"); node.IsDefined())
     result.guards = guards(node, "guards");
   return result;

@@ -139,6 +139,7 @@ class DeckValidator {
   std::string run_name(const YAML::Node& node, const std::string& path) const;
   std::vector<MaterialOptions> materials(const YAML::Node& node, const std::string& path) const;
   void plasticity(const YAML::Node& body, const std::string& path, MaterialOptions& material) const;
+  void failure(const YAML::Node& body, const std::string& path, MaterialOptions& material) const;
   std::array<Vec3, 2> angular_velocity(const YAML::Node& node, const std::string& path) const;
   std::vector<PartOptions> parts(const YAML::Node& node, const std::string& path,
                                  const std::vector<MaterialOptions>& materials) const;

@@ -101,6 +101,22 @@ std::string plasticity_text(const MaterialOptions& material) {
   return ", hardening: [" + join(rows, ", ") + "]";
 }
 
+// ", failure: {...}" of a material that fails, or nothing.
+std::string failure_text(const MaterialOptions& material) {
+  switch (material.failure) {
+    case FailureModel::none:
+      return "";
+    case FailureModel::plastic_strain:
+      return ", failure: {plastic_strain: " + yaml_number(material.failure_strain) + "}";
+    case FailureModel::johnson_cook:
+      break;
+  }
+  std::vector<std::string> d;
+  for (std::size_t k = 0; k < 5; ++k)
+    d.push_back("D" + std::to_string(k + 1) + ": " + yaml_number(material.failure_d[k]));
+  return ", failure: {johnson_cook: {" + join(d, ", ") + "}}";
+}
+
 }  // namespace
 
 std::string to_yaml(const Deck& deck) {
@@ -114,7 +130,8 @@ std::string to_yaml(const Deck& deck) {
     out << "  " << yaml_text(material.name) << ": {model: " << name(material.model)
         << ", density: " << yaml_number(material.density)
         << ", youngs_modulus: " << yaml_number(material.youngs_modulus)
-        << ", poissons_ratio: " << yaml_number(material.poissons_ratio) << plasticity_text(material) << "}\n";
+        << ", poissons_ratio: " << yaml_number(material.poissons_ratio) << plasticity_text(material)
+        << failure_text(material) << "}\n";
 
   out << "parts:\n";
   for (const PartOptions& part : deck.parts) {
@@ -170,9 +187,13 @@ std::string to_yaml(const Deck& deck) {
   for (const BoundaryConditionOptions& condition : deck.boundary_conditions) {
     std::vector<std::string> components;
     for (std::size_t axis = 0; axis < 3; ++axis)
-      if (condition.fix[axis]) components.emplace_back(component_names[axis]);
-    out << "  - {faces: " << yaml_faces(deck, condition.faces) << ", fix: [" << join(components, ", ")
-        << "]}\n";
+      if (condition.fix[axis])
+        components.emplace_back(condition.moving() ? std::string(component_names[axis]) + ": " +
+                                                         yaml_number(condition.velocity[axis])
+                                                   : std::string(component_names[axis]));
+    out << "  - {faces: " << yaml_faces(deck, condition.faces)
+        << (condition.moving() ? ", velocity: {" + join(components, ", ") + "}}\n"
+                               : ", fix: [" + join(components, ", ") + "]}\n");
   }
 
   out << "contact:" << (deck.contact.empty() ? " []" : "") << "\n";

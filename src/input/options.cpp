@@ -161,6 +161,10 @@ const char* name(OutputField field) {
       return "gap";
     case OutputField::plastic_strain:
       return "plastic_strain";
+    case OutputField::damage:
+      return "damage";
+    case OutputField::status:
+      return "status";
   }
   return "?";
 }
@@ -216,6 +220,7 @@ std::vector<FaceRef> exterior_faces(const Deck& deck) {
           axis >= 0 && std::any_of(deck.boundary_conditions.begin(), deck.boundary_conditions.end(),
                                    [&](const auto& condition) {
                                      return condition.fix[std::size_t(axis)] &&
+                                            condition.velocity[std::size_t(axis)] == 0.0 &&
                                             std::find(condition.faces.begin(), condition.faces.end(), face) !=
                                                 condition.faces.end();
                                    });
@@ -260,6 +265,19 @@ std::vector<std::string> deck_warnings(const Deck& deck) {
   }
   for (const RigidWallOptions& wall : deck.rigid_walls)
     check("rigid wall " + wall.name, wall.slave_points, wall.slave);
+  // Erosion and contact: what is not done yet, said where it matters.
+  for (const ContactOptions& pair : deck.contact) {
+    std::vector<FaceRef> faces = pair.slave;
+    faces.insert(faces.end(), pair.master.begin(), pair.master.end());
+    for (const FaceRef& face : faces) {
+      const PartOptions& part = deck.parts[std::size_t(face.part)];
+      if (deck.materials[std::size_t(part.material_index)].failure == FailureModel::none) continue;
+      warnings.push_back("contact pair " + pair.name + ": part " + part.name +
+                         " can fail; its eroded elements' faces stay in the contact as their free nodes, and "
+                         "the faces erosion exposes do not join it (docs/theory.md, \"Damage and erosion\")");
+      break;
+    }
+  }
   return warnings;
 }
 

@@ -19,6 +19,13 @@ using Vec3 = std::array<double, 3>;
 // hardening, linear or tabulated; johnson_cook: von Mises with the Johnson-Cook flow
 // stress without temperature (docs/theory.md, "Materials").
 enum class MaterialModel { linear_elastic, elastic_plastic, johnson_cook };
+enum class FailureModel { none, plastic_strain, johnson_cook };
+// Where the Johnson-Cook failure strain is used (docs/theory.md, "Damage and erosion"):
+// no damage at a triaxiality below -1/3, eps_f held at its value at 1.5 above 1.5, and
+// the rate ratio held at 1e12 above it. A deck's D values must give eps_f > 0 there.
+inline constexpr double failure_triaxiality_min = -1.0 / 3.0;
+inline constexpr double failure_triaxiality_max = 1.5;
+inline constexpr double failure_rate_ratio_max = 1.0e12;
 
 struct MaterialOptions {
   std::string name;
@@ -37,6 +44,11 @@ struct MaterialOptions {
   double jc_n = 1.0;                   // n > 0
   double jc_c = 0.0;                   // C >= 0
   double reference_strain_rate = 1.0;  // eps_dot_0 > 0, 1/s
+  // failure (elastic_plastic, johnson_cook): none, {plastic_strain: eps_f} or
+  // {johnson_cook: {D1, D2, D3, D4, D5}} (docs/theory.md, "Damage and erosion").
+  FailureModel failure = FailureModel::none;
+  double failure_strain = 0.0;        // eps_f > 0 of plastic_strain
+  std::array<double, 5> failure_d{};  // D1 .. D5 of johnson_cook (D5, temperature: kept, not used)
 
   bool operator==(const MaterialOptions&) const = default;
 };
@@ -164,9 +176,13 @@ struct FaceRef {
   bool operator==(const FaceRef&) const = default;
 };
 
+// `fix: [x]` is `velocity: {x: 0}`: a component of the faces' nodes' velocity held at
+// a constant value from the start (a prescribed motion).
 struct BoundaryConditionOptions {
   std::vector<FaceRef> faces;
-  std::array<bool, 3> fix{false, false, false};  // x, y, z velocity held at zero
+  std::array<bool, 3> fix{false, false, false};   // x, y, z: the velocity component is prescribed
+  std::array<double, 3> velocity{0.0, 0.0, 0.0};  // its value where fix, m/s (0: held at rest)
+  bool moving() const { return velocity[0] != 0.0 || velocity[1] != 0.0 || velocity[2] != 0.0; }
 
   bool operator==(const BoundaryConditionOptions&) const = default;
 };
@@ -287,10 +303,19 @@ enum class OutputField {
   von_mises,
   contact_force,
   gap,
-  plastic_strain
+  plastic_strain,
+  damage,  // per element: D of a failing material (0 elsewhere)
+  status   // per element: 1 alive, 0 eroded
 };
 
-inline constexpr std::array<OutputField, 8> all_output_fields{
+inline constexpr std::array<OutputField, 10> all_output_fields{
+    OutputField::displacement, OutputField::velocity,       OutputField::acceleration,
+    OutputField::stress,       OutputField::von_mises,      OutputField::contact_force,
+    OutputField::gap,          OutputField::plastic_strain, OutputField::damage,
+    OutputField::status};
+// The fields written when the deck lists none: all but damage and status, which join
+// them when a material can fail (deck_validator.cpp).
+inline constexpr std::array<OutputField, 8> default_output_fields{
     OutputField::displacement, OutputField::velocity,      OutputField::acceleration,
     OutputField::stress,       OutputField::von_mises,     OutputField::contact_force,
     OutputField::gap,          OutputField::plastic_strain};
@@ -298,7 +323,7 @@ inline constexpr std::array<OutputField, 8> all_output_fields{
 struct OutputOptions {
   std::string directory = "results";
   int every = 100;  // steps between field outputs (first and last always written)
-  std::vector<OutputField> fields{all_output_fields.begin(), all_output_fields.end()};
+  std::vector<OutputField> fields{default_output_fields.begin(), default_output_fields.end()};
   int history_every = 1;  // steps between energy history rows
   // Written by a thread of the writer's own while the time loop goes on (docs/output.md).
   bool background = true;

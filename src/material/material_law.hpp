@@ -8,6 +8,7 @@
 #include "input/options.hpp"
 #include "material/elastic.hpp"
 #include "material/elastic_plastic.hpp"
+#include "material/failure.hpp"
 #include "material/j2.hpp"
 #include "material/johnson_cook.hpp"
 
@@ -24,6 +25,7 @@ struct MaterialLaw {
   // hex8 under finite kinematics: F-bar (the element's mean volume ratio in the
   // volumetric response), against the volumetric locking of plastic flow.
   bool f_bar = true;
+  Failure failure;  // damage and erosion (none: the material never breaks)
 
   // The small-strain linear elastic law of the fast kernels (no state, no law call).
   bool linear_small() const { return flow == FlowRule::none && !finite; }
@@ -36,6 +38,7 @@ inline MaterialLaw make_law(const input::MaterialOptions& options, input::Kinema
   MaterialLaw law;
   law.finite = kinematics == input::Kinematics::finite;
   law.f_bar = f_bar;
+  law.failure = make_failure(options);
   switch (options.model) {
     case input::MaterialModel::linear_elastic:
       break;

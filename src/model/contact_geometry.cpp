@@ -95,10 +95,8 @@ std::vector<contact::SegmentEdges> segment_edges(const Model& model,
   auto mirror_axis = [&](std::uint32_t a, std::uint32_t b) {
     const std::array<const std::vector<double>*, 3> coordinate{&x.x, &x.y, &x.z};
     for (int c = 0; c < 3; ++c) {
-      const auto& fixed = model.fixed_nodes[std::size_t(c)];
       const double xa = (*coordinate[std::size_t(c)])[a], xb = (*coordinate[std::size_t(c)])[b];
-      if (std::binary_search(fixed.begin(), fixed.end(), a) &&
-          std::binary_search(fixed.begin(), fixed.end(), b) &&
+      if (held_at_rest(model, c, a) && held_at_rest(model, c, b) &&
           std::abs(xa - xb) <= 1.0e-12 * std::max({std::abs(xa), std::abs(xb), 1.0e-3}))
         return c;
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "common/errors.hpp"
@@ -48,18 +49,64 @@ Model build_model(const input::Deck& deck) {
           for (int c = 0; c < 3; ++c) model.load_acceleration.component(c)[i] += load.gravity[std::size_t(c)];
       }
   }
-  for (const auto& bc : deck.boundary_conditions)
-    for (const auto& face_ref : bc.faces) {
+  std::vector<std::vector<std::uint32_t>> condition_nodes;
+  for (const auto& bc : deck.boundary_conditions) {
+    std::vector<std::uint32_t>& nodes = condition_nodes.emplace_back();
+    for (const auto& face_ref : bc.faces) {  // every node of the face, mid-side nodes included
       const mesh::Face face = mesh::face_of(model.mesh, face_ref);
-      for (int c = 0; c < 3; ++c)  // every node of the face, mid-side nodes included
-        if (bc.fix[c])
-          model.fixed_nodes[c].insert(model.fixed_nodes[c].end(), face.nodes.begin(), face.nodes.end());
+      nodes.insert(nodes.end(), face.nodes.begin(), face.nodes.end());
     }
-  for (auto& nodes : model.fixed_nodes) {
-    std::sort(nodes.begin(), nodes.end());
-    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
   }
+  PrescribedMotion motion = prescribed_motion(deck, condition_nodes);
+  if (!motion.conflict.empty()) throw InputError(motion.conflict);
+  model.fixed_nodes = std::move(motion.nodes);
+  model.fixed_velocity = std::move(motion.velocity);
+  model.boundary = std::move(motion.boundary);
   return model;
+}
+
+PrescribedMotion prescribed_motion(const input::Deck& deck,
+                                   const std::vector<std::vector<std::uint32_t>>& condition_nodes) {
+  PrescribedMotion out;
+  const auto& conditions = deck.boundary_conditions;
+  out.boundary.resize(conditions.size());
+  for (std::size_t c = 0; c < 3; ++c) {
+    // (node, condition) of every prescribed component c, the earliest condition first.
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> claims;
+    for (std::size_t b = 0; b < conditions.size(); ++b) {
+      out.boundary[b].velocity[c] = conditions[b].fix[c] ? conditions[b].velocity[c] : 0.0;
+      if (!conditions[b].fix[c]) continue;
+      for (const std::uint32_t node : condition_nodes[b]) claims.emplace_back(node, std::uint32_t(b));
+    }
+    std::sort(claims.begin(), claims.end());
+    claims.erase(std::unique(claims.begin(), claims.end()), claims.end());
+    std::uint32_t owner = 0;  // the earliest condition at the current node
+    for (std::size_t k = 0; k < claims.size(); ++k) {
+      const auto [node, b] = claims[k];
+      const double value = conditions[b].velocity[c];
+      if (k > 0 && claims[k - 1].first == node) {  // a later condition at the same node
+        const double earlier = conditions[owner].velocity[c];
+        if (value != earlier && out.conflict.empty()) {
+          char text[300];
+          std::snprintf(text, sizeof text,
+                        "boundary_conditions[%u] and boundary_conditions[%u] prescribe different %s "
+                        "velocities (%.6g and %.6g m/s) at node %u, on faces they share",
+                        unsigned(owner), unsigned(b),
+                        c == 0   ? "x"
+                        : c == 1 ? "y"
+                                 : "z",
+                        earlier, value, unsigned(node));
+          out.conflict = text;
+        }
+        continue;
+      }
+      owner = b;
+      out.nodes[c].push_back(node);
+      out.velocity[c].push_back(value);
+      out.boundary[b].nodes[c].push_back(node);
+    }
+  }
+  return out;
 }
 
 std::array<double, 3> part_initial_velocity(const input::PartOptions& part, const std::array<double, 3>& x) {
@@ -86,7 +133,7 @@ NodalVectors initial_velocity(const input::Deck& deck, const Model& model) {
       v.x[i] = vi[0], v.y[i] = vi[1], v.z[i] = vi[2];
     }
   }
-  apply_fixed_components(model, v);
+  apply_prescribed_velocity(model, v);
   return v;
 }
 
@@ -94,6 +141,23 @@ void apply_fixed_components(const Model& model, NodalVectors& field) {
   for (int c = 0; c < 3; ++c) {
     auto& component = field.component(c);
     for (const std::uint32_t node : model.fixed_nodes[c]) component[node] = 0.0;
+  }
+}
+
+bool held_at_rest(const Model& model, int c, std::uint32_t node) {
+  const std::vector<std::uint32_t>& nodes = model.fixed_nodes[std::size_t(c)];
+  const auto at = std::lower_bound(nodes.begin(), nodes.end(), node);
+  if (at == nodes.end() || *at != node) return false;
+  const std::vector<double>& values = model.fixed_velocity[std::size_t(c)];
+  return values.empty() || values[std::size_t(at - nodes.begin())] == 0.0;
+}
+
+void apply_prescribed_velocity(const Model& model, NodalVectors& velocity) {
+  for (int c = 0; c < 3; ++c) {
+    auto& component = velocity.component(c);
+    const std::vector<std::uint32_t>& nodes = model.fixed_nodes[std::size_t(c)];
+    const std::vector<double>& values = model.fixed_velocity[std::size_t(c)];
+    for (std::size_t k = 0; k < nodes.size(); ++k) component[nodes[k]] = values.empty() ? 0.0 : values[k];
   }
 }
 

@@ -26,13 +26,12 @@ mesh::KeepSegment off_held_planes(const Model& model) {
   return [&model](const mesh::FaceSegment& segment) {
     const NodalVectors& x = model.mesh.x_ref;
     for (int c = 0; c < 3; ++c) {
-      const std::vector<std::uint32_t>& fixed = model.fixed_nodes[std::size_t(c)];
       const std::vector<double>& coordinate = x.component(c);
       const double x0 = coordinate[segment.nodes[0]];
       bool held_plane = true;
       for (int k = 0; k < segment.node_count && held_plane; ++k) {
         const std::uint32_t node = segment.nodes[std::size_t(k)];
-        held_plane = std::binary_search(fixed.begin(), fixed.end(), node) &&
+        held_plane = held_at_rest(model, c, node) &&
                      std::abs(coordinate[node] - x0) <= 1.0e-12 * std::max({std::abs(x0), 1.0e-3});
       }
       if (held_plane) return false;

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <mutex>
@@ -62,7 +63,7 @@ struct FieldLayout {
 // the order of the deck's list, so that files of different runs compare.
 // Stress is "Matrix" E x 6: every ParaView 5.11 XDMF reader keeps 6 components
 // labelled XX YY ZZ XY YZ XZ ("Tensor6" is expanded to 9 by the Xdmf2 reader).
-constexpr std::array<FieldLayout, 8> field_layouts{{
+constexpr std::array<FieldLayout, 10> field_layouts{{
     {input::OutputField::displacement, "displacement", Center::node, 3, "Vector"},
     {input::OutputField::velocity, "velocity", Center::node, 3, "Vector"},
     {input::OutputField::acceleration, "acceleration", Center::node, 3, "Vector"},
@@ -71,10 +72,12 @@ constexpr std::array<FieldLayout, 8> field_layouts{{
     {input::OutputField::contact_force, "contact_force", Center::node, 3, "Vector"},
     {input::OutputField::gap, "gap", Center::node, 1, "Scalar"},
     {input::OutputField::plastic_strain, "plastic_strain", Center::cell, 1, "Scalar"},
+    {input::OutputField::damage, "damage", Center::cell, 1, "Scalar"},
+    {input::OutputField::status, "status", Center::cell, 1, "Scalar"},
 }};
 
 using HistoryColumn = std::pair<const char*, double HistoryRow::*>;
-constexpr std::array<HistoryColumn, 9> history_columns{{
+constexpr std::array<HistoryColumn, 11> history_columns{{
     {"time", &HistoryRow::time},
     {"kinetic_energy", &HistoryRow::kinetic_energy},
     {"internal_energy", &HistoryRow::internal_energy},
@@ -84,6 +87,8 @@ constexpr std::array<HistoryColumn, 9> history_columns{{
     {"total_energy", &HistoryRow::total_energy},
     {"plastic_work", &HistoryRow::plastic_work},
     {"friction_work", &HistoryRow::friction_work},
+    {"eroded_energy", &HistoryRow::eroded_energy},
+    {"eroded_mass", &HistoryRow::eroded_mass},
 }};
 
 std::string step_group_name(long step) {
@@ -121,8 +126,9 @@ struct ResultWriter::Impl {
   std::vector<HistoryRow> pending_history;
   std::vector<std::string> contact_pairs;          // names, for /history/contact/NAME
   std::vector<ContactHistoryRow> pending_contact;  // contact_pairs.size() per pending history row
-  std::vector<std::string> walls;                  // names, for /history/wall/NAME
-  std::vector<WallHistoryRow> pending_walls;       // walls.size() per pending history row
+  // The groups of a force series: /history/wall/NAME, then /history/boundary/INDEX.
+  std::vector<std::string> walls;
+  std::vector<WallHistoryRow> pending_walls;  // walls.size() per pending history row
   hsize_t history_rows_on_disk = 0;
   // Elements of 8 and 20 nodes mixed: the .xmf names /mesh/mixed_topology (XDMF "Mixed").
   bool mixed = false;
@@ -262,11 +268,14 @@ void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
       create_series(errors, file.get(), "/history/contact/" + pair + "/tangential_force");
     }
   }
-  if (!walls.empty()) {
-    create_group(errors, file.get(), "/history/wall");
-    for (const std::string& wall : walls) {
-      create_group(errors, file.get(), "/history/wall/" + wall);
-      create_series(errors, file.get(), "/history/wall/" + wall + "/force", 3);
+  for (const char* parent : {"/history/wall/", "/history/boundary/"}) {
+    bool first = true;
+    for (const std::string& group : walls) {
+      if (group.rfind(parent, 0) != 0) continue;
+      if (first) create_group(errors, file.get(), std::string(parent, std::strlen(parent) - 1));
+      first = false;
+      create_group(errors, file.get(), group);
+      create_series(errors, file.get(), group + "/force", 3);
     }
   }
   file.close();
@@ -302,12 +311,12 @@ void ResultWriter::Impl::write_history(hid_t file, const std::vector<HistoryRow>
     for (std::size_t i = 0; i < rows.size(); ++i)
       for (int c = 0; c < 3; ++c)
         force[3 * i + std::size_t(c)] = wall_rows[wall_count * i + k].force[std::size_t(c)];
-    append_series(errors, file, "/history/wall/" + walls[k] + "/force", history_rows_on_disk, force, 3);
+    append_series(errors, file, walls[k] + "/force", history_rows_on_disk, force, 3);
   }
 }
 
 // The rows of one field as the file stores them: (N, 3) or (E, 6) row-major, or
-// (N,) / (E,); zeros for a requested field the solver did not provide.
+// (N,) / (E,); zeros (status: ones) for a requested field the solver did not provide.
 void ResultWriter::Impl::fill_field(std::vector<double>& out, const FieldLayout& layout,
                                     const StepData& data) {
   const std::size_t n = held_rows(layout.center);
@@ -339,14 +348,20 @@ void ResultWriter::Impl::fill_field(std::vector<double>& out, const FieldLayout&
     case input::OutputField::plastic_strain:
       values = data.plastic_strain;
       break;
+    case input::OutputField::damage:
+      values = data.damage;
+      break;
+    case input::OutputField::status:
+      values = data.status;
+      break;
   }
   out.resize(count);
   if (data.fill_rows) {
     data.fill_rows(layout.field, out.data());
     return;
   }
-  if (vectors == nullptr && values == nullptr) {
-    std::fill(out.begin(), out.end(), 0.0);
+  if (vectors == nullptr && values == nullptr) {  // status: every element alive
+    std::fill(out.begin(), out.end(), layout.field == input::OutputField::status ? 1.0 : 0.0);
     return;
   }
   // On the threads in blocks of 16,384 rows (the write itself is serial).
@@ -556,7 +571,9 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   impl_->mixed = has_8 && has_20;
   impl_->nodes_per_element = has_20 ? 20 : 8;
   impl_->contact_pairs = groups.contact_pairs;
-  impl_->walls = groups.walls;
+  for (const std::string& wall : groups.walls) impl_->walls.push_back("/history/wall/" + wall);
+  for (std::size_t b = 0; b < groups.boundaries; ++b)
+    impl_->walls.push_back("/history/boundary/" + std::to_string(b));
   for (const FieldLayout& layout : field_layouts) {
     if (std::find(fields.begin(), fields.end(), layout.field) != fields.end())
       impl_->fields.push_back(&layout);
@@ -616,8 +633,8 @@ void ResultWriter::add_history(const HistoryRow& row, const std::vector<ContactH
     throw std::logic_error("ResultWriter::add_history: " + std::to_string(contact.size()) +
                            " contact rows for " + std::to_string(impl_->contact_pairs.size()) + " pairs");
   if (walls.size() != impl_->walls.size())
-    throw std::logic_error("ResultWriter::add_history: " + std::to_string(walls.size()) + " wall rows for " +
-                           std::to_string(impl_->walls.size()) + " walls");
+    throw std::logic_error("ResultWriter::add_history: " + std::to_string(walls.size()) +
+                           " wall and boundary rows for " + std::to_string(impl_->walls.size()));
   impl_->pending_walls.insert(impl_->pending_walls.end(), walls.begin(), walls.end());
   impl_->pending_history.push_back(row);
   impl_->pending_contact.insert(impl_->pending_contact.end(), contact.begin(), contact.end());

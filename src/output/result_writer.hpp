@@ -51,6 +51,8 @@ struct StepData {
   const double* von_mises = nullptr;       // E
   const double* gap = nullptr;             // N
   const double* plastic_strain = nullptr;  // E: mean equivalent plastic strain (null: 0, elastic parts)
+  const double* damage = nullptr;          // E: damage D (null: 0)
+  const double* status = nullptr;          // E: 1 alive, 0 eroded (null: all 1)
   // Instead of the pointers (many ranks): writes this rank's rows of a requested field
   // straight into the step's buffer, in the file's layout ((rows, 3) or (rows, 6)
   // row-major, or (rows,)), so no rank keeps a copy of its rows beside the buffer.
@@ -68,6 +70,8 @@ struct HistoryRow {
   double total_energy = 0.0;
   double plastic_work = 0.0;   // a part of internal_energy (docs/output.md)
   double friction_work = 0.0;  // a part of contact_energy (docs/output.md)
+  double eroded_energy = 0.0;  // energy that left with eroded elements, in total_energy
+  double eroded_mass = 0.0;    // mass that left with them, kg
 };
 
 // One history row of one contact pair.
@@ -83,11 +87,13 @@ struct WallHistoryRow {
   std::array<double, 3> force{};  // total force of the wall on the bodies, N
 };
 
-// The names of the groups under /history: contact pairs (/history/contact/NAME) and
-// rigid walls (/history/wall/NAME).
+// The names of the groups under /history: contact pairs (/history/contact/NAME),
+// rigid walls (/history/wall/NAME) and boundary conditions (/history/boundary/INDEX,
+// their count).
 struct HistoryGroups {
   std::vector<std::string> contact_pairs;
   std::vector<std::string> walls;
+  std::size_t boundaries = 0;
   HistoryGroups() = default;
   HistoryGroups(std::vector<std::string> pairs, std::vector<std::string> wall_names = {})  // NOLINT: implicit
       : contact_pairs(std::move(pairs)), walls(std::move(wall_names)) {}
@@ -117,8 +123,9 @@ class ResultWriter {
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
 
-  // Buffers a history row, with one row per contact pair (in the constructor's
-  // order); rows are flushed to /history at every write_step and flush().
+  // Buffers a history row, with one row per contact pair and one per rigid wall then
+  // per boundary condition (the reaction force: WallHistoryRow), in the constructor's
+  // order; rows are flushed to /history at every write_step and flush().
   void add_history(const HistoryRow& row, const std::vector<ContactHistoryRow>& contact = {},
                    const std::vector<WallHistoryRow>& walls = {});
   // Writes /steps/NNNNNN, appends to /time, flushes history, closes the file,

@@ -41,6 +41,8 @@ Json to_json(const RunSummary& s) {
   energy["internal"] = number(s.energy.internal);
   energy["hourglass"] = number(s.energy.hourglass);
   energy["plastic_work"] = number(s.energy.plastic_work);
+  energy["eroded"] = number(s.energy.eroded);
+  energy["eroded_elements"] = s.energy.eroded_elements;
 
   const auto figures = [](const ContactFigures& f) {
     Json json;

@@ -26,6 +26,8 @@ struct EnergySummary {
   double internal = 0.0;      // stored elastic energy plus plastic work
   double hourglass = 0.0;     // hourglass spring energy (hex8r)
   double plastic_work = 0.0;  // a part of internal
+  double eroded = 0.0;        // the energy that left with eroded elements so far
+  long eroded_elements = 0;   // elements failed and removed so far
 };
 
 struct ContactFigures {

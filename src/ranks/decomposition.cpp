@@ -361,8 +361,18 @@ LocalRun localize(const Model& global, const std::vector<std::uint32_t>& contact
         m.load_acceleration.component(c)[i] = global.load_acceleration.component(c)[d.global_node[i]];
   }
   for (std::size_t c = 0; c < 3; ++c)
-    for (const std::uint32_t g : global.fixed_nodes[c])
-      if (w.local_of[g] >= 0) m.fixed_nodes[c].push_back(static_cast<std::uint32_t>(w.local_of[g]));
+    for (std::size_t k = 0; k < global.fixed_nodes[c].size(); ++k)
+      if (const std::int64_t local = w.local_of[global.fixed_nodes[c][k]]; local >= 0) {
+        m.fixed_nodes[c].push_back(static_cast<std::uint32_t>(local));
+        m.fixed_velocity[c].push_back(global.fixed_velocity[c][k]);
+      }
+  m.boundary.resize(global.boundary.size());
+  for (std::size_t b = 0; b < global.boundary.size(); ++b) {
+    m.boundary[b].velocity = global.boundary[b].velocity;
+    for (std::size_t c = 0; c < 3; ++c)
+      for (const std::uint32_t g : global.boundary[b].nodes[c])
+        if (w.local_of[g] >= 0) m.boundary[b].nodes[c].push_back(static_cast<std::uint32_t>(w.local_of[g]));
+  }
   return run;
 }
 

@@ -221,7 +221,13 @@ void nodes_of_rank(const input::Deck& deck, const SetupParts& deck_parts, const 
     m.inverse_mass[i] = 1.0 / m.mass[i];
     m.counted_mass[i] = d.owned[i] != 0 ? m.mass[i] : 0.0;
   }
-  m.fixed_nodes = fixed_of(deck, deck_parts, d.global_node);
+  PrescribedMotion motion = fixed_of(deck, deck_parts, d.global_node);
+  // A conflict at a node some ranks hold: every rank stops with the first rank's message.
+  if (const std::string conflict = mpi::first_message(d.comm, motion.conflict); !conflict.empty())
+    throw InputError(conflict);
+  m.fixed_nodes = std::move(motion.nodes);
+  m.fixed_velocity = std::move(motion.velocity);
+  m.boundary = std::move(motion.boundary);
   if (!deck.loads.empty()) {
     m.load_acceleration.resize(local_nodes);
     for (const input::LoadOptions& load : deck.loads)

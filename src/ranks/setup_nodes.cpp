@@ -84,7 +84,7 @@ NodalVectors initial_velocities(const SetupParts& deck_parts, const std::vector<
         part_initial_velocity(*deck_parts.part_of_node(nodes[i]).options, {x.x[i], x.y[i], x.z[i]});
     v.x[i] = vi[0], v.y[i] = vi[1], v.z[i] = vi[2];
   }
-  apply_fixed_components(m, v);
+  apply_prescribed_velocity(m, v);
   return v;
 }
 
@@ -101,22 +101,27 @@ mesh::KeepSegment touching(const std::vector<std::uint32_t>& nodes) {
 // `nodes` of those on a face of a boundary condition fixing component c (build_model's
 // rule: every node of the face, mid-side nodes included), from the faces' segments
 // touching `nodes`.
-std::array<std::vector<std::uint32_t>, 3> fixed_of(const input::Deck& deck, const SetupParts& deck_parts,
-                                                   const std::vector<std::uint32_t>& nodes) {
-  std::array<std::vector<std::uint32_t>, 3> held;  // global ids, per component
-  for (const auto& bc : deck.boundary_conditions)
+PrescribedMotion fixed_of(const input::Deck& deck, const SetupParts& deck_parts,
+                          const std::vector<std::uint32_t>& nodes) {
+  std::vector<std::vector<std::uint32_t>> condition_nodes;  // global ids among `nodes`
+  for (const auto& bc : deck.boundary_conditions) {
+    std::vector<std::uint32_t>& mine = condition_nodes.emplace_back();
     for (const input::FaceRef& f : bc.faces) {
       const mesh::Face face = deck_parts.list.at(std::size_t(f.part)).face(f, touching(nodes));
-      for (std::size_t c = 0; c < 3; ++c)
-        if (bc.fix[c]) held[c].insert(held[c].end(), face.nodes.begin(), face.nodes.end());
+      for (const std::uint32_t g : face.nodes)
+        if (std::binary_search(nodes.begin(), nodes.end(), g)) mine.push_back(g);
     }
-  std::array<std::vector<std::uint32_t>, 3> fixed;
-  for (std::size_t c = 0; c < 3; ++c) {
-    std::sort(held[c].begin(), held[c].end());
-    for (std::size_t i = 0; i < nodes.size(); ++i)
-      if (std::binary_search(held[c].begin(), held[c].end(), nodes[i])) fixed[c].push_back(std::uint32_t(i));
   }
-  return fixed;
+  PrescribedMotion motion = prescribed_motion(deck, condition_nodes);
+  const auto index = [&](std::uint32_t g) {
+    return std::uint32_t(std::lower_bound(nodes.begin(), nodes.end(), g) - nodes.begin());
+  };
+  for (std::size_t c = 0; c < 3; ++c) {
+    for (std::uint32_t& g : motion.nodes[c]) g = index(g);
+    for (BoundaryNodes& condition : motion.boundary)
+      for (std::uint32_t& g : condition.nodes[c]) g = index(g);
+  }
+  return motion;
 }
 
 SurfaceModel surface_model(const input::Deck& deck, const SetupParts& deck_parts, const NearRank* near) {
@@ -174,7 +179,9 @@ SurfaceModel surface_model(const input::Deck& deck, const SetupParts& deck_parts
   m.mesh.x_ref = deck_parts.points(out.nodes);
   if (!near) {
     m.mass = masses_of(deck, deck_parts, out.nodes);
-    m.fixed_nodes = fixed_of(deck, deck_parts, out.nodes);
+    PrescribedMotion motion = fixed_of(deck, deck_parts, out.nodes);
+    m.fixed_nodes = std::move(motion.nodes);
+    m.fixed_velocity = std::move(motion.velocity);
   } else {
     out.held.resize(out.nodes.size());
     m.mass.assign(out.nodes.size(), std::numeric_limits<double>::infinity());
@@ -185,9 +192,12 @@ SurfaceModel surface_model(const input::Deck& deck, const SetupParts& deck_parts
       m.mass[k] = near->model.mass[std::size_t(at - near->nodes.begin())];
     }
     for (std::size_t c = 0; c < 3; ++c)
-      for (const std::uint32_t i : near->model.fixed_nodes[c])
-        if (std::binary_search(out.nodes.begin(), out.nodes.end(), near->nodes[i]))
-          m.fixed_nodes[c].push_back(index(near->nodes[i]));
+      for (std::size_t k = 0; k < near->model.fixed_nodes[c].size(); ++k) {
+        const std::uint32_t i = near->model.fixed_nodes[c][k];
+        if (!std::binary_search(out.nodes.begin(), out.nodes.end(), near->nodes[i])) continue;
+        m.fixed_nodes[c].push_back(index(near->nodes[i]));
+        m.fixed_velocity[c].push_back(near->model.fixed_velocity[c][k]);
+      }
   }
   m.inverse_mass.resize(m.mass.size());
   for (std::size_t i = 0; i < m.mass.size(); ++i) m.inverse_mass[i] = 1.0 / m.mass[i];

@@ -569,12 +569,11 @@ NodalVectors initial_velocities(const SetupParts& deck_parts, const std::vector<
 // Keeps the face segments with a node among `nodes` (global ids, ascending).
 mesh::KeepSegment touching(const std::vector<std::uint32_t>& nodes);
 
-// The fixed components of each of `nodes` (global ids, ascending): the indices into
-// `nodes` of those on a face of a boundary condition fixing component c (build_model's
-// rule: every node of the face, mid-side nodes included), from the faces' segments
-// touching `nodes`.
-std::array<std::vector<std::uint32_t>, 3> fixed_of(const input::Deck& deck, const SetupParts& deck_parts,
-                                                   const std::vector<std::uint32_t>& nodes);
+// The prescribed components of `nodes` (global ids, ascending), as indices into
+// `nodes` (build_model's rule: every node of a condition's faces, mid-side nodes
+// included), from the faces' segments touching `nodes`; a conflict names a global id.
+PrescribedMotion fixed_of(const input::Deck& deck, const SetupParts& deck_parts,
+                          const std::vector<std::uint32_t>& nodes);
 
 // A rank's nodes (global ids, ascending) and its model.
 struct NearRank {

@@ -68,8 +68,23 @@ class TimeLoop {
     return " at step " + std::to_string(state_.step) + ", time " + format_time(state_.time);
   }
   output::HistoryRow history_row() const {
-    return {state_.time,           energy_.kinetic, energy_.internal, energy_.contact, energy_.hourglass,
-            energy_.external_work, energy_.total(), energy_.plastic,  energy_.friction};
+    return {state_.time,
+            energy_.kinetic,
+            energy_.internal,
+            energy_.contact,
+            energy_.hourglass,
+            energy_.external_work,
+            energy_.total(),
+            energy_.plastic,
+            energy_.friction,
+            energy_.eroded,
+            0.0};
+  }
+  // The rigid walls' forces, then the boundary conditions' reactions.
+  std::vector<output::WallHistoryRow> force_rows() const {
+    std::vector<output::WallHistoryRow> rows = wall_history(contact_);
+    for (const auto& r : boundary_reaction_) rows.push_back({r});
+    return rows;
   }
 
   const input::Deck& deck_;
@@ -87,7 +102,8 @@ class TimeLoop {
   NodalUpdateFns nodal_update_{};
   bool side_by_side_ = false;
   bool output_step_ = false, last_ = false;
-  contact::ContactStatistics contact_statistics_;  // all pairs together, updated every step
+  contact::ContactStatistics contact_statistics_;         // all pairs together, updated every step
+  std::vector<std::array<double, 3>> boundary_reaction_;  // each condition's, over all ranks, N
   Energies energy_;
   NodalUpdate update_;
   Stopwatch loop_watch_;
@@ -109,6 +125,8 @@ class TimeLoop {
   // block's result kept here for check_inversion, stamped with the step.
   std::vector<element::InvertedElement> planned_inversion_;
   long planned_inversion_step_ = -1;
+  // What a prescribed velocity's start can show in E_mean (prescribed_jump_energy), J.
+  double start_jump_ = 0.0;
   bool small_strain_warned_ = false;
   int stop_requested_ = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
 };
@@ -155,6 +173,8 @@ void TimeLoop::open_writer(const RunControls& controls) {
   output::HistoryGroups history_groups;
   for (const auto& pair : contact_.pairs) history_groups.contact_pairs.push_back(pair.name);
   for (const auto& wall : contact_.walls) history_groups.walls.push_back(wall.name);
+  history_groups.boundaries = deck_.boundary_conditions.size();
+  boundary_reaction_.assign(history_groups.boundaries, {0.0, 0.0, 0.0});
   output::Distribution distribution;
   MeshRows mesh;
   const bool rows = controls.comm.distributed();
@@ -211,7 +231,23 @@ void TimeLoop::set_initial_state(NodalVectors initial_velocity) {
   state_.previous_gap.assign(node_count, 0.0);
   state_.stress.assign(6 * model_.mesh.element_count(), 0.0);
   state_.plastic_strain.assign(model_.mesh.element_count(), 0.0);
+  // The damage and status fields: arrays where a material fails or the deck asks for them
+  // (16 B per element; without them the writer writes 0 and 1).
+  const auto& fields = deck_.output.fields;
+  const bool failing = std::any_of(model_.blocks.begin(), model_.blocks.end(),
+                                   [](const element::ElementBlock& b) { return b.law.failure.active(); });
+  if (failing || std::find(fields.begin(), fields.end(), input::OutputField::damage) != fields.end() ||
+      std::find(fields.begin(), fields.end(), input::OutputField::status) != fields.end()) {
+    state_.damage.assign(model_.mesh.element_count(), 0.0);
+    state_.status.assign(model_.mesh.element_count(), 1.0);
+  }
   state_.velocity = std::move(initial_velocity);
+  // A failing block writes its stresses every step, and reads v^{n+1/2} for the energy of
+  // its failed elements (element_block.hpp, ElementFailure).
+  for (element::ElementBlock& block : model_.blocks)
+    if (block.law.failure.active())
+      block.failure.stress = state_.stress.data(), block.failure.velocity = &state_.velocity;
+  start_jump_ = prescribed_jump_energy(model_, controls_.comm);
   for (auto& p : state_.partial) p.assign(chunk_count(node_count), 0.0);
 }
 
@@ -303,6 +339,13 @@ void TimeLoop::compute_forces() {
   energy_.internal = element_energy.strain;
   energy_.hourglass = element_energy.hourglass;
   energy_.plastic = element_energy.plastic;
+  // Damage after the pass that made this step's plastic strains and stresses; an element
+  // failed now carries no force from the next step on (element_block.hpp, ElementFailure).
+  state_.eroded_energy += element_energy.eroded;
+  energy_.eroded = state_.eroded_energy;  // this rank's: summed over the ranks with the energies
+  for (const element::ElementBlock& block : model_.blocks)
+    state_.eroded_elements += element::update_damage(block, clock_->previous());
+  energy_.eroded_elements = double(state_.eroded_elements);
   if (!state_.load_force.empty()) add_load_work(model_, state_, clock_->previous());
   if (!contact_.empty()) {
     if (!side_by_side_) compute_contact_forces(model_, contact_, d_, state_, clock_->previous());
@@ -310,6 +353,7 @@ void TimeLoop::compute_forces() {
     energy_.contact = state_.contact_energy;
     energy_.friction = contact_.friction_work();
   }
+  if (!model_.boundary.empty()) add_boundary_reactions(model_, d_, state_, clock_->previous());
   energy_.external_work = state_.external_work;  // this rank's: summed over the ranks with the energies
 }
 
@@ -346,10 +390,11 @@ void TimeLoop::plan_time_step() {
 void TimeLoop::update_velocities_and_energy() {
   {
     ScopedTimer timer(summary_.phase_seconds.time_integration);
-    update_ = reduce_over_ranks(controls_.comm,
-                                update_velocities(model_, state_, clock_->velocity_step(state_.step),
-                                                  state_.step == 0, output_step_, nodal_update_),
-                                energy_, controls_.stop_signal, stop_requested_);
+    const NodalUpdate mine = update_velocities(model_, state_, clock_->velocity_step(state_.step),
+                                               state_.step == 0, output_step_, nodal_update_);
+    if (!state_.reaction.empty()) boundary_reaction_ = state_.reaction;
+    update_ = reduce_over_ranks(controls_.comm, mine, energy_, boundary_reaction_, state_.reaction_error,
+                                controls_.stop_signal, stop_requested_);
     if (!update_.finite) step_back_and_stop(describe_non_finite(model_, d_, state_) + when());
     energy_.kinetic = update_.kinetic;
     energy_.external_work += state_.wall_work;
@@ -372,6 +417,8 @@ void TimeLoop::update_velocities_and_energy() {
   summary_.energy.plastic_work = energy_.plastic;
   summary_.energy.hourglass = energy_.hourglass;
   summary_.energy.internal = energy_.internal;
+  summary_.energy.eroded = energy_.eroded;
+  summary_.energy.eroded_elements = long(energy_.eroded_elements);
   summarise_contact(contact_, contact_statistics_, summary_);
 }
 
@@ -379,7 +426,7 @@ void TimeLoop::update_velocities_and_energy() {
 void TimeLoop::check_guards() {
   ScopedTimer timer(summary_.phase_seconds.guards);
   const double growth = mean_energy_ - initial_mean_energy_;
-  const double scale = std::max(largest_energy_, largest_mean_energy_);  // J
+  const double scale = std::max(largest_energy_, largest_mean_energy_) + start_jump_;  // J
   summary_.guard_checks.largest_energy_growth =
       std::max(summary_.guard_checks.largest_energy_growth, scale > 0.0 ? growth / scale : 0.0);
   if (growth > deck_.guards.energy_growth * scale) {
@@ -439,33 +486,10 @@ void TimeLoop::check_inversion() {
   ++summary_.guard_checks.inversion_passes;
 }
 
-// Small strain reads a rotation as a strain (docs/theory.md, "Finite strain"): once a
-// small-strain part's stress reaches 10 % strain (|sigma| / E at a written step), say so.
-// Every rank calls it (one gather: the largest ratio and its part over the ranks).
 void TimeLoop::warn_small_strain() {
   if (small_strain_warned_) return;
-  double ratio = 0.0, part = 0.0;
-  for (const element::ElementBlock& block : model_.blocks) {
-    if (block.law.finite || block.count == 0) continue;
-    const double youngs = block.material.mu * (3.0 * block.material.lambda + 2.0 * block.material.mu) /
-                          (block.material.lambda + block.material.mu);
-    for (std::uint32_t e = 0; e < block.count; ++e)
-      for (int k = 0; k < 6; ++k) {
-        const double r = std::abs(state_.stress[6 * (std::size_t(block.first_element) + e) + k]) / youngs;
-        if (r > ratio) ratio = r, part = double(model_.mesh.element_part[block.first_element]);
-      }
-  }
-  const double mine[2] = {ratio, part};
-  const std::vector<double> all = mpi::all_gather(controls_.comm, mine, 2);
-  ratio = all[0], part = all[1];
-  for (std::size_t r = 1; r < all.size() / 2; ++r)
-    if (all[2 * r] > ratio) ratio = all[2 * r], part = all[2 * r + 1];
-  if (ratio <= 0.1) return;
-  char text[300];
-  std::snprintf(text, sizeof text,
-                "part %s: stress of %.3g E%s under small-strain kinematics, a strain past 10 %%: "
-                "small strain reads rotations as strain; set kinematics: finite",
-                deck_.parts[std::size_t(part)].name.c_str(), ratio, when().c_str());
+  const std::string text = small_strain_warning(deck_, model_, state_, controls_.comm, when());
+  if (text.empty()) return;
   summary_.warnings.push_back(text);
   small_strain_warned_ = true;
 }
@@ -473,7 +497,7 @@ void TimeLoop::warn_small_strain() {
 void TimeLoop::write_output() {
   ScopedTimer timer(summary_.phase_seconds.output);
   if (state_.step % deck_.output.history_every == 0 || last_)
-    writer_->add_history(history_row(), contact_history(contact_), wall_history(contact_));
+    writer_->add_history(history_row(), contact_history(contact_), force_rows());
   if (output_step_) {
     step_writer_->write(state_, clock_->next());
     last_written_ = state_.step;
@@ -498,7 +522,7 @@ void TimeLoop::update_positions() {
 void TimeLoop::stop_run(const std::string& message) {
   ScopedTimer timer(summary_.phase_seconds.output);
   if (state_.step > last_written_) {
-    writer_->add_history(history_row(), contact_history(contact_), wall_history(contact_));
+    writer_->add_history(history_row(), contact_history(contact_), force_rows());
     step_writer_->write(state_, clock_->next());
     last_written_ = state_.step;
   }

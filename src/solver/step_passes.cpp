@@ -181,6 +181,32 @@ void add_load_work(const Model& model, State& state, double dt) {
   state.external_work += dt * ordered_sum(state.partial[0]);
 }
 
+void add_boundary_reactions(const Model& model, const Decomposition& d, State& state, double dt) {
+  const std::size_t conditions = model.boundary.size();
+  state.previous_reaction.assign(conditions, {0.0, 0.0, 0.0});  // R^{n-1}, compensated
+  for (std::size_t b = 0; b < state.reaction.size(); ++b)
+    for (std::size_t c = 0; c < 3; ++c)
+      state.previous_reaction[b][c] = state.reaction[b][c] + state.reaction_error[b][c];
+  state.reaction.assign(conditions, {0.0, 0.0, 0.0});
+  state.reaction_error.assign(conditions, {0.0, 0.0, 0.0});
+  double work = 0.0;
+  for (std::size_t b = 0; b < conditions; ++b) {
+    const BoundaryNodes& condition = model.boundary[b];
+    for (int c = 0; c < 3; ++c) {
+      const double* f_int = state.internal_force.component(c).data();
+      const double* f_ext = state.contact_force.component(c).data();
+      double sum = 0.0, error = 0.0;
+      for (const std::uint32_t node : condition.nodes[std::size_t(c)])
+        if (d.owned.empty() || d.owned[node] != 0) add_compensated(sum, error, f_int[node] - f_ext[node]);
+      state.reaction[b][std::size_t(c)] = sum;
+      state.reaction_error[b][std::size_t(c)] = error;
+      work += 0.5 * dt * (state.previous_reaction[b][std::size_t(c)] + (sum + error)) *
+              condition.velocity[std::size_t(c)];
+    }
+  }
+  state.external_work += work;
+}
+
 // f_int (compute_internal_forces) and the contact forces (compute_contact_forces) of
 // step n, side by side on the threads. The two are independent: the element pass reads
 // u^n and writes f_int and the stresses, the contact pass reads u^n and v^{n-1/2} and
@@ -360,9 +386,15 @@ void add_scaled(NodalVectors& y, double scale, const NodalVectors& x) {
 }
 
 void gather_plastic_strain(const Model& model, State& state) {
-  for (const element::ElementBlock& block : model.blocks)
+  for (const element::ElementBlock& block : model.blocks) {
     std::copy(block.material_state.plastic_strain.begin(), block.material_state.plastic_strain.end(),
               state.plastic_strain.begin() + block.first_element);
+    const element::ElementFailure& f = block.failure;
+    for (std::size_t e = 0; e < f.status.size() && !state.status.empty(); ++e) {
+      state.damage[block.first_element + e] = f.damage[e];
+      state.status[block.first_element + e] = f.status[e] == element::ElementStatus::alive ? 1.0 : 0.0;
+    }
+  }
 }
 
 }  // namespace exdyn::solver

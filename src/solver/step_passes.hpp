@@ -33,19 +33,25 @@ struct State {
   // (the velocity update reads one array of external forces); contact_nodes and
   // loaded nodes carry contact_flag.
   NodalVectors contact_force;
-  NodalVectors previous_contact_force;         // f_contact(x^{n-1}) + f_load, N (for the contact work)
-  NodalVectors load_force;                     // f_load = m g, N; empty without loads
-  std::vector<double> gap;                     // signed normal gap of each slave node, m (0: no candidate)
-  std::vector<double> previous_gap;            // the gap of step n-1 (to step back after a non-finite step)
-  std::vector<double> stress;                  // 6 per element: xx yy zz xy yz xz, Pa
-  std::vector<double> plastic_strain;          // per element, for the output (gather_plastic_strain)
-  long stress_step = -1;                       // the step whose stresses `stress` holds (see below)
-  long force_step = -1;                        // the step whose f_int `internal_force` holds, -1: none
-  bool internal_force_zero = true;             // internal_force is all 0 (update_velocities zeroed it)
-  double contact_energy = 0.0;                 // work done against the contact forces, J
-  double external_work = 0.0;                  // work of the loads, J (on many ranks: the owned nodes')
-  double wall_work = 0.0;                      // work of the moving walls, J (every rank: the whole)
-  std::array<std::vector<double>, 4> partial;  // per-chunk sums of the nodal loops (parallel.hpp)
+  NodalVectors previous_contact_force;  // f_contact(x^{n-1}) + f_load, N (for the contact work)
+  NodalVectors load_force;              // f_load = m g, N; empty without loads
+  std::vector<double> gap;              // signed normal gap of each slave node, m (0: no candidate)
+  std::vector<double> previous_gap;     // the gap of step n-1 (to step back after a non-finite step)
+  std::vector<double> stress;           // 6 per element: xx yy zz xy yz xz, Pa
+  std::vector<double> plastic_strain;   // per element, for the output (gather_plastic_strain)
+  std::vector<double> damage, status;   // per element, for the output (gather_plastic_strain)
+  double eroded_energy = 0.0;           // energy that left with eroded elements, J (this rank's)
+  long eroded_elements = 0;             // elements failed so far (this rank's)
+  long stress_step = -1;                // the step whose stresses `stress` holds (see below)
+  long force_step = -1;                 // the step whose f_int `internal_force` holds, -1: none
+  bool internal_force_zero = true;      // internal_force is all 0 (update_velocities zeroed it)
+  double contact_energy = 0.0;          // work done against the contact forces, J
+  double external_work = 0.0;           // work of the loads, J (on many ranks: the owned nodes')
+  double wall_work = 0.0;               // work of the moving walls, J (every rank: the whole)
+  // The reaction force of each boundary condition on the bodies at step n and n-1, N
+  // (this rank's owned nodes), and the compensation of its sum (see add_boundary_reactions).
+  std::vector<std::array<double, 3>> reaction, previous_reaction, reaction_error;
+  std::array<std::vector<double>, 4> partial;            // per-chunk sums of the nodal loops (parallel.hpp)
   std::vector<element::ElementEnergies> block_energies;  // per block, scratch of compute_forces_side_by_side
 };
 
@@ -57,7 +63,11 @@ struct Energies {
   double external_work = 0.0;
   double plastic = 0.0;   // plastic work so far, J: a part of `internal`
   double friction = 0.0;  // friction work so far, J: a part of `contact`
-  double total() const { return kinetic + internal + hourglass + contact - external_work; }
+  // The internal and hourglass energy that left the model with eroded elements so far, J
+  // (their mass stays on the nodes: no kinetic energy leaves).
+  double eroded = 0.0;
+  double eroded_elements = 0.0;  // failed so far (a count)
+  double total() const { return kinetic + internal + hourglass + contact - external_work + eroded; }
 };
 
 struct NodalUpdate {
@@ -83,6 +93,16 @@ void compute_contact_forces(const Model& model, ContactModel& contact, Decomposi
 // The work of the loads over the last step dt, added to state.external_work (before
 // the velocity update: v^{n-1/2}).
 void add_load_work(const Model& model, State& state, double dt);
+// The reaction of each boundary condition at step n, R = f_int - f_contact - f_load
+// summed over its node components (on many ranks the owned ones), into state.reaction
+// with the compensation of the sum in state.reaction_error (Neumaier's: a symmetry
+// plane's net reaction is a sum of forces that cancel, and compensated it comes out the
+// same on any number of ranks, reduce_over_ranks),
+// and the work of the prescribed motion over the last step dt, added to
+// state.external_work: W += dt/2 (R^{n-1} + R^n).V, the trapezoidal rule of the contact
+// work (with u^n - u^{n-1} = dt V on those nodes; exact for a linear elastic body).
+// Call after the forces of step n, before the velocity update (it clears f_int).
+void add_boundary_reactions(const Model& model, const Decomposition& d, State& state, double dt);
 // The two above side by side as OpenMP tasks (the same bits).
 element::ElementEnergies compute_forces_side_by_side(const Model& model, ContactModel& contact, State& state,
                                                      double dt, bool with_stress, double& element_seconds);
@@ -98,7 +118,8 @@ NodalUpdate update_velocities(const Model& model, State& state, double dt, bool 
 void update_positions(State& state, double dt, const NodalUpdateFns& passes);
 // y += scale x.
 void add_scaled(NodalVectors& y, double scale, const NodalVectors& x);
-// The blocks' per-element equivalent plastic strains into state.plastic_strain.
+// The blocks' per-element equivalent plastic strains into state.plastic_strain, and
+// their damage and status (1 alive, 0 failed or eroded) into state.damage and state.status.
 void gather_plastic_strain(const Model& model, State& state);
 
 }  // namespace exdyn::solver

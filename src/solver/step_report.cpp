@@ -117,6 +117,8 @@ void StepWriter::write(State& state, double dt) {
     data.stress = state.stress.data();
     data.von_mises = von_mises_.data();
     data.plastic_strain = state.plastic_strain.data();
+    data.damage = state.damage.empty() ? nullptr : state.damage.data();
+    data.status = state.status.empty() ? nullptr : state.status.data();
   } else {
     // The writer asks for the deck's fields only (every rank knows them: the same
     // deck), in its order on every rank; the owners' values go straight to its buffer.
@@ -139,6 +141,10 @@ void StepWriter::write(State& state, double dt) {
           return rows_of(d_, von_mises_.data(), 1, false, rows);
         case OutputField::plastic_strain:
           return rows_of(d_, state.plastic_strain.data(), 1, false, rows);
+        case OutputField::damage:
+          return rows_of(d_, state.damage.data(), 1, false, rows);
+        case OutputField::status:
+          return rows_of(d_, state.status.data(), 1, false, rows);
       }
     };
   }
@@ -202,27 +208,87 @@ void summarise_contact(const ContactModel& contact, const contact::ContactStatis
   summary.phase_seconds.contact_forces = forces;
 }
 
+std::string small_strain_warning(const input::Deck& deck, const Model& model, const State& state,
+                                 const mpi::Communicator& comm, const std::string& when) {
+  double ratio = 0.0, part = 0.0;
+  for (const element::ElementBlock& block : model.blocks) {
+    if (block.law.finite || block.count == 0) continue;
+    const double youngs = block.material.mu * (3.0 * block.material.lambda + 2.0 * block.material.mu) /
+                          (block.material.lambda + block.material.mu);
+    for (std::uint32_t e = 0; e < block.count; ++e)
+      for (int k = 0; k < 6; ++k) {
+        const double r = std::abs(state.stress[6 * (std::size_t(block.first_element) + e) + k]) / youngs;
+        if (r > ratio) ratio = r, part = double(model.mesh.element_part[block.first_element]);
+      }
+  }
+  const double mine[2] = {ratio, part};
+  const std::vector<double> all = mpi::all_gather(comm, mine, 2);
+  ratio = all[0], part = all[1];
+  for (std::size_t r = 1; r < all.size() / 2; ++r)
+    if (all[2 * r] > ratio) ratio = all[2 * r], part = all[2 * r + 1];
+  if (ratio <= 0.1) return "";
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "part %s: stress of %.3g E%s under small-strain kinematics, a strain past 10 %%: "
+                "small strain reads rotations as strain; set kinematics: finite",
+                deck.parts[std::size_t(part)].name.c_str(), ratio, when.c_str());
+  return text;
+}
+
+double prescribed_jump_energy(const Model& model, const mpi::Communicator& comm) {
+  const std::vector<double>& counted = model.counted_mass.empty() ? model.mass : model.counted_mass;
+  double jump = 0.0;
+  for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t k = 0; k < model.fixed_velocity[c].size(); ++k) {
+      const double v = model.fixed_velocity[c][k];
+      jump += 2.0 * counted[model.fixed_nodes[c][k]] * v * v;
+    }
+  double total = 0.0;
+  for (const double each : mpi::all_gather(comm, &jump, 1)) total += each;
+  return total;
+}
+
 // The figures of a step summed over the ranks, in rank order (the same bits on every
 // rank, so all take the same decisions): the nodal update's sums, the element
 // energies (in `energy`) and the stop signal any rank has seen. Identity on one rank.
 NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update, Energies& energy,
+                              std::vector<std::array<double, 3>>& reactions,
+                              const std::vector<std::array<double, 3>>& reaction_errors,
                               const volatile std::sig_atomic_t* stop_signal, int& stop_requested) {
   const int signal = stop_signal != nullptr ? int(*stop_signal) : 0;
   if (!comm.distributed()) {
     stop_requested = signal;
+    for (std::size_t b = 0; b < reactions.size(); ++b)
+      for (std::size_t c = 0; c < 3; ++c) reactions[b][c] += reaction_errors[b][c];
     return update;
   }
-  constexpr std::size_t n = 9;
-  const double mine[n] = {update.finite ? 0.0 : 1.0,
-                          update.kinetic,
-                          update.mass_acceleration_squared,
-                          update.largest_component,
-                          energy.internal,
-                          energy.hourglass,
-                          double(signal),
-                          energy.plastic,
-                          energy.external_work};
-  const std::vector<double> all = mpi::all_gather(comm, mine, int(n));
+  constexpr std::size_t fixed = 11;
+  const std::size_t n = fixed + 6 * reactions.size();
+  std::vector<double> mine = {update.finite ? 0.0 : 1.0,
+                              update.kinetic,
+                              update.mass_acceleration_squared,
+                              update.largest_component,
+                              energy.internal,
+                              energy.hourglass,
+                              double(signal),
+                              energy.plastic,
+                              energy.external_work,
+                              energy.eroded,
+                              energy.eroded_elements};
+  for (std::size_t b = 0; b < reactions.size(); ++b)
+    for (std::size_t c = 0; c < 3; ++c) mine.insert(mine.end(), {reactions[b][c], reaction_errors[b][c]});
+  const std::vector<double> all = mpi::all_gather(comm, mine.data(), int(n));
+  // Each reaction: every rank's sum and compensation, added compensated in rank order:
+  // the same value as one process's to a few units in its last place (add_boundary_reactions).
+  for (std::size_t b = 0; b < reactions.size(); ++b)
+    for (std::size_t c = 0; c < 3; ++c) {
+      double sum = 0.0, error = 0.0;
+      for (std::size_t r = 0; r < std::size_t(comm.size); ++r) {
+        add_compensated(sum, error, all[n * r + fixed + 6 * b + 2 * c]);
+        add_compensated(sum, error, all[n * r + fixed + 6 * b + 2 * c + 1]);
+      }
+      reactions[b][c] = sum + error;
+    }
   NodalUpdate total;
   total.finite = all[0] == 0.0;
   total.kinetic = all[1];
@@ -233,6 +299,8 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
   stop_requested = int(all[6]);
   energy.plastic = all[7];
   energy.external_work = all[8];
+  energy.eroded = all[9];
+  energy.eroded_elements = all[10];
   for (std::size_t r = 1; r < std::size_t(comm.size); ++r) {
     const double* f = all.data() + n * r;
     total.finite = total.finite && f[0] == 0.0;
@@ -244,6 +312,8 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
     stop_requested = std::max(stop_requested, int(f[6]));
     energy.plastic += f[7];
     energy.external_work += f[8];
+    energy.eroded += f[9];
+    energy.eroded_elements += f[10];
   }
   return total;
 }

@@ -3,6 +3,7 @@
 // agreed over the ranks.
 #pragma once
 
+#include <array>
 #include <csignal>
 #include <string>
 #include <utility>
@@ -44,8 +45,23 @@ std::string format_time(double seconds);
 std::string format_number(double value);
 void summarise_contact(const ContactModel& contact, const contact::ContactStatistics& statistics,
                        output::RunSummary& summary);
-// The nodal update's sums, the element energies and the stop signal over the ranks.
+// Small strain reads a rotation as a strain (docs/theory.md, "Finite strain"): once a
+// small-strain part's stress reaches 10 % strain (|sigma| / E at a written step), the
+// warning that says so (`when`: " at step ..."), else "". Every rank calls it (one
+// gather: the largest ratio and its part over the ranks).
+std::string small_strain_warning(const input::Deck& deck, const Model& model, const State& state,
+                                 const mpi::Communicator& comm, const std::string& when);
+// A prescribed velocity starts as a jump: a free neighbour of a driven node of equal
+// mass m gets dt a <= 4 V in its first step at the stability limit, so the dt^2 a^2 term
+// of the energy guard's E_mean can show up to 1/8 m (4 V)^2 = 2 m V^2 with nothing
+// unstable. The guard's scale counts 2 sum m V^2 over the driven node components (J,
+// over the ranks).
+double prescribed_jump_energy(const Model& model, const mpi::Communicator& comm);
+// The nodal update's sums, the element energies, the boundary reactions (in: this
+// rank's sums and their compensations, out: the whole) and the stop signal over the ranks.
 NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update, Energies& energy,
+                              std::vector<std::array<double, 3>>& reactions,
+                              const std::vector<std::array<double, 3>>& reaction_errors,
                               const volatile std::sig_atomic_t* stop_signal, int& stop_requested);
 // The exchanges' figures over the ranks and each rank's (mpi.per_rank; one process:
 // its memory and contact).

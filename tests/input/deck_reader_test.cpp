@@ -102,7 +102,8 @@ TEST(DeckReader, MinimalDeckGetsEveryDefault) {
   EXPECT_FALSE(deck.time.dt.has_value());
   EXPECT_EQ(deck.output.directory, "results");
   EXPECT_EQ(deck.output.every, 100);
-  EXPECT_EQ(deck.output.fields, std::vector<OutputField>(all_output_fields.begin(), all_output_fields.end()));
+  EXPECT_EQ(deck.output.fields,
+            std::vector<OutputField>(default_output_fields.begin(), default_output_fields.end()));
   EXPECT_EQ(deck.output.history_every, 1);
   EXPECT_TRUE(deck.output.background);  // the default
 }
@@ -217,6 +218,52 @@ TEST(DeckReader, HourglassModelSetsItsOwnDefaultCoefficient) {
     EXPECT_NE(std::string(e.what()).find("parts[0].hourglass.model"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("assumed_strain"), std::string::npos) << e.what();
   }
+}
+
+TEST(DeckReader, PrescribedVelocityIsFixWithValuesAndRoundTrips) {
+  const std::string text = read_text(test_deck_path("decks/minimal.yaml")) +
+                           "boundary_conditions:\n"
+                           "  - {faces: [bar.zmax], velocity: {z: -10.0, x: 0}}\n"
+                           "  - {faces: [bar.zmin], fix: [z]}\n";
+  const Deck deck = parse_deck(text, "inline.yaml");
+  ASSERT_EQ(deck.boundary_conditions.size(), 2u);
+  const BoundaryConditionOptions& moving = deck.boundary_conditions[0];
+  EXPECT_EQ(moving.fix, (std::array<bool, 3>{true, false, true}));
+  EXPECT_EQ(moving.velocity, (std::array<double, 3>{0.0, 0.0, -10.0}));
+  EXPECT_TRUE(moving.moving());
+  EXPECT_FALSE(deck.boundary_conditions[1].moving());
+  EXPECT_EQ(parse_deck(to_yaml(deck), "inline.yaml"), deck) << to_yaml(deck);
+  // `fix: [x]` is `velocity: {x: 0}`.
+  std::string zero = text;
+  zero.replace(zero.find("fix: [z]"), 8, "velocity: {z: 0}");
+  EXPECT_EQ(parse_deck(zero, "inline.yaml").boundary_conditions, deck.boundary_conditions);
+}
+
+TEST(DeckReader, FailureIsReadAndAddsDamageAndStatusToTheDefaultFields) {
+  std::string text = read_text(test_deck_path("decks/minimal.yaml"));
+  text.replace(
+      text.find("{model: linear_elastic,"), 23,
+      "{model: johnson_cook, A: 4.9e8, B: 3.8e8, n: 0.73, failure: {johnson_cook: {D1: 0.05, D2: 3.44, "
+      "D3: -2.12, D4: 0.002}},");
+  const Deck deck = parse_deck(text, "inline.yaml");
+  const MaterialOptions& steel = deck.materials[0];
+  EXPECT_EQ(steel.failure, FailureModel::johnson_cook);
+  EXPECT_EQ(steel.failure_d, (std::array<double, 5>{0.05, 3.44, -2.12, 0.002, 0.0}));
+  std::vector<OutputField> fields(default_output_fields.begin(), default_output_fields.end());
+  fields.push_back(OutputField::damage);
+  fields.push_back(OutputField::status);
+  EXPECT_EQ(deck.output.fields, fields);
+  EXPECT_EQ(parse_deck(to_yaml(deck), "inline.yaml"), deck) << to_yaml(deck);
+  // A list of fields is the list: no damage unless asked.
+  EXPECT_EQ(parse_deck(text + "output: {fields: [stress]}\n", "inline.yaml").output.fields,
+            std::vector<OutputField>{OutputField::stress});
+  std::string strain = text;
+  strain.replace(strain.find("{johnson_cook: {D1: 0.05, D2: 3.44, D3: -2.12, D4: 0.002}}"), 58,
+                 "{plastic_strain: 0.3}");
+  const Deck plain = parse_deck(strain, "inline.yaml");
+  EXPECT_EQ(plain.materials[0].failure, FailureModel::plastic_strain);
+  EXPECT_EQ(plain.materials[0].failure_strain, 0.3);
+  EXPECT_EQ(parse_deck(to_yaml(plain), "inline.yaml"), plain);
 }
 
 TEST(DeckReader, EmptyOptionalSectionsTakeTheirDefaults) {

@@ -198,5 +198,18 @@ TEST(SlavePointsAuto, IsTheDefaultAndWarnsOnlyOnNodesOfEightNodeSegments) {
                   .empty());  // 4-node segments
 }
 
+// Contact on a part that can fail is not complete (docs/theory.md, "Damage and
+// erosion"): the run says so.
+TEST(DeckWarnings, ContactOnAPartThatCanFailIsWarnedAbout) {
+  const std::string deck = std::string(EXDYN_SOURCE_DIR) + "/input/plate_impact.yaml";
+  EXPECT_TRUE(deck_warnings(read_deck(deck)).empty());
+  const std::vector<std::string> warnings = deck_warnings(
+      read_deck(deck, {{"materials.steel",
+                        "{model: elastic_plastic, density: 7800, youngs_modulus: 2.1e11, "
+                        "poissons_ratio: 0.3, yield_stress: 4.0e8, failure: {plastic_strain: 0.3}}"}}));
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_TRUE(contains(warnings[0], "contact pair interface: part plate_a can fail")) << warnings[0];
+}
+
 }  // namespace
 }  // namespace exdyn::input

@@ -266,7 +266,8 @@ TEST_F(ResultWriterTest, MeshIsWrittenOnceWithContractShapesAndTypes) {
 
   EXPECT_EQ(file.info("/time").shape, (std::vector<hsize_t>{0}));
   EXPECT_TRUE(file.members("/steps").empty());
-  EXPECT_EQ(file.members("/history").size(), 9u);  // the seven energies, plastic_work and friction_work
+  // the seven energies, plastic_work, friction_work, eroded_energy and eroded_mass
+  EXPECT_EQ(file.members("/history").size(), 11u);
 }
 
 TEST_F(ResultWriterTest, NoXdmfBeforeTheFirstStepAndAStaleOneIsRemoved) {
@@ -307,7 +308,10 @@ TEST_F(ResultWriterTest, StepsHoldEveryRequestedFieldInContractLayout) {
     EXPECT_EQ(file.attribute<std::int64_t>(group, "step", H5T_NATIVE_INT64, &type_class, &type_size), step);
     EXPECT_EQ(type_class, H5T_INTEGER);
     EXPECT_EQ(type_size, 8u);
-    EXPECT_EQ(file.members(group).size(), 8u);  // plastic_strain (zeros: not given) among them
+    // plastic_strain and damage (zeros: not given) and status (ones) among them
+    EXPECT_EQ(file.members(group).size(), 10u);
+    EXPECT_EQ(file.doubles(group + "/status"), std::vector<double>(2, 1.0));
+    EXPECT_EQ(file.doubles(group + "/damage"), std::vector<double>(2, 0.0));
 
     // Node vectors: SoA in memory, interleaved (N, 3) on disk.
     const std::map<std::string, double> vectors{
@@ -559,7 +563,7 @@ TEST_F(ResultWriterTest, XdmfDescribesEveryStepWithTheDatasetsShapesAndTypes) {
     EXPECT_EQ(m[2].str(), info.type_class == H5T_FLOAT ? "Float" : "Int") << m[5].str();
     EXPECT_EQ(m[3].str(), std::to_string(info.type_size)) << m[5].str();
   }
-  EXPECT_EQ(items, 3 * (2 + 8));  // mesh, then the eight fields
+  EXPECT_EQ(items, 3 * (2 + 10));  // mesh, then the ten fields
   EXPECT_EQ(count(xml, "<DataItem "), items) << "a DataItem the scan above did not recognise";
   EXPECT_EQ(count(xml, "Dimensions=\"2 6\""), 3);
   EXPECT_EQ(count(xml, "run.h5:/mesh/coordinates"), 3);
@@ -649,7 +653,7 @@ TEST_F(ResultWriterTest, InTheBackgroundTheFilesAreTheSame) {
       datasets.push_back("/steps/" + step + "/" + field);
   }
   EXPECT_EQ(a.members("/steps").size(), 12u);
-  EXPECT_EQ(datasets.size(), 5u + 12u * 8u);
+  EXPECT_EQ(datasets.size(), 5u + 12u * 10u);
   for (const std::string& path : datasets) EXPECT_EQ(a.doubles(path), b.doubles(path)) << path;
   EXPECT_EQ(a.doubles("/history/time").size(), 37u);
   EXPECT_EQ(read_text(directory_ / "caller" / "run.xmf"), read_text(directory_ / "background" / "run.xmf"));
@@ -717,6 +721,32 @@ TEST_F(ResultWriterTest, WallAndFrictionHistoriesAreWrittenRowByRow) {
   EXPECT_EQ(file.doubles("/history/contact/interface/tangential_force")[2], 5.0 + 2e-3);
   EXPECT_THROW(ResultWriter(directory_.string(), "bad", mesh_.view(), all_fields, HistoryGroups{{}, {"a/b"}}),
                std::invalid_argument);
+}
+
+// The reactions of the boundary conditions: /history/boundary/INDEX/force after the
+// walls' rows; eroded_energy and eroded_mass beside the energies.
+TEST_F(ResultWriterTest, BoundaryReactionsFollowTheWallsRows) {
+  {
+    HistoryGroups groups{{}, {"floor"}};
+    groups.boundaries = 2;
+    ResultWriter writer(directory_.string(), "run", mesh_.view(), all_fields, groups);
+    for (int row = 0; row < 3; ++row) {
+      const double t = 1e-3 * row;
+      writer.add_history({t, 0, 0, 0, 0, 0, 0, 0, 0, 3 * t, 0}, {},
+                         {{{{t, 0, 0}}}, {{{0, 0, 10 * t}}}, {{{0, -t, 0}}}});
+    }
+    EXPECT_THROW(writer.add_history({1.0}, {}, {{}}), std::logic_error)
+        << "a row for each wall and condition";
+    writer.flush();
+  }
+  H5Reader file(h5());
+  EXPECT_EQ(file.members("/history/boundary"), (std::vector<std::string>{"0", "1"}));
+  EXPECT_EQ(file.info("/history/boundary/1/force").shape, (std::vector<hsize_t>{3, 3}));
+  EXPECT_EQ(file.doubles("/history/boundary/0/force")[3 * 2 + 2], 2e-2);
+  EXPECT_EQ(file.doubles("/history/boundary/1/force")[3 * 1 + 1], -1e-3);
+  EXPECT_EQ(file.doubles("/history/wall/floor/force")[3 * 2], 2e-3);
+  EXPECT_EQ(file.doubles("/history/eroded_energy")[2], 6e-3);
+  EXPECT_EQ(file.doubles("/history/eroded_mass")[2], 0.0);
 }
 
 }  // namespace

@@ -91,7 +91,9 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                                {"max_relative_error", 0.05},
                                {"internal", 0.0},
                                {"hourglass", 0.0},
-                               {"plastic_work", 0.0}}));  // the spec's three, then ours
+                               {"plastic_work", 0.0},
+                               {"eroded", 0.0},
+                               {"eroded_elements", 0}}));  // the spec's three, then ours
   EXPECT_EQ(j["contact"], (Json{{"projections", 1000},
                                 {"mean_iterations", 3.5},
                                 {"max_iterations", 12},

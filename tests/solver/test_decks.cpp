@@ -44,7 +44,7 @@ struct DeckRun : exdyn::testing::DeckRun {
 // plate_impact_hex20_gmsh.yaml, hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp;
 // contact_patch_mortar.yaml: test_mortar_contact.cpp; u_shape.yaml, plates_one_surface.yaml:
 // test_single_surface.cpp; tube_crush.yaml: scripts/tube_crush_study.py --check (ctest
-// tube_crush_folds); cantilever.yaml: test_bending.cpp.
+// tube_crush_folds); cantilever.yaml: test_bending.cpp; tension_failure.yaml: test_failure.cpp.
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "wave_bar.yaml",
                                           "shear_wave.yaml",
@@ -76,7 +76,8 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "u_shape.yaml",
                                           "plates_one_surface.yaml",
                                           "tube_crush.yaml",
-                                          "cantilever.yaml"};
+                                          "cantilever.yaml",
+                                          "tension_failure.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;
