@@ -7,10 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "../support/deck_run.hpp"
+#include "common/errors.hpp"
 
 namespace {
 
@@ -68,6 +70,27 @@ TEST(PrescribedVelocity, PulledBarClosesTheEnergyBalanceAndCarriesItsImpedance) 
       EXPECT_EQ(driven[3 * n + 1], 0.0);
     }
   }
+}
+
+TEST(PrescribedVelocity, TwoValuesAtASharedNodeAreBadInputAndNothingIsWritten) {
+  std::string text = bar_deck("hex8");
+  text.replace(text.find("  - {faces: [bar.zmin], fix: [z]}"), 33,
+               "  - {faces: [bar.zmin, bar.zmax], fix: [z]}");
+  const exdyn::input::Deck deck = exdyn::input::parse_deck(text, "pulled.yaml");
+  exdyn::testing::TempDir directory{"exdyn_conflict"};
+  exdyn::solver::RunControls controls;
+  controls.output_directory = directory.path().string();
+  try {
+    exdyn::solver::run_simulation(deck, controls);
+    ADD_FAILURE() << "a node held at rest and moved at 1 m/s was accepted";
+  } catch (const exdyn::InputError& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("boundary_conditions[2] and boundary_conditions[3] prescribe different z "
+                                   "velocities (0 and 1 m/s)"),
+        std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(directory.file("pulled.h5")));
 }
 
 }  // namespace
