@@ -23,7 +23,7 @@
   same bits as the one-process run's;
 - ParaView opens a result written by 3 ranks;
 - more ranks than the mesh has chunks, a mesh file Gmsh cannot read (read by rank 0
-  alone), and an mpirun that cannot start the ranks (more ranks than slots; a host file
+  alone), contact on the faces erosion opens (one process only), and an mpirun that cannot start the ranks (more ranks than slots; a host file
   naming a machine that cannot be reached), end with a clear error and no result that
   looks complete.
 
@@ -424,6 +424,13 @@ def test_errors(exdyn, work):
     check("a mesh file Gmsh cannot read, on 2 ranks: exit 2 with one process's message, no result",
           code1 == 2 and code2 == 2 and len(message) == 1 and text2.count(message[0]) == 1
           and not os.path.exists(out), text2[-400:])
+    # Contact on the faces erosion opens runs on one process: on many ranks, one clear
+    # message and no result.
+    out = os.path.join(work, "punch_2")
+    code, text = run(exdyn, "punch_through", out, 2)
+    check("surface: all over a part that can fail, on 2 ranks: exit 2, one message, no result",
+          code == 2 and text.count("runs on one process (with threads)") >= 1
+          and not os.path.exists(os.path.join(out, "punch_through.h5")), text[-400:])
     test_unreachable_host(exdyn, work)
 
 

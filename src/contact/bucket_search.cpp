@@ -30,21 +30,32 @@ struct Grid {
   }
 };
 
-Grid make_grid(const NodalVectors& points, const std::vector<Box>& boxes, double cell_size) {
+bool on(const std::vector<std::uint8_t>& mask, std::size_t i) { return mask.empty() || mask[i] != 0; }
+
+Grid make_grid(const NodalVectors& points, const std::vector<Box>& boxes, double cell_size,
+               const std::vector<std::uint8_t>& point_on, const std::vector<std::uint8_t>& box_on) {
   Grid grid;
   std::array<double, 3> lo{}, hi{};
   lo.fill(std::numeric_limits<double>::infinity());
   hi.fill(-std::numeric_limits<double>::infinity());
   // The grid covers the points only: a box part outside it cannot hold a point.
-  for (int c = 0; c < 3; ++c)
-    for (double v : points.component(c)) {
-      lo[c] = std::min(lo[c], v);
-      hi[c] = std::max(hi[c], v);
-    }
+  for (int c = 0; c < 3; ++c) {
+    const std::vector<double>& coordinate = points.component(c);
+    for (std::size_t p = 0; p < coordinate.size(); ++p)
+      if (on(point_on, p)) {
+        lo[c] = std::min(lo[c], coordinate[p]);
+        hi[c] = std::max(hi[c], coordinate[p]);
+      }
+  }
   double mean_extent = 0.0;
-  for (const Box& b : boxes)
-    mean_extent += std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]});
-  mean_extent /= static_cast<double>(std::max<std::size_t>(boxes.size(), 1));
+  std::size_t box_count = 0;
+  for (std::size_t b = 0; b < boxes.size(); ++b)
+    if (on(box_on, b)) {
+      mean_extent += std::max({boxes[b].hi[0] - boxes[b].lo[0], boxes[b].hi[1] - boxes[b].lo[1],
+                               boxes[b].hi[2] - boxes[b].lo[2]});
+      ++box_count;
+    }
+  mean_extent /= static_cast<double>(std::max<std::size_t>(box_count, 1));
   double edge = cell_size > 0.0 ? cell_size : mean_extent;
   const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 0.0});
   if (!(edge > 0.0) || !std::isfinite(edge)) edge = span > 0.0 ? span : 1.0;
@@ -66,11 +77,13 @@ Grid make_grid(const NodalVectors& points, const std::vector<Box>& boxes, double
 }  // namespace
 
 void bucket_search(const NodalVectors& points, const std::vector<Box>& boxes, double cell_size,
-                   BucketWorkspace& w, std::vector<CandidatePair>& pairs) {
+                   BucketWorkspace& w, std::vector<CandidatePair>& pairs,
+                   const std::vector<std::uint8_t>& point_on, const std::vector<std::uint8_t>& box_on) {
   pairs.clear();
   const std::size_t n_points = points.size();
   if (n_points == 0 || boxes.empty()) return;
-  const Grid grid = make_grid(points, boxes, cell_size);
+  if (!point_on.empty() && std::find(point_on.begin(), point_on.end(), 1) == point_on.end()) return;
+  const Grid grid = make_grid(points, boxes, cell_size, point_on, box_on);
   const std::size_t n_cells = static_cast<std::size_t>(grid.cells[0] * grid.cells[1] * grid.cells[2]);
 
   // The cells a box overlaps (clamped to the grid; none if the box misses it).
@@ -97,20 +110,23 @@ void bucket_search(const NodalVectors& points, const std::vector<Box>& boxes, do
   // Counting sort of the boxes by cell: cell_boxes[cell_start[c] ... cell_start[c+1]),
   // in increasing box order within a cell because the boxes are visited in order.
   w.cell_start.assign(n_cells + 1, 0);
-  for (const Box& box : boxes) for_each_cell(box, [&](std::size_t cell) { ++w.cell_start[cell + 1]; });
+  for (std::size_t b = 0; b < boxes.size(); ++b)
+    if (on(box_on, b)) for_each_cell(boxes[b], [&](std::size_t cell) { ++w.cell_start[cell + 1]; });
   for (std::size_t c = 0; c < n_cells; ++c) w.cell_start[c + 1] += w.cell_start[c];
   w.cell_boxes.resize(w.cell_start[n_cells]);
   for (std::size_t b = 0; b < boxes.size(); ++b)
-    for_each_cell(boxes[b], [&](std::size_t cell) {
-      // cell_start[cell] serves as the fill cursor and ends at the next cell's start.
-      w.cell_boxes[w.cell_start[cell]++] = static_cast<std::uint32_t>(b);
-    });
+    if (on(box_on, b))
+      for_each_cell(boxes[b], [&](std::size_t cell) {
+        // cell_start[cell] serves as the fill cursor and ends at the next cell's start.
+        w.cell_boxes[w.cell_start[cell]++] = static_cast<std::uint32_t>(b);
+      });
   for (std::size_t c = n_cells; c > 0; --c) w.cell_start[c] = w.cell_start[c - 1];
   w.cell_start[0] = 0;
 
   // Each point tests the boxes of its own cell: the pairs come out sorted by
   // point, then by segment, with no further sort.
   for (std::size_t p = 0; p < n_points; ++p) {
+    if (!on(point_on, p)) continue;
     const double x = points.x[p], y = points.y[p], z = points.z[p];
     const std::uint32_t cell = grid.cell_of(x, y, z);
     for (std::uint32_t at = w.cell_start[cell]; at < w.cell_start[cell + 1]; ++at) {

@@ -83,8 +83,13 @@ void segment_boxes(PositionFn position, const std::vector<SegmentNodes>& segment
 // point then segment. `points` holds the slave points' coordinates.
 // cell_size <= 0 chooses the cell edge automatically (the mean box extent,
 // enlarged if needed so that the grid has at most about 4 cells per item).
+// point_on, box_on (empty: all): the points and boxes that take part (a surface that
+// erosion changes, ContactSurfaces::point_live and segment_live); the others are left
+// out of the grid.
 void bucket_search(const NodalVectors& points, const std::vector<Box>& boxes, double cell_size,
-                   BucketWorkspace& workspace, std::vector<CandidatePair>& pairs);
+                   BucketWorkspace& workspace, std::vector<CandidatePair>& pairs,
+                   const std::vector<std::uint8_t>& point_on = {},
+                   const std::vector<std::uint8_t>& box_on = {});
 
 // The same set by testing every pair (the reference for tests).
 void brute_force_search(const NodalVectors& points, const std::vector<Box>& boxes,

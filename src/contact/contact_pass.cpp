@@ -134,7 +134,8 @@ void rebuild_candidates(const ContactSurfaces& surfaces, const ContactPassSettin
                                      x_ref.z[node] + u.z[node]};
       },
       surfaces.segments, settings.search_distance + settings.margin, state.boxes);
-  bucket_search(state.slave_points, state.boxes, settings.cell_size, state.workspace, state.new_candidates);
+  bucket_search(state.slave_points, state.boxes, settings.cell_size, state.workspace, state.new_candidates,
+                surfaces.point_live, surfaces.segment_live);
   // A single surface never checks a point against a segment that shares a node with it,
   // nor against one that faces its way, nor one it lies far behind (single_surface.hpp):
   // until the next search none of them can turn to face it within the search distance.
@@ -307,6 +308,35 @@ void point_force(const ContactSurfaces& surfaces, const ContactPassSettings& set
   }
 }
 
+// Where erosion exposes a face, the bodies on either side may already overlap it (the
+// eroded element was crushed or sheared flat), and a point beside a face that the
+// facing rule (single_surface.hpp) admits only as the two turn to face each other may be
+// behind it by then. A contact that begins deeper than begun_inside of the element
+// length (no step's motion makes that: v dt < 0.1 L while v < 0.1 c / Courant) began
+// inside: its gap counts from that start g0 < 0, as LS-DYNA's IGNORE counts initial
+// penetrations. The offset o = g0 follows the point out, o = max(o, g), so that the
+// force resists any deeper penetration and none is added while the overlap heals
+// (g - o = 0); out of contact it is forgotten.
+void apply_exposure_offsets(const ContactSurfaces& surfaces, ContactPassState& state) {
+  const std::size_t n = surfaces.point_count();
+  state.exposure_offset.resize(n, 0.0);
+  state.last_segment.resize(n, -1);
+  for (std::size_t p = 0; p < n; ++p) {
+    ContactPassState::Contact& contact = state.contacts[p];
+    double& offset = state.exposure_offset[p];
+    const bool touching = contact.segment >= 0 && contact.gap < 0.0;
+    if (!touching)
+      offset = 0.0;
+    else if (contact.segment != state.last_segment[p] &&
+             contact.gap < -begun_inside * surfaces.normal_length[p])
+      offset = contact.gap;
+    else if (offset < 0.0)
+      offset = std::max(offset, contact.gap);
+    state.last_segment[p] = touching ? contact.segment : -1;
+    if (touching) contact.gap -= offset;
+  }
+}
+
 // Slave points per chunk of the force pass: a surface of one chunk runs in place (on a
 // few hundred points starting threads costs more than the work).
 constexpr std::size_t force_chunk = 256;
@@ -422,6 +452,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       contact.gap = state.results[best].gap;
       contact.normal = outward_normal(current_segment(surfaces.segments[segment], x_ref, u), contact.xi);
     }
+    if (!surfaces.segment_live.empty()) apply_exposure_offsets(surfaces, state);
     statistics.projections += projections;
     statistics.iterations += iterations;
     statistics.max_iterations = std::max(statistics.max_iterations, max_iterations);

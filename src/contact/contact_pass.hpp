@@ -94,10 +94,27 @@ struct ContactSurfaces {
   // none (on a rank: or not in its view), -2 more than one.
   std::vector<std::array<std::int32_t, 4>> edge_neighbours;
 
+  // Erosion (docs/contact.md, "Faces that erosion opens"), a single surface over parts
+  // that can fail: per master segment the element it bounds and the element across it
+  // (no_element: none, or on a part that cannot fail); whether each segment and each
+  // slave point is on the body's boundary now: a segment while its element lives and
+  // the one across does not, a point while it lies on such a segment. The model sets
+  // them as elements erode (model/opened_faces.hpp); empty: every one, always.
+  std::vector<std::uint32_t> segment_element, segment_across;
+  std::vector<std::uint8_t> segment_live, point_live;
+
   std::size_t point_count() const { return quadrature ? quadrature_points.size() : slave_nodes.size(); }
+  bool segment_on(std::size_t s) const { return segment_live.empty() || segment_live[s] != 0; }
+  bool point_on(std::size_t p) const { return point_live.empty() || point_live[p] != 0; }
 };
 
+inline constexpr std::uint32_t no_element = 0xffffffffu;
+
 inline constexpr double own_segment_reach = 0.25;
+
+// A contact on a surface that erosion changes that begins deeper than this fraction of
+// the element length began inside (contact_pass.cpp, apply_exposure_offsets).
+inline constexpr double begun_inside = 0.1;
 
 struct ContactPassSettings {
   ProjectFn project = nullptr;  // chosen once from the deck's method
@@ -207,7 +224,13 @@ struct ContactPassState {
   };
   std::vector<Contact> contacts;
   std::vector<std::uint8_t> admitted;  // single surface: whether each candidate pair may touch
-  MortarState mortar;                  // a mortar pass's (ContactSurfaces::mortar)
+  // A surface that erosion changes (ContactSurfaces::segment_live): each point's
+  // contact segment of the last step (-1: none) and its offset (m, <= 0): the
+  // penetration its contact began with when it began inside (contact_pass.cpp,
+  // apply_exposure_offsets), which its gap is counted from.
+  std::vector<std::int64_t> last_segment;
+  std::vector<double> exposure_offset;
+  MortarState mortar;  // a mortar pass's (ContactSurfaces::mortar)
 };
 
 struct ContactStatistics {

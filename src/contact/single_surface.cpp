@@ -78,6 +78,7 @@ Vec3 point_normal(const ContactSurfaces& surfaces, std::size_t p, const NodalVec
   Vec3 sum{};
   for (std::uint32_t k = surfaces.corner_begin[p]; k < surfaces.corner_begin[p + 1]; ++k) {
     const NodeCorner& c = surfaces.node_corners[k];
+    if (!surfaces.segment_on(c.segment)) continue;  // not on the boundary now (erosion)
     sum = sum + weighted_normal(current_segment(surfaces.segments[c.segment], x_ref, u), c.corner);
   }
   return unit(sum);
@@ -90,13 +91,15 @@ double side_stiffness(const ContactSurfaces& surfaces, std::size_t p, Vec3 norma
   std::array<Vec3, max_node_sides> side_normal{};
   for (std::uint32_t k = surfaces.corner_begin[p]; k < surfaces.corner_begin[p + 1]; ++k) {
     const NodeCorner& c = surfaces.node_corners[k];
+    if (!surfaces.segment_on(c.segment)) continue;
     side_normal[c.side] = side_normal[c.side] +
                           weighted_normal(current_segment(surfaces.segments[c.segment], x_ref, u), c.corner);
   }
   std::uint32_t best = 0;  // the most opposed to `normal`; ties to the first side
   double best_cosine = 2.0;
   for (std::uint32_t s = 0; s < sides; ++s)
-    if (const double cosine = dot(unit(side_normal[s]), normal); cosine < best_cosine)
+    if (const double cosine = dot(unit(side_normal[s]), normal);
+        norm(side_normal[s]) > 0.0 && cosine < best_cosine)  // a side with no segment on: none
       best_cosine = cosine, best = s;
   return surfaces.side_stiffness[first + best];
 }

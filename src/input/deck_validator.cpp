@@ -316,6 +316,11 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
         fail(node[c]["surface"], child_path(child_path("contact", c), "surface"),
              "`all` finds no exterior face: every face of every part is held normal to itself by a boundary "
              "condition (a symmetry plane or a support)");
+      if (follows_erosion(result, pair) && pair.slave_points == SlavePoints::mortar)
+        fail(node[c]["slave_points"], child_path(child_path("contact", c), "slave_points"),
+             "mortar does not follow the faces erosion opens, and a part of `surface: all` can fail: use "
+             "nodes, "
+             "quadrature or auto");
     }
   }
   if (const YAML::Node node = optional(root, "rigid_walls"); node.IsDefined())

@@ -106,6 +106,8 @@ const char* name(PartFace side) {
       return "cut_z";
     case PartFace::physical:
       return "physical";
+    case PartFace::interior:
+      return "interior";
   }
   return "?";
 }
@@ -177,6 +179,7 @@ std::string face_name(const Deck& deck, const FaceRef& face) {
   if (face.side == PartFace::physical && known_part)
     return part + "." +
            deck.parts[static_cast<std::size_t>(face.part)].mesh.surfaces.at(std::size_t(face.surface));
+  if (face.side == PartFace::interior) return part + ".interior" + std::to_string(face.surface);
   return part + "." + name(face.side);
 }
 
@@ -202,6 +205,7 @@ int flat_face_axis(const PartOptions& part, PartFace side) {
       return part.axis;
     case PartFace::surface:
     case PartFace::physical:
+    case PartFace::interior:
       return -1;
   }
   return -1;
@@ -228,6 +232,13 @@ std::vector<FaceRef> exterior_faces(const Deck& deck) {
     }
   }
   return faces;
+}
+
+bool follows_erosion(const Deck& deck, const ContactOptions& pair) {
+  return pair.surface_all && std::any_of(pair.slave.begin(), pair.slave.end(), [&](const FaceRef& face) {
+           const PartOptions& part = deck.parts[std::size_t(face.part)];
+           return deck.materials[std::size_t(part.material_index)].failure != FailureModel::none;
+         });
 }
 
 std::vector<std::string> side_names(const PartOptions& part) {
@@ -265,16 +276,19 @@ std::vector<std::string> deck_warnings(const Deck& deck) {
   }
   for (const RigidWallOptions& wall : deck.rigid_walls)
     check("rigid wall " + wall.name, wall.slave_points, wall.slave);
-  // Erosion and contact: what is not done yet, said where it matters.
+  // Erosion and contact: a named pair keeps its faces as they were; `surface: all`
+  // follows erosion (docs/contact.md, "Faces that erosion opens").
   for (const ContactOptions& pair : deck.contact) {
+    if (pair.surface_all) continue;
     std::vector<FaceRef> faces = pair.slave;
     faces.insert(faces.end(), pair.master.begin(), pair.master.end());
     for (const FaceRef& face : faces) {
       const PartOptions& part = deck.parts[std::size_t(face.part)];
       if (deck.materials[std::size_t(part.material_index)].failure == FailureModel::none) continue;
-      warnings.push_back("contact pair " + pair.name + ": part " + part.name +
-                         " can fail; its eroded elements' faces stay in the contact as their free nodes, and "
-                         "the faces erosion exposes do not join it (docs/theory.md, \"Damage and erosion\")");
+      warnings.push_back(
+          "contact pair " + pair.name + ": part " + part.name +
+          " can fail; a named pair keeps its eroded elements' faces and never takes the faces "
+          "erosion exposes: use `surface: all` (docs/contact.md, \"Faces that erosion opens\")");
       break;
     }
   }

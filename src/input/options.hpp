@@ -150,7 +150,9 @@ struct PartOptions {
 
 // The named faces of a part: a box's six sides; a cylinder's curved side (surface) and its
 // flat ends (start, end); a ball's surface; the flat face a `keep` cut leaves (cut_x ...);
-// a mesh part's whole boundary (surface) and its physical surfaces (physical).
+// a mesh part's whole boundary (surface) and its physical surfaces (physical). Not named
+// in a deck: interior, the faces a part's bricks share that erosion can open
+// (mesh/interior_faces.hpp), FaceRef::surface the bricks' local face.
 enum class PartFace {
   xmin,
   xmax,
@@ -164,7 +166,8 @@ enum class PartFace {
   cut_x,
   cut_y,
   cut_z,
-  physical
+  physical,
+  interior
 };
 
 // A named face `<part>.<side>`.
@@ -385,6 +388,9 @@ std::string face_name(const Deck& deck, const FaceRef& face);
 // a support: a flat face whose nodes a boundary condition holds normal to it (nothing
 // can reach it from outside).
 std::vector<FaceRef> exterior_faces(const Deck& deck);
+// Whether `surface: all` pair `pair` follows erosion: a part among its faces can fail
+// (docs/contact.md, "Faces that erosion opens").
+bool follows_erosion(const Deck& deck, const ContactOptions& pair);
 // The face names of a part after "<part>.": faces_of(part), then a mesh part's physical surfaces.
 std::vector<std::string> side_names(const PartOptions& part);
 // What a valid deck asks for that gives a poor answer (printed by `exdyn check` and

@@ -11,6 +11,7 @@
 
 #include "common/errors.hpp"
 #include "mesh/imported.hpp"
+#include "mesh/interior_faces.hpp"
 #include "mesh/mapped.hpp"
 
 namespace exdyn::mesh {
@@ -452,6 +453,7 @@ Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
                              std::to_string(part_index) + " has no segment");
     return face;
   }
+  if (side == input::PartFace::interior) return interior_face(mesh, part_index, reference.surface);
   if (part.lattice.empty()) return named_face(part.faces, part_index, side);  // a mapped or imported part
   return lattice_face(part.elements, part.order, side, part.normal_lengths,
                       [&](int i, int j, int k) { return part.node_at(i, j, k); });
@@ -490,6 +492,7 @@ Face lattice_face(const std::array<int, 3>& n, int order, input::PartFace side,
     case input::PartFace::cut_y:
     case input::PartFace::cut_z:
     case input::PartFace::physical:
+    case input::PartFace::interior:
       throw std::logic_error(std::string("face_of: a box part has no face ") + input::name(side));
   }
   // Lattice point (a, b) of the face plane, in lattice units along p and q.

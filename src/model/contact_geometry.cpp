@@ -77,20 +77,24 @@ std::array<double, 8> nodal_areas(const NodalVectors& x, const contact::SegmentN
   return areas;
 }
 
+}  // namespace
+
 // What the surface does past each edge of each master segment (edge_contact.hpp): it
 // goes on where the edge's two corner nodes bound another master segment too, or lie
 // on a symmetry plane: both held in the same component a and at the same reference
 // coordinate x_a (the cut faces of a half or quarter model), the mirror axis a.
 std::vector<contact::SegmentEdges> segment_edges(const Model& model,
-                                                 const std::vector<contact::SegmentNodes>& segments) {
+                                                 const std::vector<contact::SegmentNodes>& segments,
+                                                 const std::vector<std::uint8_t>& live) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> edge_count;
   auto edge_key = [](const contact::SegmentNodes& ids, int e) {
     const std::uint32_t a = ids.nodes[contact::edge_corners[e][0]],
                         b = ids.nodes[contact::edge_corners[e][1]];
     return std::make_pair(std::min(a, b), std::max(a, b));
   };
-  for (const auto& ids : segments)
-    for (int e = 0; e < 4; ++e) ++edge_count[edge_key(ids, e)];
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    if (live.empty() || live[i] != 0)
+      for (int e = 0; e < 4; ++e) ++edge_count[edge_key(segments[i], e)];
   const NodalVectors& x = model.mesh.x_ref;
   auto mirror_axis = [&](std::uint32_t a, std::uint32_t b) {
     const std::array<const std::vector<double>*, 3> coordinate{&x.x, &x.y, &x.z};
@@ -112,8 +116,6 @@ std::vector<contact::SegmentEdges> segment_edges(const Model& model,
     }
   return edges;
 }
-
-}  // namespace
 
 mesh::Face contact_face(const Model& model, const input::FaceRef& f, const mesh::KeepSegment& keep) {
   return keep ? mesh::cut_face(mesh::face_of(model.mesh, f), keep) : mesh::face_of(model.mesh, f);

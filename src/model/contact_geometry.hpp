@@ -31,6 +31,12 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
                            const std::vector<input::FaceRef>& slave,
                            const std::vector<input::FaceRef>& master, const mesh::KeepSegment& keep = {});
 
+// What the surface does past each edge of each master segment (edge_contact.hpp),
+// counting only the segments `live` marks (empty: all; a surface that erosion changes).
+std::vector<contact::SegmentEdges> segment_edges(const Model& model,
+                                                 const std::vector<contact::SegmentNodes>& segments,
+                                                 const std::vector<std::uint8_t>& live = {});
+
 // Face f of the model, cut to the segments `keep` keeps (none: whole).
 mesh::Face contact_face(const Model& model, const input::FaceRef& f, const mesh::KeepSegment& keep);
 

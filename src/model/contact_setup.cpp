@@ -13,6 +13,7 @@
 #include "contact/quadrature.hpp"
 #include "material/elastic.hpp"
 #include "model/contact_geometry.hpp"
+#include "model/opened_faces.hpp"
 #include "model/single_surface_setup.hpp"
 
 namespace exdyn::solver {
@@ -277,6 +278,7 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
                                 dt / critical_dt, scope);
     if (options.single_surface) {
       PassGeometry surface = merge_surface_faces(model, resolved_surface_options(model, options), geometry);
+      if (options.surface_all) find_segment_elements(model, surface.surfaces);
       geometry.clear();
       geometry.push_back(std::move(surface));
     }

@@ -10,6 +10,7 @@
 #include "common/errors.hpp"
 #include "contact/edge_contact.hpp"
 #include "mesh/mesh.hpp"
+#include "model/opened_faces.hpp"
 
 namespace exdyn::solver {
 
@@ -19,6 +20,12 @@ input::ContactOptions resolved_surface_options(const Model& model, const input::
   for (const input::FaceRef& f : options.slave)
     eight_node_segments = eight_node_segments || model.mesh.parts.at(std::size_t(f.part)).order == 2;
   resolved.slave_points = input::resolved_slave_points(options.slave_points, eight_node_segments);
+  if (options.surface_all) {  // and the faces erosion can open
+    const std::vector<input::FaceRef> opening = opening_faces(model, options.slave);
+    EXDYN_ASSERT(opening.empty() || resolved.slave_points != input::SlavePoints::mortar);  // the validator's
+    resolved.slave.insert(resolved.slave.end(), opening.begin(), opening.end());
+    resolved.master = resolved.slave;
+  }
   return resolved;
 }
 
@@ -105,8 +112,10 @@ void add_node_sides(const std::vector<PassGeometry>& faces, const std::vector<st
   }
 }
 
-// The segment across each edge of each segment: -1 none, -2 more than one.
-std::vector<std::array<std::int32_t, 4>> edge_neighbours(const std::vector<contact::SegmentNodes>& segments) {
+}  // namespace
+
+std::vector<std::array<std::int32_t, 4>> edge_neighbours(const std::vector<contact::SegmentNodes>& segments,
+                                                         const std::vector<std::uint8_t>& live) {
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::int32_t>> at_edge;
   auto edge_key = [](const contact::SegmentNodes& ids, std::size_t e) {
     const std::uint32_t a = ids.nodes[contact::edge_corners[e][0]],
@@ -114,7 +123,8 @@ std::vector<std::array<std::int32_t, 4>> edge_neighbours(const std::vector<conta
     return std::make_pair(std::min(a, b), std::max(a, b));
   };
   for (std::size_t seg = 0; seg < segments.size(); ++seg)
-    for (std::size_t e = 0; e < 4; ++e) at_edge[edge_key(segments[seg], e)].push_back(std::int32_t(seg));
+    if (live.empty() || live[seg] != 0)
+      for (std::size_t e = 0; e < 4; ++e) at_edge[edge_key(segments[seg], e)].push_back(std::int32_t(seg));
   std::vector<std::array<std::int32_t, 4>> neighbours(segments.size());
   for (std::size_t seg = 0; seg < segments.size(); ++seg)
     for (std::size_t e = 0; e < 4; ++e) {
@@ -125,8 +135,6 @@ std::vector<std::array<std::int32_t, 4>> edge_neighbours(const std::vector<conta
     }
   return neighbours;
 }
-
-}  // namespace
 
 PassGeometry merge_surface_faces(const Model& model, const input::ContactOptions& options,
                                  std::vector<PassGeometry>& faces) {

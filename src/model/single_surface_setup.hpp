@@ -13,13 +13,19 @@
 namespace exdyn::solver {
 
 // The surface's options with `slave_points: auto` resolved over all its faces (quadrature
-// if any face has 8-node segments), so that every face has the same kind of points.
+// if any face has 8-node segments), so that every face has the same kind of points; for
+// `surface: all`, with the faces erosion can open (opened_faces.hpp) after the deck's.
 input::ContactOptions resolved_surface_options(const Model& model, const input::ContactOptions& options);
 
 // The segments of a single surface: all but those on a plane held normal to itself (every
 // node fixed in one component and at one coordinate in it: a symmetry plane or a
 // support), which nothing can reach from outside.
 mesh::KeepSegment off_held_planes(const Model& model);
+
+// The segment across each edge of each segment (ContactSurfaces::edge_neighbours): -1
+// none, -2 more than one, counting only the segments `live` marks (empty: all).
+std::vector<std::array<std::int32_t, 4>> edge_neighbours(const std::vector<contact::SegmentNodes>& segments,
+                                                         const std::vector<std::uint8_t>& live = {});
 
 // One pass geometry per face of the surface (its segments off held planes): the face's slave points against
 // the whole surface's segments (so that the modulus, the smallest length and the master side of the stiffness

@@ -30,6 +30,7 @@
 #include "element/corner_checks.hpp"
 #include "model/contact_setup.hpp"
 #include "model/model.hpp"
+#include "model/opened_faces.hpp"
 #include "output/result_writer.hpp"
 #include "ranks/ranks.hpp"
 #include "solver/nodal_update.hpp"
@@ -128,6 +129,8 @@ class TimeLoop {
   // What a prescribed velocity's start can show in E_mean (prescribed_jump_energy), J.
   double start_jump_ = 0.0;
   bool small_strain_warned_ = false;
+  // The elements failed when the contact last followed erosion (opened_faces.hpp).
+  long opened_for_eroded_ = 0;
   int stop_requested_ = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
 };
 
@@ -148,6 +151,12 @@ NodalVectors TimeLoop::set_up(const RunControls& controls, output::RunSummary& s
     summary.dt = clock_->next();
     return initial_velocity(deck_, model_);
   }
+  for (const input::ContactOptions& pair : deck_.contact)
+    if (input::follows_erosion(deck_, pair))
+      throw InputError(
+          "contact pair " + pair.name +
+          ": `surface: all` over a part that can fail runs on one process (with threads); on many "
+          "ranks the faces erosion opens are not passed between them: run without mpirun");
   RankSetup setup = set_up_rank(deck_, comm, controls.partitioning, controls.weigh_by_work);
   critical_dt_ = setup.critical_dt;
   clock_ = std::make_unique<StepClock>(deck_.time, critical_dt_, setup.run.model, &comm);
@@ -328,6 +337,12 @@ void TimeLoop::begin_step() {
 
 void TimeLoop::compute_forces() {
   output::PhaseSeconds& phase = summary_.phase_seconds;
+  // An element failed at the last step is gone from this one: its faces leave the
+  // contact and the faces it exposed join it, before either pass runs.
+  if (state_.eroded_elements != opened_for_eroded_) {
+    open_eroded_faces(contact_, model_);
+    opened_for_eroded_ = state_.eroded_elements;
+  }
   element::ElementEnergies element_energy;
   if (side_by_side_) {  // each pass times itself: the two phases overlap
     element_energy = compute_forces_side_by_side(model_, contact_, state_, clock_->previous(), output_step_,

@@ -94,6 +94,8 @@ const BadDeck bad_decks[] = {
     {"failure_jc_missing_d2.yaml", "materials.steel.failure.johnson_cook.D2", 4, "missing required key 'D2'"},
     {"failure_two_models.yaml", "materials.steel.failure.johnson_cook", 4,
      "give either plastic_strain or johnson_cook, not both"},
+    {"mortar_on_eroding_surface.yaml", "contact[0].slave_points", 12,
+     "mortar does not follow the faces erosion opens"},
     {"missing_part_material.yaml", "parts[0].material", 6, "missing required key 'material' in parts[0]"},
     {"two_documents.yaml", "", 12, "more than one YAML document"},
     {"comma_at_document_start.yaml", "", 2, "expected the deck to be a map with keys name, materials"},

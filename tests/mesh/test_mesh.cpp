@@ -108,6 +108,39 @@ TEST(Mesh, EveryFaceQuadNormalPointsOutOfThePart) {
     }
 }
 
+// The faces erosion can open (mesh/interior_faces.hpp): part b (2 x 3 x 4 bricks) shares
+// (2 - 1) 3 4 faces normal to x, 2 (3 - 1) 4 normal to y and 2 3 (4 - 1) normal to z;
+// each comes twice, outward of either brick, by its brick's local face: 2 (-z), 1 (+z),
+// 2 (-y), 3 (+x), 4 (+y), 5 (-x).
+TEST(Mesh, InteriorFacesAreTheSharedFacesOutwardOfEitherBrick) {
+  const auto mesh = exdyn::mesh::build_mesh(two_part_deck());
+  const std::array<std::pair<int, std::array<double, 3>>, 6> local{
+      {{0, {0, 0, -1}}, {1, {0, 0, 1}}, {2, {0, -1, 0}}, {3, {1, 0, 0}}, {4, {0, 1, 0}}, {5, {-1, 0, 0}}}};
+  const std::array<std::size_t, 3> shared{1 * 3 * 4, 2 * 2 * 4, 2 * 3 * 3};  // normal to x, y, z
+  for (const auto& [k, outward] : local) {
+    const exdyn::mesh::Face face =
+        exdyn::mesh::face_of(mesh, exdyn::input::FaceRef{1, PartFace::interior, k});
+    const int axis = outward[0] != 0 ? 0 : outward[1] != 0 ? 1 : 2;
+    EXPECT_EQ(face.segments.size(), shared[std::size_t(axis)]) << "local face " << k;
+    const double h = std::array<double, 3>{0.5, 1.0 / 3.0, 0.25}[std::size_t(axis)];
+    EXPECT_NEAR(face.normal_length, h, 1e-14);
+    for (const auto& segment : face.segments) {
+      const auto& q = segment.nodes;
+      const auto normal =
+          cross(minus(point(mesh, q[1]), point(mesh, q[0])), minus(point(mesh, q[3]), point(mesh, q[0])));
+      const double length = std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(normal[c] / length, outward[c], 1e-14);
+      // Interior: not on the part's boundary planes.
+      const double at = point(mesh, q[0])[axis];
+      const std::array<double, 3> lowest{3, 0, 0}, highest{4, 1, 1};
+      EXPECT_GT(at, lowest[std::size_t(axis)]);
+      EXPECT_LT(at, highest[std::size_t(axis)]);
+    }
+  }
+  // Part a is one brick thick in z: it shares no face normal to z.
+  EXPECT_TRUE(exdyn::mesh::face_of(mesh, exdyn::input::FaceRef{0, PartFace::interior, 1}).segments.empty());
+}
+
 // --- parts[i].perturbation: interior grid points moved at random by at most fraction h.
 //
 // det J at a corner is det(I + E) in units of h, each column of E the difference of

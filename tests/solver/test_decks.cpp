@@ -44,7 +44,8 @@ struct DeckRun : exdyn::testing::DeckRun {
 // plate_impact_hex20_gmsh.yaml, hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp;
 // contact_patch_mortar.yaml: test_mortar_contact.cpp; u_shape.yaml, plates_one_surface.yaml:
 // test_single_surface.cpp; tube_crush.yaml: scripts/tube_crush_study.py --check (ctest
-// tube_crush_folds); cantilever.yaml: test_bending.cpp; tension_failure.yaml: test_failure.cpp.
+// tube_crush_folds); cantilever.yaml: test_bending.cpp; tension_failure.yaml: test_failure.cpp;
+// eroding_column.yaml, punch_through.yaml: test_opened_faces.cpp.
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "wave_bar.yaml",
                                           "shear_wave.yaml",
@@ -77,7 +78,9 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "plates_one_surface.yaml",
                                           "tube_crush.yaml",
                                           "cantilever.yaml",
-                                          "tension_failure.yaml"};
+                                          "tension_failure.yaml",
+                                          "eroding_column.yaml",
+                                          "punch_through.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;

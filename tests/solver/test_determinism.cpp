@@ -161,6 +161,23 @@ TEST(Threads, ErodingBarIsTheSameBitsOnOneTwoAndThreeThreads) {
   }
 }
 
+TEST(Threads, PunchedPlateIsTheSameBitsOnOneTwoAndThreeThreads) {
+  // input/punch_through.yaml while the plug is cut out (elements erode from step 52 on):
+  // the faces each erosion opens, the searches they start and the contacts that begin
+  // inside a face, on the threads of the element pass and the contact pass side by side.
+  const std::vector<std::string> overrides{"time.end_time=2.5e-6", "output.every=60"};
+  ThreadedRun one, two, three;
+  run(one, overrides, 1, "punch_through.yaml");
+  run(two, overrides, 2, "punch_through.yaml");
+  run(three, overrides, 3, "punch_through.yaml");
+  EXPECT_GT(one.summary.energy.eroded_elements, 100);
+  for (const auto& path : dataset_paths(one.h5)) {
+    const auto reference = read_dataset(one.h5, path).values;
+    EXPECT_TRUE(same_bits(read_dataset(two.h5, path).values, reference)) << path << ", 2 threads";
+    EXPECT_TRUE(same_bits(read_dataset(three.h5, path).values, reference)) << path << ", 3 threads";
+  }
+}
+
 TEST(StepsWritten, AStopBetweenOutputStepsWritesTheStressesOfItsStep) {
   // The element pass stores the stresses only at output steps; a step written by a stop
   // computes them again. Here the penetration guard stops the plate impact (at step 2:

@@ -1,0 +1,127 @@
+#include "model/opened_faces.hpp"
+
+#include <algorithm>
+
+#include "element/element_block.hpp"
+#include "mesh/interior_faces.hpp"
+#include "model/contact_geometry.hpp"
+#include "model/single_surface_setup.hpp"
+
+namespace exdyn::solver {
+
+bool part_can_fail(const Model& model, int part) {
+  return std::size_t(part) < model.blocks.size() && model.blocks[std::size_t(part)].law.failure.active();
+}
+
+std::vector<input::FaceRef> opening_faces(const Model& model, const std::vector<input::FaceRef>& faces) {
+  std::vector<int> parts;
+  for (const input::FaceRef& f : faces)
+    if (part_can_fail(model, f.part) && std::find(parts.begin(), parts.end(), f.part) == parts.end())
+      parts.push_back(f.part);
+  std::vector<input::FaceRef> opening;
+  for (const int part : parts)
+    for (int local_face = 0; local_face < 6; ++local_face)
+      if (!mesh::interior_face(model.mesh, part, local_face).segments.empty())
+        opening.push_back(input::FaceRef{part, input::PartFace::interior, local_face});
+  return opening;
+}
+
+namespace {
+
+// Each element's life now: 1 alive (or on a part that cannot fail), 0 gone.
+std::vector<std::uint8_t> elements_alive(const Model& model) {
+  std::vector<std::uint8_t> alive(model.mesh.element_count(), 1);
+  for (const element::ElementBlock& block : model.blocks) {
+    const std::vector<std::uint8_t>& status = block.failure.status;
+    for (std::size_t e = 0; e < status.size(); ++e)
+      alive[block.first_element + e] = status[e] == std::uint8_t(element::ElementStatus::alive);
+  }
+  return alive;
+}
+
+// The segments and points of `s` on the boundary with the elements' life `alive`;
+// whether they changed.
+bool update_live(const Model& model, const std::vector<std::uint8_t>& alive, contact::ContactSurfaces& s) {
+  auto on = [&](std::uint32_t element) { return element != contact::no_element && alive[element] != 0; };
+  std::vector<std::uint8_t> live(s.segments.size());
+  for (std::size_t k = 0; k < live.size(); ++k)
+    live[k] = std::uint8_t((s.segment_element[k] == contact::no_element || on(s.segment_element[k])) &&
+                           !on(s.segment_across[k]));
+  if (live == s.segment_live) return false;
+  s.segment_live = std::move(live);
+  s.point_live.assign(s.point_count(), 0);
+  if (s.quadrature) {  // a Gauss point's slave segment k is master segment k
+    for (std::size_t p = 0; p < s.point_live.size(); ++p)
+      s.point_live[p] = s.segment_live[s.quadrature_points[p].segment];
+  } else {
+    for (std::size_t p = 0; p < s.point_live.size(); ++p)
+      for (std::uint32_t k = s.corner_begin[p]; k < s.corner_begin[p + 1]; ++k)
+        s.point_live[p] = std::uint8_t(s.point_live[p] | s.segment_live[s.node_corners[k].segment]);
+  }
+  s.edges = segment_edges(model, s.segments, s.segment_live);
+  s.edge_neighbours = edge_neighbours(s.segments, s.segment_live);
+  return true;
+}
+
+}  // namespace
+
+void find_segment_elements(const Model& model, contact::ContactSurfaces& s) {
+  std::vector<mesh::BrickFace> faces;  // of every part that can fail, sorted
+  for (std::size_t part = 0; part < model.mesh.parts.size(); ++part)
+    if (part_can_fail(model, int(part))) {
+      const std::vector<mesh::BrickFace> own = mesh::part_brick_faces(model.mesh, int(part));
+      faces.insert(faces.end(), own.begin(), own.end());
+    }
+  if (faces.empty()) return;
+  auto by_corners = [](const mesh::BrickFace& a, const mesh::BrickFace& b) { return a.corners < b.corners; };
+  std::sort(faces.begin(), faces.end(), [](const mesh::BrickFace& a, const mesh::BrickFace& b) {
+    return a.corners != b.corners ? a.corners < b.corners : a.where < b.where;
+  });
+  s.segment_element.assign(s.segments.size(), contact::no_element);
+  s.segment_across.assign(s.segments.size(), contact::no_element);
+  bool any = false;
+  for (std::size_t k = 0; k < s.segments.size(); ++k) {
+    mesh::BrickFace key{};
+    std::copy_n(s.segments[k].nodes.begin(), 4, key.corners.begin());
+    std::sort(key.corners.begin(), key.corners.end());
+    const auto [first, last] = std::equal_range(faces.begin(), faces.end(), key, by_corners);
+    for (auto f = first; f != last; ++f) {
+      const auto element = std::uint32_t(f->where / 6);
+      if (mesh::outward_of(model.mesh, f->where, s.segments[k].nodes.data()))
+        s.segment_element[k] = element, any = true;
+      else
+        s.segment_across[k] = element;
+    }
+  }
+  if (!any) {
+    s.segment_element.clear(), s.segment_across.clear();
+    return;
+  }
+  update_live(model, elements_alive(model), s);
+}
+
+int open_eroded_faces(ContactModel& contact, const Model& model) {
+  if (!follows_erosion(contact)) return 0;
+  const std::vector<std::uint8_t> alive = elements_alive(model);
+  int changed = 0;
+  for (ContactPair& pair : contact.pairs)
+    for (std::size_t p = 0; p < pair.passes.size(); ++p) {
+      contact::ContactSurfaces& s = pair.passes[p];
+      if (s.segment_element.empty() || !update_live(model, alive, s)) continue;
+      contact::ContactPassState& state = pair.states[p];
+      state.built = false;
+      for (contact::Anchor& anchor : state.anchors)
+        if (anchor.segment >= 0 && !s.segment_on(std::size_t(anchor.segment))) anchor = contact::Anchor{};
+      ++changed;
+    }
+  return changed;
+}
+
+bool follows_erosion(const ContactModel& contact) {
+  for (const ContactPair& pair : contact.pairs)
+    for (const contact::ContactSurfaces& s : pair.passes)
+      if (!s.segment_element.empty()) return true;
+  return false;
+}
+
+}  // namespace exdyn::solver
