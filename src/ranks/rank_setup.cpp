@@ -378,6 +378,14 @@ std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communica
 
 RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning,
                       bool weigh_by_work) {
+  // Contact on the faces erosion opens (docs/contact.md) needs every brick's life
+  // beside each segment: the ranks do not pass it between them.
+  for (const input::ContactOptions& pair : deck.contact)
+    if (input::follows_erosion(deck, pair))
+      throw InputError(
+          "contact pair " + pair.name +
+          ": `surface: all` over a part that can fail runs on one process (with threads); on many "
+          "ranks the faces erosion opens are not passed between them: run without mpirun");
   // The memory check with this machine's share of the model.
   MPI_Comm here = MPI_COMM_NULL;
   mpi::check(MPI_Comm_split_type(comm.comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &here),

@@ -151,12 +151,6 @@ NodalVectors TimeLoop::set_up(const RunControls& controls, output::RunSummary& s
     summary.dt = clock_->next();
     return initial_velocity(deck_, model_);
   }
-  for (const input::ContactOptions& pair : deck_.contact)
-    if (input::follows_erosion(deck_, pair))
-      throw InputError(
-          "contact pair " + pair.name +
-          ": `surface: all` over a part that can fail runs on one process (with threads); on many "
-          "ranks the faces erosion opens are not passed between them: run without mpirun");
   RankSetup setup = set_up_rank(deck_, comm, controls.partitioning, controls.weigh_by_work);
   critical_dt_ = setup.critical_dt;
   clock_ = std::make_unique<StepClock>(deck_.time, critical_dt_, setup.run.model, &comm);
