@@ -90,20 +90,25 @@ void make_slots(const ContactSurfaces& surfaces, long rebuilds, ScatterScratch& 
     EXDYN_ASSERT(at != nodes.end() && *at == node);  // every node of the pass moves with it
     return std::uint32_t(at - nodes.begin());
   };
-  auto segment_slots = [&](const std::vector<SegmentNodes>& segments, std::vector<std::uint32_t>& slots) {
+  // A segment or slave node off the surface (erosion: ContactSurfaces::segment_live) has
+  // no contact until the next search, and no slot.
+  auto segment_slots = [&](const std::vector<SegmentNodes>& segments, std::vector<std::uint32_t>& slots,
+                           bool master) {
     slots.assign(8 * segments.size(), 0);
-    for (std::size_t s = 0; s < segments.size(); ++s)
+    for (std::size_t s = 0; s < segments.size(); ++s) {
+      if (master && !surfaces.segment_on(s)) continue;
       for (int i = 0; i < node_count(segments[s].type); ++i)
         slots[8 * s + std::size_t(i)] = slot(segments[s].nodes[std::size_t(i)]);
+    }
   };
   if (surfaces.quadrature) {
-    segment_slots(surfaces.slave_segments, scratch.slave_slots);
+    segment_slots(surfaces.slave_segments, scratch.slave_slots, false);
   } else {
-    scratch.slave_slots.resize(surfaces.slave_nodes.size());
+    scratch.slave_slots.assign(surfaces.slave_nodes.size(), 0);
     for (std::size_t p = 0; p < surfaces.slave_nodes.size(); ++p)
-      scratch.slave_slots[p] = slot(surfaces.slave_nodes[p]);
+      if (surfaces.point_on(p)) scratch.slave_slots[p] = slot(surfaces.slave_nodes[p]);
   }
-  segment_slots(surfaces.segments, scratch.segment_slots);
+  segment_slots(surfaces.segments, scratch.segment_slots, true);
   scratch.first_chunk.assign(nodes.size(), unmarked);
   scratch.stamp = 0;
   scratch.rebuilds = rebuilds;

@@ -1,7 +1,7 @@
 #include "mesh/interior_faces.hpp"
 
 #include <algorithm>
-#include <string>
+#include <array>
 
 namespace exdyn::mesh {
 
@@ -25,37 +25,39 @@ std::vector<BrickFace> part_brick_faces(const Mesh& mesh, int part) {
   return faces;
 }
 
-Face interior_face(const Mesh& mesh, int part, int local_face) {
-  if (local_face < 0 || local_face > 5)
-    throw std::logic_error("interior_face: a brick has no local face " + std::to_string(local_face));
+std::vector<Face> interior_faces(const Mesh& mesh, int part) {
   const std::vector<BrickFace> faces = part_brick_faces(mesh, part);
-  std::vector<std::uint64_t> shared;  // the where of each shared face with this local face
-  for (std::size_t i = 0; i + 1 < faces.size();) {
+  std::array<std::vector<std::uint64_t>, 6> shared;  // the where of each shared face, by local face
+  for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;
     while (j < faces.size() && faces[j].corners == faces[i].corners) ++j;
     if (j - i == 2)
-      for (std::size_t k = i; k < j; ++k)
-        if (int(faces[k].where % 6) == local_face) shared.push_back(faces[k].where);
+      for (std::size_t k = i; k < j; ++k) shared[faces[k].where % 6].push_back(faces[k].where);
     i = j;
   }
-  std::sort(shared.begin(), shared.end());
-  Face face;
-  if (shared.empty()) return face;
   const int segment_nodes = mesh.parts.at(std::size_t(part)).order == 2 ? 8 : 4;
-  double length_sum = 0.0;
-  for (const std::uint64_t where : shared) {
-    const std::uint32_t* nodes = mesh.element_nodes(std::size_t(where / 6));
-    FaceSegment segment;
-    segment.node_count = segment_nodes;
-    for (int k = 0; k < segment_nodes; ++k) segment.nodes[std::size_t(k)] = nodes[brick_faces[local_face][k]];
-    face.segments.push_back(segment);
-    std::array<std::array<double, 3>, 8> corners{};
-    for (std::size_t k = 0; k < 8; ++k)
-      for (int c = 0; c < 3; ++c) corners[k][std::size_t(c)] = mesh.x_ref.component(c)[nodes[k]];
-    length_sum += brick_normal_length(local_face, corners);
+  std::vector<Face> result(6);
+  for (int local_face = 0; local_face < 6; ++local_face) {
+    std::vector<std::uint64_t>& wheres = shared[std::size_t(local_face)];
+    if (wheres.empty()) continue;
+    std::sort(wheres.begin(), wheres.end());
+    Face& face = result[std::size_t(local_face)];
+    double length_sum = 0.0;
+    for (const std::uint64_t where : wheres) {
+      const std::uint32_t* nodes = mesh.element_nodes(std::size_t(where / 6));
+      FaceSegment segment;
+      segment.node_count = segment_nodes;
+      for (int k = 0; k < segment_nodes; ++k)
+        segment.nodes[std::size_t(k)] = nodes[brick_faces[local_face][k]];
+      face.segments.push_back(segment);
+      std::array<std::array<double, 3>, 8> corners{};
+      for (std::size_t k = 0; k < 8; ++k)
+        for (int c = 0; c < 3; ++c) corners[k][std::size_t(c)] = mesh.x_ref.component(c)[nodes[k]];
+      length_sum += brick_normal_length(local_face, corners);
+    }
+    finish_face(face, length_sum);
   }
-  finish_face(face, length_sum);
-  return face;
+  return result;
 }
 
 bool outward_of(const Mesh& mesh, std::uint64_t where, const std::uint32_t* corners) {

@@ -16,10 +16,11 @@ namespace exdyn::mesh {
 // share are neighbours in it.
 std::vector<BrickFace> part_brick_faces(const Mesh& mesh, int part);
 
-// The shared faces of part `part` outward of the brick whose local face is `local_face`
-// (0..5), in element order: 4 or 8 nodes as the part's order; empty when the part is one
-// brick thick that way. The normal length is the bricks' (brick_normal_length).
-Face interior_face(const Mesh& mesh, int part, int local_face);
+// The shared faces of part `part` by the local face of the brick they are outward of
+// (0..5), each in element order: 4 or 8 nodes as the part's order; empty where the part
+// is one brick thick that way. The normal length is the bricks' (brick_normal_length).
+// The model keeps them for the parts that need them (PartRange::interior_faces).
+std::vector<Face> interior_faces(const Mesh& mesh, int part);
 
 // Whether segment corners `corners` (counter-clockwise, the first four of a segment's
 // nodes) run the way brick face `where` of the mesh runs, i.e. the segment is outward

@@ -11,7 +11,6 @@
 
 #include "common/errors.hpp"
 #include "mesh/imported.hpp"
-#include "mesh/interior_faces.hpp"
 #include "mesh/mapped.hpp"
 
 namespace exdyn::mesh {
@@ -453,7 +452,11 @@ Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
                              std::to_string(part_index) + " has no segment");
     return face;
   }
-  if (side == input::PartFace::interior) return interior_face(mesh, part_index, reference.surface);
+  if (side == input::PartFace::interior) {
+    if (part.interior_faces.empty())
+      throw std::logic_error("face_of: part " + std::to_string(part_index) + " keeps no interior faces");
+    return part.interior_faces.at(static_cast<std::size_t>(reference.surface));
+  }
   if (part.lattice.empty()) return named_face(part.faces, part_index, side);  // a mapped or imported part
   return lattice_face(part.elements, part.order, side, part.normal_lengths,
                       [&](int i, int j, int k) { return part.node_at(i, j, k); });

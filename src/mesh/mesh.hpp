@@ -80,6 +80,9 @@ struct PartRange {
   // (empty where the surface does not bound the part's volume).
   std::vector<std::pair<input::PartFace, Face>> faces;
   std::vector<Face> physical_faces;
+  // The faces its bricks share, by local face (mesh/interior_faces.hpp): kept by the
+  // model for a part whose faces erosion can open into a contact; else empty.
+  std::vector<Face> interior_faces;
 
   // Node id at lattice point (I, J, K); no_node where the lattice has no node.
   std::uint32_t node_at(int i, int j, int k) const {

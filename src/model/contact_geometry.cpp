@@ -215,7 +215,8 @@ std::vector<double> spring_areas(const input::ContactOptions& options, const Nod
 
 PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const input::ContactOptions& options,
                            const std::vector<input::FaceRef>& slave,
-                           const std::vector<input::FaceRef>& master, const mesh::KeepSegment& keep) {
+                           const std::vector<input::FaceRef>& master, const mesh::KeepSegment& keep,
+                           bool whole_master) {
   PassGeometry g;
   auto& s = g.surfaces;
   const NodalVectors& x = model.mesh.x_ref;
@@ -276,6 +277,7 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
   if (s.mortar)
     s.triangle_points =
         options.quadrature.value_or(input::mortar_default_triangle_points(eight_node_segments));
+  if (!whole_master) return g;
   s.edges = segment_edges(model, s.segments);
   s.moving_nodes = s.slave_nodes;
   for (const auto& segment : s.segments)

@@ -26,10 +26,13 @@ struct PassGeometry {
 
 // A pass's slave points (nodes, Gauss points of its slave segments, or mortar's slave
 // segments), master segments, edges and moving nodes, from the deck's faces.
-// keep: the segments of the faces that count (none: all).
+// keep: the segments of the faces that count (none: all). whole_master false: no edges
+// and no moving nodes (a single surface's faces after its first, whose master side is
+// the first's).
 PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const input::ContactOptions& options,
                            const std::vector<input::FaceRef>& slave,
-                           const std::vector<input::FaceRef>& master, const mesh::KeepSegment& keep = {});
+                           const std::vector<input::FaceRef>& master, const mesh::KeepSegment& keep = {},
+                           bool whole_master = true);
 
 // What the surface does past each edge of each master segment (edge_contact.hpp),
 // counting only the segments `live` marks (empty: all; a surface that erosion changes).

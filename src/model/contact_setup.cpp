@@ -262,9 +262,9 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
     std::vector<PassGeometry> geometry;
     if (options.single_surface) {
       const input::ContactOptions resolved = resolved_surface_options(model, options);
-      geometry = surface_face_geometries(deck, model, resolved);
-      for (PassGeometry& face : geometry)
+      geometry = surface_face_geometries(deck, model, resolved, [&](PassGeometry& face) {
         slave_point_stiffness(resolved, model, face, dt, dt / critical_dt, scope);
+      });
     } else {
       for (int p = 0; p < pass_count; ++p) {
         geometry.push_back(p == 0 ? pass_geometry(deck, model, options, options.slave, options.master)

@@ -141,6 +141,18 @@ MemoryEstimate estimate_memory(const input::Deck& deck) {
     estimate.bytes += node_count_real(part, n) * double(bytes_per_node) +
                       grid_count_real(n, 0) * double(bytes_per_element(part));
   }
+  // The faces erosion can open, once for each part a surface that follows it holds.
+  std::vector<std::uint8_t> opening(deck.parts.size(), 0);
+  for (const input::ContactOptions& pair : deck.contact)
+    if (input::follows_erosion(deck, pair))
+      for (const input::FaceRef& face : pair.slave) {
+        const input::PartOptions& part = deck.parts[std::size_t(face.part)];
+        if (opening[std::size_t(face.part)] != 0 ||
+            deck.materials[std::size_t(part.material_index)].failure == input::FailureModel::none)
+          continue;
+        opening[std::size_t(face.part)] = 1;
+        estimate.bytes += grid_count_real(element_counts(part), 0) * double(bytes_per_opening_element);
+      }
   return estimate;
 }
 

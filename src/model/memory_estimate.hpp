@@ -35,8 +35,14 @@ namespace exdyn::solver {
 //     general reference data while the block is built, 271 doubles (hex20) or 81
 //     (hex20r); a part has about 4 nodes per element
 // Not counted: arrays of the contact faces and fixed faces (they grow with the
-// surface, not the volume) and the program itself.
+// surface, not the volume) and the program itself; but a part in a `surface: all` that
+// follows erosion (docs/contact.md, "Faces that erosion opens") holds every face its
+// bricks share in the contact, about 6 segments an element: bytes_per_opening_element
+// more per element, measured as the peak resident size of input/punch_through.yaml's
+// plate at 24 x 24 x 8 and 48 x 48 x 8 bricks less the same deck's without `failure`
+// (2.4 KiB an element at both).
 inline constexpr std::uint64_t bytes_per_node = 42 * 8;
+inline constexpr std::uint64_t bytes_per_opening_element = 3 * 1024;
 inline constexpr std::uint64_t bytes_per_element_besides_reference = 32 + 4 + 14 * 8 + 64;
 
 // Bytes per element of one part: 300 for a regular box, 860 (hex8) or 500 (hex8r) distorted.

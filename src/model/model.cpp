@@ -8,7 +8,9 @@
 #include "common/errors.hpp"
 #include "material/elastic.hpp"
 #include "material/material_law.hpp"
+#include "mesh/interior_faces.hpp"
 #include "model/memory_estimate.hpp"
+#include "model/opened_faces.hpp"
 
 namespace exdyn::solver {
 
@@ -29,6 +31,14 @@ Model build_model(const input::Deck& deck) {
         material::make_law(m, input::resolved_kinematics(part, m), part.f_bar)));
     element::add_lumped_mass(model.blocks.back(), model.mesh.x_ref, model.mass);
   }
+  // The faces erosion can open, for the surfaces that follow it (model/opened_faces.hpp).
+  for (const input::ContactOptions& pair : deck.contact)
+    if (input::follows_erosion(deck, pair))
+      for (const input::FaceRef& face : pair.slave) {
+        mesh::PartRange& range = model.mesh.parts[std::size_t(face.part)];
+        if (part_can_fail(model, face.part) && range.interior_faces.empty())
+          range.interior_faces = mesh::interior_faces(model.mesh, face.part);
+      }
   model.inverse_mass.resize(node_count);
   for (std::size_t i = 0; i < node_count; ++i) {
     EXDYN_ASSERT(model.mass[i] > 0.0);  // every node belongs to an element

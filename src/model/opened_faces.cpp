@@ -19,10 +19,12 @@ std::vector<input::FaceRef> opening_faces(const Model& model, const std::vector<
     if (part_can_fail(model, f.part) && std::find(parts.begin(), parts.end(), f.part) == parts.end())
       parts.push_back(f.part);
   std::vector<input::FaceRef> opening;
-  for (const int part : parts)
-    for (int local_face = 0; local_face < 6; ++local_face)
-      if (!mesh::interior_face(model.mesh, part, local_face).segments.empty())
-        opening.push_back(input::FaceRef{part, input::PartFace::interior, local_face});
+  for (const int part : parts) {
+    const std::vector<mesh::Face>& interior = model.mesh.parts[std::size_t(part)].interior_faces;
+    for (std::size_t local_face = 0; local_face < interior.size(); ++local_face)
+      if (!interior[local_face].segments.empty())
+        opening.push_back(input::FaceRef{part, input::PartFace::interior, int(local_face)});
+  }
   return opening;
 }
 

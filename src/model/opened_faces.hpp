@@ -21,7 +21,8 @@ namespace exdyn::solver {
 bool part_can_fail(const Model& model, int part);
 
 // The faces erosion can open under `faces` (a single surface's): the interior faces of
-// each part among them that can fail, by the bricks' local face, those with segments.
+// each part among them that can fail, by the bricks' local face, those with segments
+// (build_model keeps them: mesh::PartRange::interior_faces).
 std::vector<input::FaceRef> opening_faces(const Model& model, const std::vector<input::FaceRef>& faces);
 
 // Each segment's element and the element across it (ContactSurfaces::segment_element),

@@ -48,11 +48,20 @@ mesh::KeepSegment off_held_planes(const Model& model) {
 }
 
 std::vector<PassGeometry> surface_face_geometries(const input::Deck& deck, const Model& model,
-                                                  const input::ContactOptions& options) {
+                                                  const input::ContactOptions& options,
+                                                  const std::function<void(PassGeometry&)>& set_stiffness) {
   std::vector<PassGeometry> faces;
   const mesh::KeepSegment keep = off_held_planes(model);
-  for (const input::FaceRef& f : options.slave)
-    faces.push_back(pass_geometry(deck, model, options, {f}, options.slave, keep));
+  for (const input::FaceRef& f : options.slave) {  // the first face's master side is the surface's
+    PassGeometry g = pass_geometry(deck, model, options, {f}, options.slave, keep, faces.empty());
+    set_stiffness(g);
+    if (!faces.empty()) {  // (assigning {} would keep the capacity)
+      std::vector<contact::SegmentNodes>().swap(g.surfaces.segments);
+      std::vector<double>().swap(g.surfaces.master_area_per_mass);
+      std::vector<std::uint32_t>().swap(g.place.segment_ids);
+    }
+    faces.push_back(std::move(g));
+  }
   return faces;
 }
 

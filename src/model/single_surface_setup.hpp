@@ -4,6 +4,7 @@
 // surface's.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "input/options.hpp"
@@ -27,11 +28,15 @@ mesh::KeepSegment off_held_planes(const Model& model);
 std::vector<std::array<std::int32_t, 4>> edge_neighbours(const std::vector<contact::SegmentNodes>& segments,
                                                          const std::vector<std::uint8_t>& live = {});
 
-// One pass geometry per face of the surface (its segments off held planes): the face's slave points against
-// the whole surface's segments (so that the modulus, the smallest length and the master side of the stiffness
-// caps are the surface's). The caller sets each one's stiffness.
+// One pass geometry per face of the surface (its segments off held planes): the face's
+// slave points against the whole surface's segments (so that the modulus, the smallest
+// length and the master side of the stiffness caps are the surface's). set_stiffness
+// sets each one's stiffness as it is made; then every face after the first lets its
+// master side go (the first's is the surface's), so that a surface of many faces holds
+// its segments once.
 std::vector<PassGeometry> surface_face_geometries(const input::Deck& deck, const Model& model,
-                                                  const input::ContactOptions& options);
+                                                  const input::ContactOptions& options,
+                                                  const std::function<void(PassGeometry&)>& set_stiffness);
 
 // The one pass of the surface from its faces' (with their stiffness): the points in
 // face order (nodes: sorted, each with the stiffness of every face it lies on), the

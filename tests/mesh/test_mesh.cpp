@@ -7,6 +7,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "mesh/interior_faces.hpp"
 #include "mesh/mesh.hpp"
 
 namespace {
@@ -117,9 +118,10 @@ TEST(Mesh, InteriorFacesAreTheSharedFacesOutwardOfEitherBrick) {
   const std::array<std::pair<int, std::array<double, 3>>, 6> local{
       {{0, {0, 0, -1}}, {1, {0, 0, 1}}, {2, {0, -1, 0}}, {3, {1, 0, 0}}, {4, {0, 1, 0}}, {5, {-1, 0, 0}}}};
   const std::array<std::size_t, 3> shared{1 * 3 * 4, 2 * 2 * 4, 2 * 3 * 3};  // normal to x, y, z
+  const std::vector<exdyn::mesh::Face> interior = exdyn::mesh::interior_faces(mesh, 1);
+  ASSERT_EQ(interior.size(), 6u);
   for (const auto& [k, outward] : local) {
-    const exdyn::mesh::Face face =
-        exdyn::mesh::face_of(mesh, exdyn::input::FaceRef{1, PartFace::interior, k});
+    const exdyn::mesh::Face& face = interior[std::size_t(k)];
     const int axis = outward[0] != 0 ? 0 : outward[1] != 0 ? 1 : 2;
     EXPECT_EQ(face.segments.size(), shared[std::size_t(axis)]) << "local face " << k;
     const double h = std::array<double, 3>{0.5, 1.0 / 3.0, 0.25}[std::size_t(axis)];
@@ -138,7 +140,10 @@ TEST(Mesh, InteriorFacesAreTheSharedFacesOutwardOfEitherBrick) {
     }
   }
   // Part a is one brick thick in z: it shares no face normal to z.
-  EXPECT_TRUE(exdyn::mesh::face_of(mesh, exdyn::input::FaceRef{0, PartFace::interior, 1}).segments.empty());
+  EXPECT_TRUE(exdyn::mesh::interior_faces(mesh, 0)[1].segments.empty());
+  EXPECT_EQ(exdyn::mesh::interior_faces(mesh, 0)[3].segments.size(), 2u * 2u * 1u);
+  // The model keeps them only where a surface follows erosion: face_of asks for them.
+  EXPECT_THROW(exdyn::mesh::face_of(mesh, exdyn::input::FaceRef{1, PartFace::interior, 3}), std::logic_error);
 }
 
 // --- parts[i].perturbation: interior grid points moved at random by at most fraction h.

@@ -73,6 +73,14 @@ TEST(MemoryEstimate, ADistortedPartCountsTheGeneralKernelsReferenceData) {
   EXPECT_EQ(bytes_per_element(part), 212u + 34u * 8u);
 }
 
+TEST(MemoryEstimate, ASurfaceThatFollowsErosionCountsItsPartsSharedFaces) {
+  // input/punch_through.yaml: its plate (24 x 24 x 8 = 4,608 bricks) can fail; the rod cannot.
+  const input::Deck deck = input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/punch_through.yaml");
+  input::Deck kept = deck;
+  kept.contact.clear();
+  EXPECT_DOUBLE_EQ(estimate_memory(deck).bytes - estimate_memory(kept).bytes, 4608.0 * 3072.0);
+}
+
 TEST(MemoryEstimate, CoversTheArraysOfTheBuiltModel) {
   for (const double fraction : {0.0, 0.1}) {  // regular boxes, then distorted (the general kernels)
     SCOPED_TRACE("perturbation fraction " + std::to_string(fraction));
