@@ -47,12 +47,11 @@ def main():
     from vtkmodules.util.numpy_support import vtk_to_numpy
 
     os.makedirs(args.out_dir, exist_ok=True)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import picture_common as pc
+
     xmf = os.path.abspath(args.xmf)
-    reader = ps.Xdmf3ReaderS(FileName=[xmf])
-    reader.UpdatePipelineInformation()
-    times = [float(t) for t in (reader.TimestepValues or [0.0])]
-    t = times[-1] if args.time is None else min(times, key=lambda x: abs(x - args.time))
-    reader.UpdatePipeline(t)  # explicitly, or downstream filters may come out empty
+    reader, t = pc.read_at(ps, xmf, args.time)
     b = reader.GetDataInformation().GetBounds()
     h = b[3] - b[2]                      # one element thick in y: the element size
     d = max(-b[0], b[1])                 # plates from -d to 0 and 0 to d (or one plate)
@@ -62,30 +61,10 @@ def main():
     warp.Vectors = ["POINTS", "displacement"]
     warp.ScaleFactor = args.scale
     warp.UpdatePipeline(t)
-    view = ps.CreateView("RenderView")
-    view.ViewSize = list(args.size)
-    view.ViewTime = t
-    view.OrientationAxesVisibility = 1
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    view.Background = [1.0, 1.0, 1.0]
+    view = pc.white_view(ps, args.size, t)
     disp = ps.Show(warp, view)
     disp.SetRepresentationType("Surface")
-    ps.ColorBy(disp, ("CELLS", "stress", "XX"))
-    lut = ps.GetColorTransferFunction("stress")
-    lut.VectorMode = "Component"
-    lut.VectorComponent = 0
-    lut.ApplyPreset("Cool to Warm", True)
-    lut.RescaleTransferFunction(args.range[0], args.range[1])
-    lut.AutomaticRescaleRangeMode = "Never"
-    disp.SetScalarBarVisibility(view, True)
-    bar = ps.GetScalarBar(lut, view)
-    bar.Title = "stress XX (Pa)"
-    bar.ComponentTitle = ""
-    bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
-    bar.TitleFontSize = bar.LabelFontSize = 14
+    bar = pc.colour_cells(ps, disp, view, "stress", "stress XX (Pa)", "Cool to Warm", args.range, component=0)
     bar.RangeLabelFormat = "%-#6.2g"
 
     # Drawn in front of the mesh (y = -h) so that the camera sees it; sampled at y = h/2 below.
@@ -93,12 +72,8 @@ def main():
     line_disp = ps.Show(line_src, view)
     line_disp.AmbientColor = line_disp.DiffuseColor = [0.0, 0.0, 0.0]
     line_disp.LineWidth = 3.0
-    text = ps.Text(Text="%s   t = %.4g s   displacement x %g   black line: PlotOverLine, z = h/2"
-                   % (os.path.basename(xmf), t, args.scale))
-    text_disp = ps.Show(text, view)
-    text_disp.Color = [0.0, 0.0, 0.0]
-    text_disp.FontSize = 14
-    text_disp.WindowLocation = "Upper Left Corner"
+    pc.caption(ps, view, "%s   t = %.4g s   displacement x %g   black line: PlotOverLine, z = h/2"
+               % (os.path.basename(xmf), t, args.scale))
 
     ps.Render(view)   # the first Render resets the camera: place it after that
     # Look along +y at the x-z plane, z up, parallel projection framing the plates.
@@ -110,8 +85,7 @@ def main():
     view.CameraParallelScale = 0.8 * d
     ps.Render(view)
     png_field = os.path.join(args.out_dir, args.prefix + "_sigma_xx.png")
-    ps.SaveScreenshot(png_field, view, ImageResolution=list(args.size))
-    ps.Delete(view)   # before teardown: a view left to exit gives GLXBadContext under Xvfb
+    pc.save(ps, view, png_field, args.size)
     del view
 
     # --- PlotOverLine along z = 0 --------------------------------------------------------

@@ -28,12 +28,10 @@ def main():
         return 2
     import paraview.simple as ps
 
-    xmf = os.path.abspath(args.xmf)
-    reader = ps.Xdmf3ReaderS(FileName=[xmf])
-    reader.UpdatePipelineInformation()
-    times = [float(t) for t in (reader.TimestepValues or [0.0])]
-    t = times[-1] if args.time is None else min(times, key=lambda x: abs(x - args.time))
-    reader.UpdatePipeline(t)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import picture_common as pc
+
+    reader, t = pc.read_at(ps, args.xmf, args.time)
     warp = ps.WarpByVector(Input=reader)
     warp.Vectors = ["POINTS", "displacement"]
     warp.ScaleFactor = 1.0
@@ -43,35 +41,13 @@ def main():
     half.UpdatePipeline(t)
     b = half.GetDataInformation().GetBounds()
 
-    view = ps.CreateView("RenderView")
-    view.ViewSize = list(args.size)
-    view.ViewTime = t
-    view.OrientationAxesVisibility = 1
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    view.Background = [1.0, 1.0, 1.0]
+    view = pc.white_view(ps, args.size, t)
     disp = ps.Show(half, view)
     disp.SetRepresentationType("Surface With Edges")
     disp.EdgeColor = [0.25, 0.25, 0.25]
-    ps.ColorBy(disp, ("CELLS", "plastic_strain"))
-    lut = ps.GetColorTransferFunction("plastic_strain")
-    lut.ApplyPreset("Viridis (matplotlib)", True)
-    lut.RescaleTransferFunction(args.range[0], args.range[1])
-    lut.AutomaticRescaleRangeMode = "Never"
-    disp.SetScalarBarVisibility(view, True)
-    bar = ps.GetScalarBar(lut, view)
-    bar.Title = "plastic strain"
-    bar.ComponentTitle = ""
-    bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
-    bar.TitleFontSize = bar.LabelFontSize = 14
-    text = ps.Text(Text="%s   t = %.4g ms   half tube (the quarter and its mirror), cut y = 0"
-                   % (os.path.basename(xmf), 1e3 * t))
-    text_disp = ps.Show(text, view)
-    text_disp.Color = [0.0, 0.0, 0.0]
-    text_disp.FontSize = 14
-    text_disp.WindowLocation = "Upper Left Corner"
+    pc.colour_cells(ps, disp, view, "plastic_strain", "plastic strain", "Viridis (matplotlib)", args.range)
+    pc.caption(ps, view, "%s   t = %.4g ms   half tube (the quarter and its mirror), cut y = 0"
+               % (os.path.basename(args.xmf), 1e3 * t))
 
     ps.Render(view)  # the first Render resets the camera: place it after that
     # Along +y at the cut, a little from above, z up.
@@ -85,11 +61,8 @@ def main():
     view.CameraPosition = [cx + 0.5 * span, -3.0 * span, cz + 0.8 * span]
     view.CameraViewAngle = 22
     ps.Render(view)
-    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-    ps.SaveScreenshot(args.out, view, ImageResolution=list(args.size))
-    ps.Delete(view)  # before teardown: a view left to exit gives GLXBadContext under Xvfb
+    ok = pc.save(ps, view, args.out, args.size)
     del view
-    ok = os.path.exists(args.out) and os.path.getsize(args.out) > 0
     print(json.dumps({"ok": ok, "time": t, "bounds": list(b), "png": args.out}))
     return 0 if ok else 1
 
