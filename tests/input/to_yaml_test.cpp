@@ -198,8 +198,8 @@ TEST(SlavePointsAuto, IsTheDefaultAndWarnsOnlyOnNodesOfEightNodeSegments) {
                   .empty());  // 4-node segments
 }
 
-// Contact on a part that can fail is not complete (docs/theory.md, "Damage and
-// erosion"): the run says so.
+// A named pair on a part that can fail keeps its faces as they were (docs/contact.md,
+// "Faces that erosion opens"): the run says so. `surface: all` follows erosion: no word.
 TEST(DeckWarnings, ContactOnAPartThatCanFailIsWarnedAbout) {
   const std::string deck = std::string(EXDYN_SOURCE_DIR) + "/input/plate_impact.yaml";
   EXPECT_TRUE(deck_warnings(read_deck(deck)).empty());
@@ -209,6 +209,8 @@ TEST(DeckWarnings, ContactOnAPartThatCanFailIsWarnedAbout) {
                         "poissons_ratio: 0.3, yield_stress: 4.0e8, failure: {plastic_strain: 0.3}}"}}));
   ASSERT_EQ(warnings.size(), 1u);
   EXPECT_TRUE(contains(warnings[0], "contact pair interface: part plate_a can fail")) << warnings[0];
+  EXPECT_TRUE(contains(warnings[0], "use `surface: all`")) << warnings[0];
+  EXPECT_TRUE(deck_warnings(read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/punch_through.yaml")).empty());
 }
 
 }  // namespace
