@@ -1,0 +1,162 @@
+#!/usr/bin/python3
+"""Residual against impact velocity of the punched plate (input/punch_through.yaml: a
+hardened elastic rod, radius 1.5 mm, flat nose, through a 1 mm steel plate whose
+elements fail at a plastic strain of 0.3, a quarter model), on three plate meshes, with
+a Recht-Ipson fit of each (docs/verification.md, "The punched plate").
+
+    /usr/bin/python3 scripts/perforation_study.py [--exdyn PATH] [--out DIR] [--threads 2]
+        [--speeds 60,80,90,100,105,110,125,150,200,250,300,400] [--meshes 12x4,24x8,36x12]
+        [--figure PNG]
+
+Each run: the rod at v_i, to t = max(15 us, 3.5 mm / v_i) (the rod through and clear of
+the plate). Its residual velocity v_r is the mean z velocity of its nodes at the end
+(their masses are equal to within the rod's uniform mesh), 0 where the rod did not get
+its nose through the plate's back face. The fit, Recht and Ipson (1963):
+
+    v_r = a (v_i^p - v_bl^p)^(1/p)   for v_i > v_bl, 0 below,
+
+a, p and the ballistic limit v_bl by least squares over the runs (a grid in v_bl
+between the fastest stopped and the slowest perforating speed, and in p; a in closed
+form). Prints one table row per run and one per mesh; writes the chart.
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+import batch_plate_impact as batch  # noqa: E402  (the exdyn path)
+
+DECK = os.path.join(REPO, "input", "punch_through.yaml")
+PLATE_BACK = -1.0e-3  # the plate's back face, z (m)
+
+
+def run(exdyn, out, speed, mesh, threads):
+    """(v_r in m/s, nose z at the end, the summary) of one run."""
+    n, layers = mesh
+    end = max(15.0e-6, 3.5e-3 / speed)
+    cmd = [exdyn, "run", DECK, "--quiet", "--output", out, "--threads", str(threads),
+           "--set", f"parts[0].initial_velocity=[0, 0, {-speed}]", "--set", f"time.end_time={end}",
+           "--set", f"parts[1].elements=[{n}, {n}, {layers}]", "--set", "output.every=1000000",
+           "--set", "output.fields=[displacement, velocity, status]"]
+    summary_path = os.path.join(out, "punch_through.json")
+    done = os.path.exists(summary_path) and json.load(open(summary_path)).get("status") == "completed"
+    if not done:  # a run with --out that completed before is read again, not run
+        subprocess.run(cmd, capture_output=True, text=True)
+    with open(summary_path) as f:
+        summary = json.load(f)
+    if summary.get("status") != "completed":
+        return None, None, summary
+    with h5py.File(os.path.join(out, "punch_through.h5"), "r") as f:
+        x = f["/mesh/coordinates"][:]
+        part = f["/mesh/part"][:].ravel()
+        cells = f["/mesh/connectivity"][:]
+        last = sorted(f["/steps"].keys())[-1]
+        u = f[f"/steps/{last}/displacement"][:]
+        v = f[f"/steps/{last}/velocity"][:]
+    rod = np.unique(cells[part == 0].ravel())
+    nose = float(np.min(x[rod, 2] + u[rod, 2]))
+    residual = float(-np.mean(v[rod, 2])) if nose < PLATE_BACK else 0.0
+    return max(residual, 0.0), nose, summary
+
+
+def recht_ipson(points):
+    """(a, p, v_bl, rms) of the fit to [(v_i, v_r)], or None with fewer than 3 perforations."""
+    pts = sorted(points)
+    through = [(vi, vr) for vi, vr in pts if vr > 0.0]
+    stopped = [vi for vi, vr in pts if vr == 0.0]
+    if len(through) < 3:
+        return None
+    lo = max(stopped) if stopped else 0.0
+    hi = min(vi for vi, _ in through)
+    vi = np.array([p[0] for p in pts])
+    vr = np.array([p[1] for p in pts])
+    best = None
+    for v_bl in np.linspace(lo, hi, 401)[:-1]:
+        for p in np.linspace(1.2, 4.0, 141):
+            g = np.where(vi > v_bl, np.maximum(vi ** p - v_bl ** p, 0.0) ** (1.0 / p), 0.0)
+            a = float(np.dot(vr, g) / np.dot(g, g))
+            rms = float(np.sqrt(np.mean((vr - a * g) ** 2)))
+            if best is None or rms < best[3]:
+                best = (a, float(p), float(v_bl), rms)
+    return best
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--exdyn", default=batch.default_exdyn())
+    p.add_argument("--out", default=None,
+                   help="keep the runs here, and read again those that completed (default: a temporary directory)")
+    p.add_argument("--threads", type=int, default=2)
+    p.add_argument("--speeds", default="60,80,90,100,105,110,125,150,200,250,300,400")
+    p.add_argument("--meshes", default="12x4,24x8,36x12", help="the plate's bricks across x N and through")
+    p.add_argument("--figure", default=os.path.join(REPO, "docs", "figures", "perforation_study.png"))
+    args = p.parse_args()
+    speeds = [float(s) for s in args.speeds.split(",")]
+    meshes = [tuple(int(k) for k in m.split("x")) for m in args.meshes.split(",")]
+    work = args.out or tempfile.mkdtemp(prefix="exdyn_perforation_")
+    results = {}
+    print("| plate bricks | v_i (m/s) | v_r (m/s) | nose z (mm) | eroded | steps | wall (s) |")
+    print("|---|---|---|---|---|---|---|")
+    for mesh in meshes:
+        for speed in speeds:
+            out = os.path.join(work, f"{mesh[0]}x{mesh[1]}_{int(speed)}")
+            residual, nose, summary = run(args.exdyn, out, speed, mesh, args.threads)
+            label = f"{mesh[0]} x {mesh[0]} x {mesh[1]}"
+            if residual is None:
+                print(f"| {label} | {speed:g} | run {summary['status']}: {summary.get('message', '')[:80]} "
+                      f"| | | {summary['steps']} | {summary['wall_seconds']:.1f} |", flush=True)
+                continue
+            results.setdefault(mesh, []).append((speed, residual))
+            print(f"| {label} | {speed:g} | {residual:.1f} | {1e3 * nose:.2f} | "
+                  f"{summary['energy']['eroded_elements']} | {summary['steps']} | "
+                  f"{summary['wall_seconds']:.1f} |", flush=True)
+    print()
+    print("| plate bricks | v_bl (m/s) | a | p | rms (m/s) |")
+    print("|---|---|---|---|---|")
+    fits = {}
+    for mesh, points in results.items():
+        fit = recht_ipson(points)
+        fits[mesh] = fit
+        label = f"{mesh[0]} x {mesh[0]} x {mesh[1]}"
+        if fit is None:
+            print(f"| {label} | fewer than 3 perforations | | | |")
+        else:
+            print(f"| {label} | {fit[2]:.1f} | {fit[0]:.3f} | {fit[1]:.2f} | {fit[3]:.2f} |")
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.4, 4.4), dpi=100)
+    for k, (mesh, points) in enumerate(sorted(results.items())):
+        colour = f"C{k}"
+        vi, vr = zip(*sorted(points))
+        ax.plot(vi, vr, "o", color=colour, label=f"plate {mesh[0]} x {mesh[0]} x {mesh[1]}")
+        fit = fits[mesh]
+        if fit is not None:
+            a, power, v_bl, _ = fit
+            grid = np.linspace(0.0, max(speeds) * 1.05, 400)
+            ax.plot(grid, np.where(grid > v_bl, a * np.maximum(grid ** power - v_bl ** power, 0.0) ** (1 / power),
+                                   0.0), "-", color=colour, lw=1,
+                    label=f"Recht-Ipson: v_bl {v_bl:.0f} m/s, a {a:.2f}, p {power:.2f}")
+    ax.plot([0, max(speeds)], [0, max(speeds)], "k:", lw=0.8, label="v_r = v_i")
+    ax.set_xlabel("impact velocity v_i (m/s)")
+    ax.set_ylabel("residual velocity v_r (m/s)")
+    ax.set_title("input/punch_through.yaml: rod through a 1 mm plate", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    os.makedirs(os.path.dirname(os.path.abspath(args.figure)), exist_ok=True)
+    fig.savefig(args.figure)
+    print(f"\nchart: {args.figure}; runs in {work}")
+
+
+if __name__ == "__main__":
+    main()
