@@ -83,18 +83,18 @@ std::array<double, 8> nodal_areas(const NodalVectors& x, const contact::SegmentN
 // goes on where the edge's two corner nodes bound another master segment too, or lie
 // on a symmetry plane: both held in the same component a and at the same reference
 // coordinate x_a (the cut faces of a half or quarter model), the mirror axis a.
+namespace {
+
+std::pair<std::uint32_t, std::uint32_t> edge_key(const contact::SegmentNodes& ids, int e) {
+  const std::uint32_t a = ids.nodes[contact::edge_corners[e][0]], b = ids.nodes[contact::edge_corners[e][1]];
+  return std::make_pair(std::min(a, b), std::max(a, b));
+}
+
+}  // namespace
+
 std::vector<contact::SegmentEdges> segment_edges(const Model& model,
                                                  const std::vector<contact::SegmentNodes>& segments,
                                                  const std::vector<std::uint8_t>& live) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edge_count;
-  auto edge_key = [](const contact::SegmentNodes& ids, int e) {
-    const std::uint32_t a = ids.nodes[contact::edge_corners[e][0]],
-                        b = ids.nodes[contact::edge_corners[e][1]];
-    return std::make_pair(std::min(a, b), std::max(a, b));
-  };
-  for (std::size_t i = 0; i < segments.size(); ++i)
-    if (live.empty() || live[i] != 0)
-      for (int e = 0; e < 4; ++e) ++edge_count[edge_key(segments[i], e)];
   const NodalVectors& x = model.mesh.x_ref;
   auto mirror_axis = [&](std::uint32_t a, std::uint32_t b) {
     const std::array<const std::vector<double>*, 3> coordinate{&x.x, &x.y, &x.z};
@@ -110,11 +110,24 @@ std::vector<contact::SegmentEdges> segment_edges(const Model& model,
   for (std::size_t i = 0; i < segments.size(); ++i)
     for (int e = 0; e < 4; ++e) {
       const auto key = edge_key(segments[i], e);
-      const int axis = mirror_axis(key.first, key.second);
-      edges[i].mirror_axis[std::size_t(e)] = static_cast<std::int8_t>(axis);
-      if (edge_count[key] > 1 || axis >= 0) edges[i].continued |= static_cast<std::uint8_t>(1u << e);
+      edges[i].mirror_axis[std::size_t(e)] = static_cast<std::int8_t>(mirror_axis(key.first, key.second));
     }
+  continue_edges(segments, live, edges);
   return edges;
+}
+
+void continue_edges(const std::vector<contact::SegmentNodes>& segments, const std::vector<std::uint8_t>& live,
+                    std::vector<contact::SegmentEdges>& edges) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edge_count;
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    if (live.empty() || live[i] != 0)
+      for (int e = 0; e < 4; ++e) ++edge_count[edge_key(segments[i], e)];
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    edges[i].continued = 0;
+    for (int e = 0; e < 4; ++e)
+      if (edge_count[edge_key(segments[i], e)] > 1 || edges[i].mirror_axis[std::size_t(e)] >= 0)
+        edges[i].continued |= static_cast<std::uint8_t>(1u << e);
+  }
 }
 
 mesh::Face contact_face(const Model& model, const input::FaceRef& f, const mesh::KeepSegment& keep) {

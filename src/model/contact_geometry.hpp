@@ -39,6 +39,10 @@ PassGeometry pass_geometry(const input::Deck& deck, const Model& model, const in
 std::vector<contact::SegmentEdges> segment_edges(const Model& model,
                                                  const std::vector<contact::SegmentNodes>& segments,
                                                  const std::vector<std::uint8_t>& live = {});
+// The `continued` bits of `edges` (segment_edges') anew for `live`, their mirror axes
+// kept: the edges of a surface that erosion changed.
+void continue_edges(const std::vector<contact::SegmentNodes>& segments, const std::vector<std::uint8_t>& live,
+                    std::vector<contact::SegmentEdges>& edges);
 
 // Face f of the model, cut to the segments `keep` keeps (none: whole).
 mesh::Face contact_face(const Model& model, const input::FaceRef& f, const mesh::KeepSegment& keep);

@@ -41,30 +41,6 @@ std::vector<std::uint8_t> elements_alive(const Model& model) {
   return alive;
 }
 
-// The segments and points of `s` on the boundary with the elements' life `alive`;
-// whether they changed.
-bool update_live(const Model& model, const std::vector<std::uint8_t>& alive, contact::ContactSurfaces& s) {
-  auto on = [&](std::uint32_t element) { return element != contact::no_element && alive[element] != 0; };
-  std::vector<std::uint8_t> live(s.segments.size());
-  for (std::size_t k = 0; k < live.size(); ++k)
-    live[k] = std::uint8_t((s.segment_element[k] == contact::no_element || on(s.segment_element[k])) &&
-                           !on(s.segment_across[k]));
-  if (live == s.segment_live) return false;
-  s.segment_live = std::move(live);
-  s.point_live.assign(s.point_count(), 0);
-  if (s.quadrature) {  // a Gauss point's slave segment k is master segment k
-    for (std::size_t p = 0; p < s.point_live.size(); ++p)
-      s.point_live[p] = s.segment_live[s.quadrature_points[p].segment];
-  } else {
-    for (std::size_t p = 0; p < s.point_live.size(); ++p)
-      for (std::uint32_t k = s.corner_begin[p]; k < s.corner_begin[p + 1]; ++k)
-        s.point_live[p] = std::uint8_t(s.point_live[p] | s.segment_live[s.node_corners[k].segment]);
-  }
-  s.edges = segment_edges(model, s.segments, s.segment_live);
-  s.edge_neighbours = edge_neighbours(s.segments, s.segment_live);
-  return true;
-}
-
 }  // namespace
 
 void find_segment_elements(const Model& model, contact::ContactSurfaces& s) {
@@ -99,7 +75,30 @@ void find_segment_elements(const Model& model, contact::ContactSurfaces& s) {
     s.segment_element.clear(), s.segment_across.clear();
     return;
   }
-  update_live(model, elements_alive(model), s);
+  s.edges = segment_edges(model, s.segments);  // their mirror axes; follow_life counts the live ones
+  follow_life(elements_alive(model), s);
+}
+
+bool follow_life(const std::vector<std::uint8_t>& alive, contact::ContactSurfaces& s) {
+  auto on = [&](std::uint32_t element) { return element != contact::no_element && alive[element] != 0; };
+  std::vector<std::uint8_t> live(s.segments.size());
+  for (std::size_t k = 0; k < live.size(); ++k)
+    live[k] = std::uint8_t((s.segment_element[k] == contact::no_element || on(s.segment_element[k])) &&
+                           !on(s.segment_across[k]));
+  if (live == s.segment_live) return false;
+  s.segment_live = std::move(live);
+  s.point_live.assign(s.point_count(), 0);
+  if (s.quadrature) {  // a Gauss point's slave segment k is master segment k
+    for (std::size_t p = 0; p < s.point_live.size(); ++p)
+      s.point_live[p] = s.segment_live[s.quadrature_points[p].segment];
+  } else {
+    for (std::size_t p = 0; p < s.point_live.size(); ++p)
+      for (std::uint32_t k = s.corner_begin[p]; k < s.corner_begin[p + 1]; ++k)
+        s.point_live[p] = std::uint8_t(s.point_live[p] | s.segment_live[s.node_corners[k].segment]);
+  }
+  continue_edges(s.segments, s.segment_live, s.edges);
+  s.edge_neighbours = edge_neighbours(s.segments, s.segment_live);
+  return true;
 }
 
 int open_eroded_faces(ContactModel& contact, const Model& model) {
@@ -109,7 +108,7 @@ int open_eroded_faces(ContactModel& contact, const Model& model) {
   for (ContactPair& pair : contact.pairs)
     for (std::size_t p = 0; p < pair.passes.size(); ++p) {
       contact::ContactSurfaces& s = pair.passes[p];
-      if (s.segment_element.empty() || !update_live(model, alive, s)) continue;
+      if (s.segment_element.empty() || !follow_life(alive, s)) continue;
       contact::ContactPassState& state = pair.states[p];
       state.built = false;
       for (contact::Anchor& anchor : state.anchors)

@@ -30,6 +30,12 @@ std::vector<input::FaceRef> opening_faces(const Model& model, const std::vector<
 // alive). Leaves `s` as it is when none of its segments lies on a part that can fail.
 void find_segment_elements(const Model& model, contact::ContactSurfaces& s);
 
+// Brings the segments and points of `s` (segment_element not empty) to the elements'
+// life `alive` (1 alive, 0 gone; by the element ids of segment_element), with the
+// edges' `continued` bits (their mirror axes kept) and the edge neighbours; whether
+// they changed.
+bool follow_life(const std::vector<std::uint8_t>& alive, contact::ContactSurfaces& s);
+
 // Brings every eroding surface to the elements' status now (an element is gone once it
 // is not alive: failed at an earlier step, element_block.hpp): its segments and points,
 // its edges and edge neighbours; a pass whose surface changed searches again (its

@@ -85,6 +85,10 @@ std::vector<std::vector<T>> all_to_all(DistributedContact& dc, const std::vector
 // not in the view is -1 (no segment the point may touch there).
 void index_single_surface(PassShare& share);
 
+// A surface that follows erosion (PassShare::whole): the view's segments and points on
+// or off the surface as the whole pass's (after the view changed).
+void apply_life(PassShare& share);
+
 // A node's place in the store (global id in), or store.global.size().
 std::size_t store_index(const ContactStore& store, std::uint32_t node);
 

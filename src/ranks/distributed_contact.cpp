@@ -224,6 +224,17 @@ PassShare make_share(const contact::ContactSurfaces& whole, const PassPlace& pla
   for (std::uint32_t& node : view.moving_nodes) node = std::uint32_t(index_in(store.global, node));
   share.known = share.segment_ids;
   if (own.single_surface) shares::index_single_surface(share);
+  if (!whole.segment_element.empty()) {  // a surface that follows erosion: built whole on every rank
+    EXDYN_ASSERT(place.segment_ids.empty() && !whole.mortar);
+    share.whole = whole;
+    for (const std::uint64_t key : share.point_keys) {
+      const std::size_t p =
+          whole.quadrature ? std::size_t(key) : index_in(whole.slave_nodes, std::uint32_t(key));
+      EXDYN_ASSERT(p < whole.point_count());
+      share.whole_point.push_back(std::uint32_t(p));
+    }
+    shares::apply_life(share);
+  }
   return share;
 }
 
@@ -520,7 +531,7 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
     for (std::size_t p = 0; p < pair.passes.size(); ++p, ++k) {
       PassShare& share = dc.passes[k];
       contact::ContactPassState& state = pair.states[p];
-      if (dc.motion[k] > 0.5 * pair.settings.margin) {
+      if (dc.motion[k] > 0.5 * pair.settings.margin || share.opened) {
         search_again(dc, share, pair.settings, state, global_node, model.mesh.x_ref, model.mass, u, v);
         pair.passes[p] = share.view;  // the pair's own copy (the summary's counts)
         searched = true;

@@ -70,6 +70,13 @@ struct PassShare {
   std::size_t ghost_segments = 0, ghost_nodes = 0;  // in the view and the store
   double local_friction_work = 0.0;                 // this rank's points', J (the state holds all ranks')
   contact::RecordSink sink;  // the pass's records of a step (kept: no allocation a step)
+  // A surface that follows erosion (ContactSurfaces::segment_element): the whole pass
+  // (global node ids; every rank the same), whose segments and points the elements'
+  // life brings on and off the surface, each own point's index in it, and whether it
+  // changed since the last search (then the pass searches again at once).
+  contact::ContactSurfaces whole;
+  std::vector<std::uint32_t> whole_point;
+  bool opened = false;
 };
 
 // This rank's share of the contact (docs/output.md, mpi.per_rank), summed over the
@@ -134,5 +141,14 @@ void run_distributed_contact(ContactModel& contact, DistributedContact& dc, cons
 double reduce_contact_figures(ContactModel& contact, DistributedContact& dc, double power);
 
 ContactShareFigures contact_share_figures(const DistributedContact& dc);
+
+// The surfaces that follow erosion on every rank (docs/contact.md, "Faces that erosion
+// opens"), at the start of a step after an element failed anywhere: the ranks gather
+// the failed elements (`model`'s, global_element its local -> global element ids, of
+// global_elements) and each brings every such pass to them, as one process does
+// (follow_life on the whole pass); a pass that changed searches again in this step's
+// contact. Collective over dc.comm.
+void open_eroded_shares(ContactModel& contact, DistributedContact& dc, const Model& model,
+                        const std::vector<std::uint32_t>& global_element, std::size_t global_elements);
 
 }  // namespace exdyn::solver

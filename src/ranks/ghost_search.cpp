@@ -13,6 +13,12 @@ namespace exdyn::solver::shares {
 
 namespace {
 
+// Whether own segment i of the share is on its surface (a surface that follows erosion:
+// one off it is no candidate, so it travels to no rank and stays out of the views).
+bool own_segment_on(const PassShare& share, std::size_t i) {
+  return share.whole.segment_live.empty() || share.whole.segment_live[share.segment_ids[i]] != 0;
+}
+
 // The box of this rank's slave points now, and of the stick anchors of its points in
 // contact (friction: an anchor's segment must stay in the view), m.
 contact::Box point_box(const PassShare& share, const contact::ContactPassState& state) {
@@ -111,7 +117,7 @@ GhostExchange exchange_ghosts(DistributedContact& dc, const PassShare& share,
                               {boxes[6 * r + 3], boxes[6 * r + 4], boxes[6 * r + 5]}};
     std::vector<std::uint32_t> sent;  // global ids
     for (std::size_t i = 0; i < own_boxes.size(); ++i) {
-      if (!overlap(own_boxes[i], theirs)) continue;
+      if (!overlap(own_boxes[i], theirs) || !own_segment_on(share, i)) continue;
       const contact::SegmentNodes& s = share.own.segments[i];
       segments_out[r].push_back({share.segment_ids[i], s,
                                  share.own.edges.empty() ? contact::SegmentEdges{} : share.own.edges[i],
@@ -151,6 +157,10 @@ KnownSegments merge_known(const PassShare& share, const std::vector<SegmentPaylo
   for (std::size_t i = 0, j = 0; i < share.segment_ids.size() || j < ghosts.size();) {
     const bool own =
         j == ghosts.size() || (i < share.segment_ids.size() && share.segment_ids[i] < ghosts[j].id);
+    if (own && !own_segment_on(share, i)) {
+      ++i;
+      continue;
+    }
     if (own) {
       known.ids.push_back(share.segment_ids[i]);
       known.segments.push_back(share.own.segments[i]);
@@ -288,6 +298,10 @@ void renumber_state(PassShare& share, KnownSegments known, contact::ContactPassS
     anchor.segment = renumber(std::uint32_t(anchor.segment));
     EXDYN_ASSERT(anchor.segment >= 0);  // its point lies in this rank's box: the segment came
   }
+  // A surface that follows erosion: the segment each point last touched (its point in
+  // contact lies in this rank's box: the segment came).
+  for (std::int64_t& last : state.last_segment)
+    if (last >= 0) last = renumber(std::uint32_t(last));
   // Mortar: the pieces of the last step name their master segments in the new view (a
   // piece whose segment did not come is not a piece again: it keeps no anchor).
   auto& pieces = state.mortar.identity;
@@ -346,6 +360,8 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
   const std::size_t ghost_nodes = fill_store(share.store, dc, x.ghosts, global_node, x_ref, mass, u, v);
   link_ghosts(share, x, global_node);
   renumber_state(share, std::move(known), state);
+  if (!share.whole.segment_element.empty()) apply_life(share);
+  share.opened = false;
   state.built = false;
   share.ghost_segments = x.ghosts.size();
   share.ghost_nodes = ghost_nodes;

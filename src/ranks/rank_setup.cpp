@@ -374,26 +374,25 @@ std::vector<double> measured_costs(const input::Deck& deck, const mpi::Communica
   return cost;
 }
 
-}  // namespace
-
-RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning,
-                      bool weigh_by_work) {
-  // Contact on the faces erosion opens (docs/contact.md) needs every brick's life
-  // beside each segment: the ranks do not pass it between them.
-  for (const input::ContactOptions& pair : deck.contact)
-    if (input::follows_erosion(deck, pair))
-      throw InputError(
-          "contact pair " + pair.name +
-          ": `surface: all` over a part that can fail runs on one process (with threads); on many "
-          "ranks the faces erosion opens are not passed between them: run without mpirun");
-  // The memory check with this machine's share of the model.
+// The ranks of comm on this machine (the memory check's share).
+int ranks_on_this_machine(const mpi::Communicator& comm) {
   MPI_Comm here = MPI_COMM_NULL;
   mpi::check(MPI_Comm_split_type(comm.comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &here),
              "MPI_Comm_split_type of the ranks on this machine");
   int ranks_here = 1;
   MPI_Comm_size(here, &ranks_here);
   MPI_Comm_free(&here);
-  check_mesh_size(deck, MachineShare{comm.size, ranks_here});
+  return ranks_here;
+}
+
+}  // namespace
+
+RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning,
+                      bool weigh_by_work) {
+  for (const input::ContactOptions& pair : deck.contact)
+    if (input::follows_erosion(deck, pair)) return set_up_from_whole(deck, comm, partitioning, weigh_by_work);
+  // The memory check with this machine's share of the model.
+  check_mesh_size(deck, MachineShare{comm.size, ranks_on_this_machine(comm)});
 
   // Rank 0 reads each Gmsh file once, for all the parts it holds.
   std::map<std::string, input::GmshMesh> files;
@@ -418,6 +417,41 @@ RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Pa
   RankSetup setup = build_part(deck, comm, deck_parts, chunks, partitioning);
   setup.run.decomposition.weighed_by_work = weigh_by_work;
   return setup;
+}
+
+RankSetup set_up_from_whole(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning,
+                            bool weigh_by_work) {
+  // The memory check: each rank on this machine holds the whole model.
+  check_mesh_size(deck, MachineShare{1, ranks_on_this_machine(comm)});
+  const Model whole = build_model(deck);
+  RankSetup setup;
+  setup.critical_dt = critical_time_step(whole);
+  setup.nodes = whole.mesh.node_count();
+  setup.elements = whole.mesh.element_count();
+  // One process's contact (its first step is the clock's: time_stepping's).
+  setup.contact =
+      build_contact(deck, whole, time_stepping(deck.time, setup.critical_dt).dt, setup.critical_dt);
+  setup.contact_nodes = setup.contact->nodes;
+  const NodalVectors velocity = initial_velocity(deck, whole);
+  const std::vector<double> costs =
+      weigh_by_work
+          ? chunk_costs(whole, *setup.contact, velocity, time_stepping(deck.time, setup.critical_dt).dt, comm)
+          : std::vector<double>{};
+  setup.run = localize(whole, setup.contact_nodes, velocity, comm, partitioning, costs);
+  setup.run.decomposition.weighed_by_work = weigh_by_work;
+  return setup;
+}
+
+ContactModel rank_contact(const input::Deck& deck, RankSetup& setup, double dt, double critical_dt,
+                          const mpi::Communicator& comm) {
+  if (setup.contact) {
+    ContactModel contact = std::move(*setup.contact);
+    setup.contact.reset();
+    return contact;
+  }
+  ContactModel contact = build_contact(deck, setup.surfaces, dt, critical_dt, contact_scope(setup, comm));
+  globalize_contact(contact, setup.surface_nodes);
+  return contact;
 }
 
 SetupChunks setup_chunks(const input::Deck& deck, int ranks, Partitioning partitioning) {

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -51,6 +52,9 @@ struct RankSetup {
   // The contact-face nodes this rank holds (global ids, ascending), the ranks holding
   // each in run.contact_holders (distribute_contact).
   std::vector<std::uint32_t> contact_nodes;
+  // A deck whose contact follows erosion (set_up_from_whole): the contact as one process
+  // builds it (global ids), and contact_nodes all its nodes.
+  std::optional<ContactModel> contact;
 };
 
 // The scope of build_contact on RankSetup::surfaces: the held nodes, and the largest
@@ -62,6 +66,21 @@ ContactScope contact_scope(const RankSetup& setup, const mpi::Communicator& comm
 // on a first setup by elements, which is then dropped.
 RankSetup set_up_rank(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning,
                       bool weigh_by_work);
+
+// A deck with a contact that follows erosion (`surface: all` over a part that can fail,
+// docs/contact.md) on many ranks: each segment of such a surface needs the life of the
+// bricks on both its sides, and the surface's edges change with it, wherever the
+// bricks lie. Every rank builds the whole model and its contact as one process does
+// (the memory of one process a rank while it sets up), and cuts out its part
+// (localize: the same partition as set_up_rank's); the contact's passes keep their
+// whole surfaces (PassShare::whole). set_up_rank calls it for such a deck.
+RankSetup set_up_from_whole(const input::Deck& deck, const mpi::Communicator& comm, Partitioning partitioning,
+                            bool weigh_by_work);
+
+// This rank's contact from its setup, global node ids: built on the faces near it and
+// renumbered, or set_up_from_whole's.
+ContactModel rank_contact(const input::Deck& deck, RankSetup& setup, double dt, double critical_dt,
+                          const mpi::Communicator& comm);
 
 // The pieces of set_up_rank that need no other rank, for the tests that hold them to
 // the whole model's (tests/solver/test_decomposition.cpp): each chunk's colour in its

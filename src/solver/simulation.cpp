@@ -30,7 +30,6 @@
 #include "element/corner_checks.hpp"
 #include "model/contact_setup.hpp"
 #include "model/model.hpp"
-#include "model/opened_faces.hpp"
 #include "output/result_writer.hpp"
 #include "ranks/ranks.hpp"
 #include "solver/nodal_update.hpp"
@@ -129,8 +128,9 @@ class TimeLoop {
   // What a prescribed velocity's start can show in E_mean (prescribed_jump_energy), J.
   double start_jump_ = 0.0;
   bool small_strain_warned_ = false;
-  // The elements failed when the contact last followed erosion (opened_faces.hpp).
-  long opened_for_eroded_ = 0;
+  // The elements failed on all ranks by the last step, and when the contact last
+  // followed erosion (opened_faces.hpp).
+  long failed_everywhere_ = 0, opened_for_eroded_ = 0;
   int stop_requested_ = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
 };
 
@@ -154,8 +154,7 @@ NodalVectors TimeLoop::set_up(const RunControls& controls, output::RunSummary& s
   RankSetup setup = set_up_rank(deck_, comm, controls.partitioning, controls.weigh_by_work);
   critical_dt_ = setup.critical_dt;
   clock_ = std::make_unique<StepClock>(deck_.time, critical_dt_, setup.run.model, &comm);
-  contact_ = build_contact(deck_, setup.surfaces, clock_->next(), critical_dt_, contact_scope(setup, comm));
-  globalize_contact(contact_, setup.surface_nodes);
+  contact_ = rank_contact(deck_, setup, clock_->next(), critical_dt_, comm);
   local_ = std::move(setup.run);
   summary.nodes = static_cast<long>(setup.nodes);
   summary.elements = static_cast<long>(setup.elements);
@@ -331,11 +330,11 @@ void TimeLoop::begin_step() {
 
 void TimeLoop::compute_forces() {
   output::PhaseSeconds& phase = summary_.phase_seconds;
-  // An element failed at the last step is gone from this one: its faces leave the
-  // contact and the faces it exposed join it, before either pass runs.
-  if (state_.eroded_elements != opened_for_eroded_) {
-    open_eroded_faces(contact_, model_);
-    opened_for_eroded_ = state_.eroded_elements;
+  // An element failed at the last step (on any rank) is gone from this one: its faces
+  // leave the contact and the faces it exposed join it, before either pass runs.
+  if (failed_everywhere_ != opened_for_eroded_) {
+    follow_erosion(contact_, model_, d_);
+    opened_for_eroded_ = failed_everywhere_;
   }
   element::ElementEnergies element_energy;
   if (side_by_side_) {  // each pass times itself: the two phases overlap
@@ -406,6 +405,7 @@ void TimeLoop::update_velocities_and_energy() {
                                 controls_.stop_signal, stop_requested_);
     if (!update_.finite) step_back_and_stop(describe_non_finite(model_, d_, state_) + when());
     energy_.kinetic = update_.kinetic;
+    failed_everywhere_ = long(energy_.eroded_elements);
     energy_.external_work += state_.wall_work;
     const double dt = clock_->next();
     mean_energy_ = energy_.total() + dt * dt * update_.mass_acceleration_squared;

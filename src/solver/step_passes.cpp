@@ -7,6 +7,7 @@
 
 #include "common/parallel.hpp"
 #include "common/timer.hpp"
+#include "model/opened_faces.hpp"
 
 namespace exdyn::solver {
 
@@ -151,6 +152,13 @@ void finish_contact_forces(ContactModel& contact, State& state, double dt, Decom
 }
 
 }  // namespace
+
+void follow_erosion(ContactModel& contact, const Model& model, Decomposition& d) {
+  if (d.comm.distributed())
+    open_eroded_shares(contact, d.contact, model, d.global_element, d.global_elements);
+  else
+    open_eroded_faces(contact, model);
+}
 
 void compute_contact_forces(const Model& model, ContactModel& contact, Decomposition& d, State& state,
                             double dt) {

@@ -86,6 +86,9 @@ element::ElementEnergies compute_internal_forces(const Model& model, Decompositi
                                                  bool with_stress);
 // state.stress and state.internal_force at u^n (computed again unless this step's are there).
 void forces_of_this_step(const Model& model, Decomposition& d, State& state);
+// The contact's surfaces brought to the elements' life after an element failed
+// (opened_faces.hpp; on many ranks, every rank together: open_eroded_shares).
+void follow_erosion(ContactModel& contact, const Model& model, Decomposition& d);
 // The contact forces of every pair at x^n with v^{n-1/2}, and the contact work over
 // the last step dt = t^n - t^{n-1} (on many ranks: distributed_contact.hpp).
 void compute_contact_forces(const Model& model, ContactModel& contact, Decomposition& d, State& state,
