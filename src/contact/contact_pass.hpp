@@ -102,6 +102,10 @@ struct ContactSurfaces {
   // them as elements erode (model/opened_faces.hpp); empty: every one, always.
   std::vector<std::uint32_t> segment_element, segment_across;
   std::vector<std::uint8_t> segment_live, point_live;
+  // And each segment's four edges numbered, a number per edge of the surface (the
+  // segments sharing an edge share it), in the order of edge_corners: what the edges
+  // and edge neighbours are counted over as the segments change.
+  std::vector<std::uint32_t> edge_ids;
 
   std::size_t point_count() const { return quadrature ? quadrature_points.size() : slave_nodes.size(); }
   bool segment_on(std::size_t s) const { return segment_live.empty() || segment_live[s] != 0; }

@@ -41,6 +41,58 @@ std::vector<std::uint8_t> elements_alive(const Model& model) {
   return alive;
 }
 
+// Each segment's four edges numbered (ContactSurfaces::edge_ids).
+std::vector<std::uint32_t> number_edges(const std::vector<contact::SegmentNodes>& segments) {
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys;  // (edge's corner nodes, 4 segment + edge)
+  keys.reserve(4 * segments.size());
+  for (std::size_t k = 0; k < segments.size(); ++k)
+    for (int e = 0; e < 4; ++e) {
+      const std::uint32_t a = segments[k].nodes[contact::edge_corners[e][0]],
+                          b = segments[k].nodes[contact::edge_corners[e][1]];
+      keys.emplace_back(std::uint64_t(std::min(a, b)) << 32 | std::max(a, b), std::uint32_t(4 * k + e));
+    }
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::uint32_t> ids(keys.size());
+  std::uint32_t id = 0;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (i > 0 && keys[i].first != keys[i - 1].first) ++id;
+    ids[keys[i].second] = id;
+  }
+  return ids;
+}
+
+// The edges' `continued` bits (their mirror axes kept) and the edge neighbours of `s`
+// over its live segments: those of continue_edges and edge_neighbours, counted by edge
+// number (ContactSurfaces::edge_ids) instead of by a map of node pairs.
+void follow_edges(contact::ContactSurfaces& s) {
+  const std::size_t edges =
+      s.edge_ids.empty() ? 0 : 1 + *std::max_element(s.edge_ids.begin(), s.edge_ids.end());
+  std::vector<std::uint32_t> count(edges, 0);
+  std::vector<std::int32_t> first(edges, -1), second(edges, -1);  // the lowest two live segments at it
+  for (std::size_t k = 0; k < s.segments.size(); ++k)
+    if (s.segment_live[k] != 0)
+      for (std::size_t e = 0; e < 4; ++e) {
+        const std::uint32_t id = s.edge_ids[4 * k + e];
+        if (count[id] == 0)
+          first[id] = std::int32_t(k);
+        else if (count[id] == 1)
+          second[id] = std::int32_t(k);
+        ++count[id];
+      }
+  s.edge_neighbours.resize(s.segments.size());
+  for (std::size_t k = 0; k < s.segments.size(); ++k) {
+    s.edges[k].continued = 0;
+    for (std::size_t e = 0; e < 4; ++e) {
+      const std::uint32_t id = s.edge_ids[4 * k + e];
+      if (count[id] > 1 || s.edges[k].mirror_axis[e] >= 0)
+        s.edges[k].continued |= static_cast<std::uint8_t>(1u << e);
+      s.edge_neighbours[k][e] = count[id] == 1   ? -1
+                                : count[id] == 2 ? (first[id] == std::int32_t(k) ? second[id] : first[id])
+                                                 : -2;
+    }
+  }
+}
+
 }  // namespace
 
 void find_segment_elements(const Model& model, contact::ContactSurfaces& s) {
@@ -76,6 +128,7 @@ void find_segment_elements(const Model& model, contact::ContactSurfaces& s) {
     return;
   }
   s.edges = segment_edges(model, s.segments);  // their mirror axes; follow_life counts the live ones
+  s.edge_ids = number_edges(s.segments);
   follow_life(elements_alive(model), s);
 }
 
@@ -96,8 +149,7 @@ bool follow_life(const std::vector<std::uint8_t>& alive, contact::ContactSurface
       for (std::uint32_t k = s.corner_begin[p]; k < s.corner_begin[p + 1]; ++k)
         s.point_live[p] = std::uint8_t(s.point_live[p] | s.segment_live[s.node_corners[k].segment]);
   }
-  continue_edges(s.segments, s.segment_live, s.edges);
-  s.edge_neighbours = edge_neighbours(s.segments, s.segment_live);
+  follow_edges(s);
   return true;
 }
 

@@ -5,11 +5,19 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "../support/deck_run.hpp"
+#include "input/deck_reader.hpp"
+#include "model/contact_geometry.hpp"
+#include "model/contact_setup.hpp"
+#include "model/model.hpp"
+#include "model/opened_faces.hpp"
+#include "model/single_surface_setup.hpp"
 
 namespace {
 
@@ -100,3 +108,40 @@ TEST(PunchThrough, TheRodLeavesThroughThePlugItCutsNeverInsideAnExposedFace) {
 }
 
 }  // namespace
+
+// follow_life counts the edges and edge neighbours by edge number (the fast path);
+// segment_edges and edge_neighbours count them by a map of node pairs (the simple one).
+// With a scatter of the plate's bricks gone, the two agree on every segment.
+TEST(OpenedFaces, FollowLifeGivesTheEdgesAndNeighboursOfTheSimpleCount) {
+  const exdyn::input::Deck deck =
+      exdyn::input::read_deck(std::string(EXDYN_SOURCE_DIR) + "/input/punch_through.yaml",
+                              {exdyn::input::parse_override("parts[1].elements=[8, 8, 4]")});
+  const exdyn::solver::Model model = exdyn::solver::build_model(deck);
+  const double critical_dt = exdyn::solver::critical_time_step(model);
+  exdyn::solver::ContactModel contact = exdyn::solver::build_contact(
+      deck, model, exdyn::solver::time_stepping(deck.time, critical_dt).dt, critical_dt);
+  exdyn::contact::ContactSurfaces& s = contact.pairs.at(0).passes.at(0);
+  ASSERT_FALSE(s.segment_element.empty());
+  std::vector<std::uint8_t> alive(model.mesh.element_count(), 1);
+  const std::size_t plate = model.blocks.at(1).first_element;
+  for (std::size_t e = plate; e < alive.size(); e += 3) alive[e] = 0;  // every third plate brick
+  for (std::size_t e = plate; e < plate + 64; ++e) alive[e] = 0;       // and the top layer's first rows
+  ASSERT_TRUE(exdyn::solver::follow_life(alive, s));
+  long live = 0;
+  for (const std::uint8_t on : s.segment_live) live += on;
+  EXPECT_GT(live, 0);
+  EXPECT_LT(live, long(s.segments.size()));
+  const std::vector<exdyn::contact::SegmentEdges> edges =
+      exdyn::solver::segment_edges(model, s.segments, s.segment_live);
+  const std::vector<std::array<std::int32_t, 4>> neighbours =
+      exdyn::solver::edge_neighbours(s.segments, s.segment_live);
+  ASSERT_EQ(s.edges.size(), edges.size());
+  long across = 0;
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    EXPECT_EQ(s.edges[k].continued, edges[k].continued) << "segment " << k;
+    EXPECT_EQ(s.edges[k].mirror_axis, edges[k].mirror_axis) << "segment " << k;
+    EXPECT_EQ(s.edge_neighbours[k], neighbours[k]) << "segment " << k;
+    for (const std::int32_t n : neighbours[k]) across += n >= 0;
+  }
+  EXPECT_GT(across, 0);
+}
