@@ -308,14 +308,16 @@ void point_force(const ContactSurfaces& surfaces, const ContactPassSettings& set
   }
 }
 
-// Where erosion exposes a face, the bodies on either side may already overlap it (the
-// eroded element was crushed or sheared flat), and a point beside a face that the
-// facing rule (single_surface.hpp) admits only as the two turn to face each other may be
-// behind it by then. A contact that begins, or passes to another segment, deeper than
-// begun_inside of the element length (no step's motion makes that: v dt < 0.1 L while
-// v < 0.1 c / Courant) began inside: its gap counts from that start g0 < 0, as LS-DYNA's IGNORE counts
-// initial penetrations. The offset o = g0 follows the point out, o = max(o, g), so that the force resists any
-// deeper penetration and none is added while the overlap heals (g - o = 0); out of contact it is forgotten.
+// On a single surface: where erosion exposes a face, the bodies on either side may
+// already overlap it (the eroded element was crushed or sheared flat), and a point
+// beside a face across a convex edge, that the facing rule (single_surface.hpp) admits
+// only as the two turn to face each other, may be behind it by then (a Taylor rod's
+// side above its spreading rim, against the impact face: docs/contact.md). A contact that begins, or passes
+// to another segment, deeper than begun_inside of the element length (no step's motion makes that: v dt < 0.1
+// L while v < 0.1 c / Courant) began inside: its gap counts from that start g0 < 0, as LS-DYNA's IGNORE
+// counts initial penetrations. The offset o = g0 follows the point out, o = max(o, g), so that the force
+// resists any deeper penetration and none is added while the overlap heals (g - o = 0); out of contact it is
+// forgotten.
 void apply_exposure_offsets(const ContactSurfaces& surfaces, ContactPassState& state) {
   const std::size_t n = surfaces.point_count();
   state.exposure_offset.resize(n, 0.0);
@@ -451,7 +453,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       contact.gap = state.results[best].gap;
       contact.normal = outward_normal(current_segment(surfaces.segments[segment], x_ref, u), contact.xi);
     }
-    if (!surfaces.segment_live.empty()) apply_exposure_offsets(surfaces, state);
+    if (surfaces.single_surface) apply_exposure_offsets(surfaces, state);
     statistics.projections += projections;
     statistics.iterations += iterations;
     statistics.max_iterations = std::max(statistics.max_iterations, max_iterations);

@@ -116,8 +116,8 @@ inline constexpr std::uint32_t no_element = 0xffffffffu;
 
 inline constexpr double own_segment_reach = 0.25;
 
-// A contact on a surface that erosion changes that begins deeper than this fraction of
-// the element length began inside (contact_pass.cpp, apply_exposure_offsets).
+// A contact on a single surface that begins deeper than this fraction of the element
+// length began inside (contact_pass.cpp, apply_exposure_offsets).
 inline constexpr double begun_inside = 0.1;
 
 struct ContactPassSettings {
@@ -228,10 +228,9 @@ struct ContactPassState {
   };
   std::vector<Contact> contacts;
   std::vector<std::uint8_t> admitted;  // single surface: whether each candidate pair may touch
-  // A surface that erosion changes (ContactSurfaces::segment_live): each point's
-  // contact segment of the last step (-1: none) and its offset (m, <= 0): the
-  // penetration its contact began with when it began inside (contact_pass.cpp,
-  // apply_exposure_offsets), which its gap is counted from.
+  // A single surface: each point's contact segment of the last step (-1: none) and its
+  // offset (m, <= 0): the penetration its contact began with when it began inside
+  // (contact_pass.cpp, apply_exposure_offsets), which its gap is counted from.
   std::vector<std::int64_t> last_segment;
   std::vector<double> exposure_offset;
   MortarState mortar;  // a mortar pass's (ContactSurfaces::mortar)

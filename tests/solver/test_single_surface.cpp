@@ -161,4 +161,26 @@ TEST(SingleSurface, AnLWhoseInnerCornerClosesTakesNoContact) {
             0);  // points were checked: it could have failed
 }
 
+// The foot of a Taylor rod (400 m/s on a rigid wall, the first layer of bricks 0.27 mm
+// thick, graded along the rod): as the rim spreads, the side just above it turns to face
+// up, towards the impact face's rim segments, with its nodes already inside the corner,
+// one brick above those segments. The rule of a contact that begins deep (more than 0.1
+// of the point's element length: no step's approach does that) counts its gap from its
+// start: no force, no penetration guard (without it, a node is taken as 0.41 h inside the
+// impact face at step 208, 3.04 us, and the run stops).
+TEST(SingleSurface, TheSideAboveASpreadingRimIsNotTakenInsideTheImpactFace) {
+  const Deck deck = exdyn::input::read_deck(DeckRun::source_path("taylor_wall.yaml"),
+                                            {{"parts[0].grading", "[1, 1, 4]"},
+                                             {"parts[0].initial_velocity", "[0, 0, -400]"},
+                                             {"contact", "[{name: self, surface: all}]"},
+                                             {"time.end_time", "4.0e-6"},
+                                             {"output.every", "100000"}});
+  const DeckRun run(deck);
+  ASSERT_EQ(run.summary.status, "completed");
+  EXPECT_GT(run.summary.steps, 250);  // past step 208
+  ASSERT_EQ(run.summary.contact.pairs.size(), 1u);
+  EXPECT_LT(run.summary.contact.pairs[0].figures.max_penetration_over_h, 0.05);
+  EXPECT_GT(run.summary.contact.pairs[0].figures.projections, 0);  // points were checked
+}
+
 }  // namespace
