@@ -298,8 +298,8 @@ void renumber_state(PassShare& share, KnownSegments known, contact::ContactPassS
     anchor.segment = renumber(std::uint32_t(anchor.segment));
     EXDYN_ASSERT(anchor.segment >= 0);  // its point lies in this rank's box: the segment came
   }
-  // A surface that follows erosion: the segment each point last touched (its point in
-  // contact lies in this rank's box: the segment came).
+  // A single surface: the segment each point last touched (the rule of a contact that
+  // begins deep; its point in contact lies in this rank's box: the segment came).
   for (std::int64_t& last : state.last_segment)
     if (last >= 0) last = renumber(std::uint32_t(last));
   // Mortar: the pieces of the last step name their master segments in the new view (a
