@@ -203,10 +203,14 @@ def test_equal_fields(exdyn, work, quick):
              ("punch_through", ["time.end_time=3.0e-6", "output.every=20"] if quick else [], "punch_through"),
              ("eroding_column", []),
              ("eroding_column", ["parts[0].formulation=hex20", "parts[1].formulation=hex20"],
-              "eroding_column_hex20")]
+              "eroding_column_hex20"),
+             # time.erode: the blunt projectile on a coarse Weldox plate to 40 us, the bricks
+             # crushed beside its rim eroded by the corner checks' marks
+             ("perforation", ["parts[1].elements=[16, 16, 4]", "parts[0].elements=[4, 2, 16]",
+                              "time.end_time=4.0e-5", "output.every=40"], "distortion_erosion")]
     # Two chunks: two ranks at most. Surfaces that follow erosion: set up whole.
     two_ranks = ("eroding_column", "eroding_column_hex20")
-    whole_setup = ("punch_through", "eroding_column", "eroding_column_hex20")
+    whole_setup = ("punch_through", "eroding_column", "eroding_column_hex20", "distortion_erosion")
     if quick:  # the sanitizer build: each kind of traffic once (nodes, quadrature points on
         # mixed 8- and 20-node faces, curved segments, folds with finite strain and plasticity,
         # a mesh scattered by rank 0, mortar with friction, faces that erosion opens); the rest is

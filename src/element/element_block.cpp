@@ -175,7 +175,8 @@ std::uint32_t update_damage(const ElementBlock& block, double dt) {
       f.damage[e] = std::min(
           law.damage_after(f.damage[e], eps_p[e], increment, dt, material::Failure::triaxiality(stress)),
           1.0);
-      if (f.damage[e] >= 1.0) f.status[e] = ElementStatus::failed, ++failed, ++not_alive;
+      const bool distorted = !f.distorted.empty() && f.distorted[e] != 0;
+      if (f.damage[e] >= 1.0 || distorted) f.status[e] = ElementStatus::failed, ++failed, ++not_alive;
     }
     f.chunk_counts[2 * std::size_t(k)] = failed;
     f.chunk_counts[2 * std::size_t(k) + 1] = not_alive;

@@ -58,7 +58,12 @@ struct ElementFailure {
   // (the damage pass reads them).
   const NodalVectors* velocity = nullptr;
   double* stress = nullptr;
-  bool any_not_alive = false;               // some element is failed or eroded (the loops check then)
+  bool any_not_alive = false;  // some element is failed or eroded (the loops check then)
+  // time.erode: the stable step (without the Courant factor, s) below which a live
+  // element is too distorted to go on, 0 when the rule is off; the corner passes mark
+  // such elements, and inverted ones, here (corner_pack.hpp) and the damage pass fails them.
+  double erode_step = 0.0;
+  std::vector<std::uint8_t> distorted;
   std::vector<std::uint32_t> chunk_counts;  // scratch of update_damage
 };
 

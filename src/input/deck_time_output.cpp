@@ -9,7 +9,7 @@
 namespace exdyn::input::deck {
 
 TimeOptions DeckValidator::time(const YAML::Node& node, const std::string& path) const {
-  check_map(node, path, {"end_time", "courant", "dt", "min_dt_ratio"});
+  check_map(node, path, {"end_time", "courant", "dt", "min_dt_ratio", "erode"});
   TimeOptions result;
   result.end_time =
       number_where(required(node, path, "end_time"), child_path(path, "end_time"), "a number > 0", positive);
@@ -30,7 +30,31 @@ TimeOptions DeckValidator::time(const YAML::Node& node, const std::string& path)
     result.min_dt_ratio = number_where(ratio, child_path(path, "min_dt_ratio"),
                                        "a number in (0, 1) (a fraction of the first step)",
                                        [](double value) { return value > 0.0 && value < 1.0; });
+  if (const YAML::Node erode = optional(node, "erode"); erode.IsDefined()) {
+    result.erode = boolean(erode, child_path(path, "erode"));
+    if (result.erode && dt.IsDefined())
+      fail(erode, child_path(path, "erode"),
+           "erodes elements whose own stable step falls below min_dt_ratio of the first, which needs a step "
+           "that follows the deformation: give courant, not dt");
+  }
   return result;
+}
+
+void DeckValidator::check_erode(const YAML::Node& node, const Deck& deck) const {
+  bool any = false;
+  for (const PartOptions& part : deck.parts) {
+    const MaterialOptions& material = deck.materials[std::size_t(part.material_index)];
+    if (material.failure == FailureModel::none) continue;
+    any = true;
+    if (resolved_kinematics(part, material) != Kinematics::finite)
+      fail(node, "time.erode",
+           "part '" + part.name +
+               "' can fail but runs small strain, whose step does not follow its elements: give it "
+               "kinematics: finite");
+  }
+  if (!any)
+    fail(node, "time.erode",
+         "erodes elements of the parts that can fail, and no part's material has `failure`");
 }
 
 OutputOptions DeckValidator::output(const YAML::Node& node, const std::string& path) const {

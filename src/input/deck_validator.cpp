@@ -328,6 +328,7 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
   if (const YAML::Node node = optional(root, "loads"); node.IsDefined())
     result.loads = loads(node, "loads", result.parts);
   result.time = time(required(root, "", "time"), "time");
+  if (result.time.erode) check_erode(required(root, "", "time")["erode"], result);
   const YAML::Node output_node = optional(root, "output");
   if (output_node.IsDefined()) result.output = output(output_node, "output");
   const bool fails = std::any_of(result.materials.begin(), result.materials.end(),

@@ -167,6 +167,8 @@ class DeckValidator {
   GlobalSearchOptions global_search(const YAML::Node& node, const std::string& path) const;
   LocalSearchOptions local_search(const YAML::Node& node, const std::string& path) const;
   TimeOptions time(const YAML::Node& node, const std::string& path) const;
+  // time.erode needs a part that can fail, and every such part under finite strain.
+  void check_erode(const YAML::Node& node, const Deck& deck) const;
   OutputOptions output(const YAML::Node& node, const std::string& path) const;
   GuardOptions guards(const YAML::Node& node, const std::string& path) const;
 

@@ -245,6 +245,7 @@ std::string to_yaml(const Deck& deck) {
   else
     out << "  courant: " << yaml_number(deck.time.courant) << "\n";
   out << "  min_dt_ratio: " << yaml_number(deck.time.min_dt_ratio) << "\n";
+  if (deck.time.erode) out << "  erode: true\n";
 
   std::vector<std::string> fields;
   for (const OutputField field : deck.output.fields) fields.emplace_back(name(field));

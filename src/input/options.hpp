@@ -294,6 +294,9 @@ struct TimeOptions {
   // With courant and finite-strain parts the step follows the deformed elements; a run
   // whose step falls below this fraction of its first step stops (exit 1).
   double min_dt_ratio = 1.0e-3;  // in (0, 1)
+  // An element of a part that can fail whose own step falls below min_dt_ratio of the
+  // first step, or that inverts, fails and is eroded instead of stopping the run.
+  bool erode = false;
 
   bool operator==(const TimeOptions&) const = default;
 };

@@ -50,12 +50,16 @@ struct JohnsonCook {
   // signs of g shrink (bisection where a step would leave it). Converges to a
   // relative 1e-13 of the bracket in a few steps.
   double increment_scalar(double q_trial, double three_mu, double eps_p, double dt) const {
-    if (q_trial <= flow_stress(eps_p, 0.0)) return 0.0;
+    const double yield = flow_stress(eps_p, 0.0);
+    if (q_trial <= yield) return 0.0;
     double low = 0.0, high = q_trial / three_mu;
-    double d = std::min(high, (q_trial - flow_stress(eps_p, 0.0)) / three_mu);
+    double d = std::min(high, (q_trial - yield) / three_mu);
     for (int iteration = 0; iteration < 60; ++iteration) {
       const double e = eps_p + d, rate = d / dt;
-      const double strain_part = a + (e > 0.0 ? b * std::pow(e, n) : 0.0);
+      // B e^n, and B n e^(n-1) = n (B e^n) / e from the same power: the power is most
+      // of a plastic point's cost.
+      const double hardening = e > 0.0 ? b * std::pow(e, n) : 0.0;
+      const double strain_part = a + hardening;
       const double ratio = rate / reference_rate;
       const bool rate_active = ratio > 1.0;
       const double rate_part = rate_active ? 1.0 + c * std::log(ratio) : 1.0;
@@ -65,7 +69,7 @@ struct JohnsonCook {
       else
         high = d;
       // dg/dd = -3 mu - B n e^(n-1) rate_part - strain_part C / d (rate term active)
-      const double slope = -three_mu - (e > 0.0 ? b * n * std::pow(e, n - 1.0) : 0.0) * rate_part -
+      const double slope = -three_mu - (e > 0.0 ? n * hardening / e : 0.0) * rate_part -
                            (rate_active && d > 0.0 ? strain_part * c / d : 0.0);
       double next = d - g / slope;
       if (!(next > low && next < high)) next = 0.5 * (low + high);

@@ -405,4 +405,12 @@ void gather_plastic_strain(const Model& model, State& state) {
   }
 }
 
+void erode_distorted_elements(const Model& model, double erode_step) {
+  for (const element::ElementBlock& block : model.blocks) {
+    if (block.failure.status.empty()) continue;
+    block.failure.erode_step = erode_step;
+    block.failure.distorted.assign(block.count, 0);
+  }
+}
+
 }  // namespace exdyn::solver

@@ -203,5 +203,73 @@ TEST(CornerChecks, TheElementPassRunsThemToTheBitOfTheCornerPass) {
   EXPECT_GT(found, 2);  // inverted states seen
 }
 
+// time.erode (element_block.hpp, ElementFailure::erode_step): the corner passes mark
+// every live element whose own step is below the limit or that has a corner det J <= 0,
+// exactly the elements the simple element-by-element checks name, on any number of
+// threads and in the element pass as in the pass of its own; the marked ones set no
+// step and are not reported inverted.
+TEST(CornerChecks, TimeErodeMarksTheElementsTheSimpleChecksNameAndLeavesThemOut) {
+  const Box box = make_box(37, 5, 6, 1.0);
+  material::MaterialLaw law;
+  law.finite = true;
+  law.flow = material::FlowRule::hardening, law.hardening = material::Hardening::linear(400e6, 100e6);
+  law.failure.model = input::FailureModel::plastic_strain, law.failure.strain = 0.5;
+  const double c1 = steel.dilatational_wave_speed();
+  const double limit = 0.75 / c1;  // 3/4 of an undeformed unit brick's L_e / c1
+  const int threads = max_threads();
+  int marked = 0, inverted_marked = 0;
+  for (const input::Formulation formulation : {input::Formulation::hex8, input::Formulation::hex8r}) {
+    const ElementBlock block =
+        make_element_block(formulation, steel, 0.05, 100, box.count, box.connectivity.data(), box.x_ref, law);
+    ASSERT_FALSE(block.failure.status.empty());
+    set_material_time_step(block, 1e-7);
+    block.failure.erode_step = limit;
+    std::mt19937_64 rng(11);
+    for (int trial = 0; trial < 12; ++trial) {
+      const NodalVectors u = shaken(box, 0.1 + 0.02 * trial, rng);
+      // The simple checks, element by element.
+      std::vector<std::uint8_t> expected(block.count, 0);
+      CurrentStep kept{std::numeric_limits<double>::infinity(), 0};
+      for (std::uint32_t e = 0; e < block.count; ++e) {
+        ElementVectors x;
+        for (int k = 0; k < 8; ++k) {
+          const std::uint32_t n = block.connectivity[8 * std::size_t(e) + std::size_t(k)];
+          x.x[k] = box.x_ref.x[n] + u.x[n], x.y[k] = box.x_ref.y[n] + u.y[n],
+          x.z[k] = box.x_ref.z[n] + u.z[n];
+        }
+        const double dt = hex8::current_characteristic_length(x) / c1;
+        const bool inverted = find_inverted_element(block, e, e + 1, box.x_ref, u).found;
+        ASSERT_GT(std::abs(dt - limit), 1e-12 * limit);  // no element on the edge of the rule
+        expected[e] = dt < limit || inverted;
+        inverted_marked += inverted && formulation == input::Formulation::hex8;
+        if (!expected[e] && dt < kept.dt) kept = {dt, block.first_element + e};
+      }
+      for (const int t : {1, 2}) {
+        set_threads(t);
+        for (const bool in_pass : {false, true}) {
+          block.failure.distorted.assign(block.count, 0);
+          CornerChecks checks;
+          if (in_pass) {
+            NodalVectors f(box.x_ref.size());
+            request_corner_checks(block, box.x_ref, true, true);
+            add_internal_forces(block, u, f, nullptr);
+            checks = corner_checks_of_pass(block);
+          } else {
+            checks = check_corners(block, box.x_ref, u);
+          }
+          EXPECT_EQ(block.failure.distorted, expected) << "trial " << trial;
+          EXPECT_FALSE(checks.inverted.found);
+          EXPECT_EQ(checks.step.element, kept.element);
+          EXPECT_NEAR(checks.step.dt, kept.dt, 1e-13 * kept.dt);
+        }
+      }
+      for (const std::uint8_t m : expected) marked += m;
+    }
+  }
+  set_threads(threads);
+  EXPECT_GT(marked, 50);  // both kinds seen
+  EXPECT_GT(inverted_marked, 5);
+}
+
 }  // namespace
 }  // namespace exdyn::element

@@ -178,6 +178,24 @@ TEST(Threads, PunchedPlateIsTheSameBitsOnOneTwoAndThreeThreads) {
   }
 }
 
+TEST(Threads, DistortionErosionIsTheSameBitsOnOneTwoAndThreeThreads) {
+  // input/perforation.yaml on a coarse plate to 40 us: time.erode takes the bricks
+  // crushed beside the projectile's rim (the marks of the element pass's corner checks).
+  const std::vector<std::string> overrides{"parts[1].elements=[16, 16, 4]", "parts[0].elements=[4, 2, 16]",
+                                           "time.end_time=4.0e-5", "output.every=40"};
+  ThreadedRun one, two, three;
+  run(one, overrides, 1, "perforation.yaml");
+  run(two, overrides, 2, "perforation.yaml");
+  run(three, overrides, 3, "perforation.yaml");
+  ASSERT_EQ(one.summary.status, "completed");
+  EXPECT_GE(one.summary.energy.eroded_elements, 2);
+  for (const auto& path : dataset_paths(one.h5)) {
+    const auto reference = read_dataset(one.h5, path).values;
+    EXPECT_TRUE(same_bits(read_dataset(two.h5, path).values, reference)) << path << ", 2 threads";
+    EXPECT_TRUE(same_bits(read_dataset(three.h5, path).values, reference)) << path << ", 3 threads";
+  }
+}
+
 TEST(StepsWritten, AStopBetweenOutputStepsWritesTheStressesOfItsStep) {
   // The element pass stores the stresses only at output steps; a step written by a stop
   // computes them again. Here the penetration guard stops the plate impact (at step 2:
