@@ -38,6 +38,7 @@ std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, co
                                       "n",
                                       "C",
                                       "reference_strain_rate",
+                                      "thermal_softening",
                                       "failure"};
   std::vector<MaterialOptions> result;
   std::map<std::string, YAML::Node> seen;
@@ -72,11 +73,37 @@ std::vector<MaterialOptions> DeckValidator::materials(const YAML::Node& node, co
   return result;
 }
 
+// johnson_cook's {m, melting_temperature, room_temperature, specific_heat, taylor_quinney}.
+ThermalSoftening DeckValidator::thermal_softening(const YAML::Node& node, const std::string& path) const {
+  check_map(node, path, {"m", "melting_temperature", "room_temperature", "specific_heat", "taylor_quinney"});
+  ThermalSoftening t;
+  t.m =
+      number_where(required(node, path, "m"), child_path(path, "m"), "a number > 0 (the exponent)", positive);
+  if (const YAML::Node room = optional(node, "room_temperature"); room.IsDefined())
+    t.room_temperature =
+        number_where(room, child_path(path, "room_temperature"), "a number >= 0 (K)", non_negative);
+  const YAML::Node melting = required(node, path, "melting_temperature");
+  t.melting_temperature =
+      number_where(melting, child_path(path, "melting_temperature"), "a number > 0 (K)", positive);
+  if (!(t.melting_temperature > t.room_temperature))
+    fail(melting, child_path(path, "melting_temperature"),
+         "expected a temperature above room_temperature (" + format_number(t.room_temperature) + " K), got " +
+             format_number(t.melting_temperature));
+  t.specific_heat = number_where(required(node, path, "specific_heat"), child_path(path, "specific_heat"),
+                                 "a number > 0 (J/(kg K))", positive);
+  if (const YAML::Node chi = optional(node, "taylor_quinney"); chi.IsDefined())
+    t.taylor_quinney = number_where(chi, child_path(path, "taylor_quinney"),
+                                    "a number in [0, 1] (the share of plastic work that heats)",
+                                    [](double value) { return value >= 0.0 && value <= 1.0; });
+  return t;
+}
+
 // The keys of the plastic models; each is an error on a model it does not belong to.
 void DeckValidator::plasticity(const YAML::Node& body, const std::string& path,
                                MaterialOptions& material) const {
   const std::vector<std::string> elastic_plastic_keys{"yield_stress", "hardening_modulus", "hardening"};
-  const std::vector<std::string> johnson_cook_keys{"A", "B", "n", "C", "reference_strain_rate"};
+  const std::vector<std::string> johnson_cook_keys{
+      "A", "B", "n", "C", "reference_strain_rate", "thermal_softening"};
   const auto refuse = [&](const std::vector<std::string>& keys, const char* owner) {
     for (const std::string& key : keys)
       if (const YAML::Node value = optional(body, key); value.IsDefined())
@@ -101,6 +128,8 @@ void DeckValidator::plasticity(const YAML::Node& body, const std::string& path,
       if (const YAML::Node rate = optional(body, "reference_strain_rate"); rate.IsDefined())
         material.reference_strain_rate =
             number_where(rate, child_path(path, "reference_strain_rate"), "a number > 0 (1/s)", positive);
+      if (const YAML::Node thermal = optional(body, "thermal_softening"); thermal.IsDefined())
+        material.thermal_softening = thermal_softening(thermal, child_path(path, "thermal_softening"));
       return;
     case MaterialModel::elastic_plastic:
       break;

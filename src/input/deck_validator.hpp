@@ -166,6 +166,7 @@ class DeckValidator {
                                  const std::vector<PartOptions>& parts) const;
   GlobalSearchOptions global_search(const YAML::Node& node, const std::string& path) const;
   LocalSearchOptions local_search(const YAML::Node& node, const std::string& path) const;
+  ThermalSoftening thermal_softening(const YAML::Node& node, const std::string& path) const;
   TimeOptions time(const YAML::Node& node, const std::string& path) const;
   // time.erode needs a part that can fail, and every such part under finite strain.
   void check_erode(const YAML::Node& node, const Deck& deck) const;

@@ -88,7 +88,15 @@ std::string plasticity_text(const MaterialOptions& material) {
     case MaterialModel::johnson_cook:
       return ", A: " + yaml_number(material.jc_a) + ", B: " + yaml_number(material.jc_b) +
              ", n: " + yaml_number(material.jc_n) + ", C: " + yaml_number(material.jc_c) +
-             ", reference_strain_rate: " + yaml_number(material.reference_strain_rate);
+             ", reference_strain_rate: " + yaml_number(material.reference_strain_rate) +
+             (material.thermal_softening
+                  ? ", thermal_softening: {m: " + yaml_number(material.thermal_softening->m) +
+                        ", melting_temperature: " +
+                        yaml_number(material.thermal_softening->melting_temperature) +
+                        ", room_temperature: " + yaml_number(material.thermal_softening->room_temperature) +
+                        ", specific_heat: " + yaml_number(material.thermal_softening->specific_heat) +
+                        ", taylor_quinney: " + yaml_number(material.thermal_softening->taylor_quinney) + "}"
+                  : std::string());
     case MaterialModel::elastic_plastic:
       break;
   }

@@ -27,6 +27,18 @@ inline constexpr double failure_triaxiality_min = -1.0 / 3.0;
 inline constexpr double failure_triaxiality_max = 1.5;
 inline constexpr double failure_rate_ratio_max = 1.0e12;
 
+// johnson_cook's thermal softening: sigma_y times (1 - T*^m), T* = (T - T_r) / (T_m - T_r),
+// the temperature adiabatic, T = T_r + chi W_p / (rho c_p) (docs/theory.md, "Materials").
+struct ThermalSoftening {
+  double m = 1.0;                  // the exponent, > 0
+  double melting_temperature = 0;  // T_m, K, > room_temperature
+  double room_temperature = 293;   // T_r, K, >= 0
+  double specific_heat = 0;        // c_p, J/(kg K), > 0
+  double taylor_quinney = 0.9;     // chi, the share of plastic work that heats, in [0, 1]
+
+  bool operator==(const ThermalSoftening&) const = default;
+};
+
 struct MaterialOptions {
   std::string name;
   MaterialModel model = MaterialModel::linear_elastic;
@@ -39,11 +51,12 @@ struct MaterialOptions {
   double hardening_modulus = 0.0;                // H >= 0, force per area
   std::vector<std::array<double, 2>> hardening;  // [[0, sigma_y0], [eps_p, sigma_y], ...]
   // johnson_cook: sigma_y = (A + B eps_p^n)(1 + C ln(max(eps_dot_p / eps_dot_0, 1))).
-  double jc_a = 0.0;                   // A > 0, force per area
-  double jc_b = 0.0;                   // B >= 0, force per area
-  double jc_n = 1.0;                   // n > 0
-  double jc_c = 0.0;                   // C >= 0
-  double reference_strain_rate = 1.0;  // eps_dot_0 > 0, 1/s
+  double jc_a = 0.0;                                  // A > 0, force per area
+  double jc_b = 0.0;                                  // B >= 0, force per area
+  double jc_n = 1.0;                                  // n > 0
+  double jc_c = 0.0;                                  // C >= 0
+  double reference_strain_rate = 1.0;                 // eps_dot_0 > 0, 1/s
+  std::optional<ThermalSoftening> thermal_softening;  // johnson_cook only; none: no temperature
   // failure (elastic_plastic, johnson_cook): none, {plastic_strain: eps_f} or
   // {johnson_cook: {D1, D2, D3, D4, D5}} (docs/theory.md, "Damage and erosion").
   FailureModel failure = FailureModel::none;

@@ -62,6 +62,17 @@ inline Real von_mises_of_deviator(const std::array<Real, 6>& s) {
 }
 }  // namespace detail
 
+// The flow's increment d of eps_p; a flow that softens with the plastic work
+// (johnson_cook's thermal softening) gets the point's W_p at the start of the step.
+template <class Flow, class Real>
+inline Real flow_increment(const Flow& flow, const Real& q, const Real& three_mu, const Real& alpha,
+                           double dt, const double* state_old) {
+  if constexpr (requires { flow.increment(q, three_mu, alpha, dt, q); })
+    return flow.increment(q, three_mu, alpha, dt, load<Real>(state_old, state_plastic_work));
+  else
+    return flow.increment(q, three_mu, alpha, dt);
+}
+
 // Small strain: h = du/dx (row-major 9); old/new states as above.
 template <class Flow, class Real>
 inline PointResponse<Real> update_small(const ElasticConstants& elastic, const Flow& flow,
@@ -78,7 +89,7 @@ inline PointResponse<Real> update_small(const ElasticConstants& elastic, const F
                            two_mu * eps_e[3],          two_mu * eps_e[4],          two_mu * eps_e[5]};
   const Real q = detail::von_mises_of_deviator(s);
   const Real alpha = load<Real>(state_old, state_eps_p);
-  const Real d = flow.increment(q, Real{} + three_mu, alpha, dt);
+  const Real d = flow_increment(flow, q, Real{} + three_mu, alpha, dt, state_old);
   const Real factor = detail::return_factor(Real{} + three_mu, d, q);
   // eps_p += (3/2) d s_tr / q = (1 - factor) s_tr / (2 G)
   const Real plastic_scale = (1.0 - factor) * (1.0 / two_mu);
@@ -137,7 +148,7 @@ inline PointResponse<Real> update_finite(const ElasticConstants& elastic, const 
     const Real q = detail::von_mises_of_deviator(s);
     const Real three_mu_bar = (3.0 * mu) * i1;
     const Real alpha = load<Real>(state_old, state_eps_p);
-    const Real d = flow.increment(q, three_mu_bar, alpha, dt);
+    const Real d = flow_increment(flow, q, three_mu_bar, alpha, dt, state_old);
     const Real factor = detail::return_factor(three_mu_bar, d, q);
     for (int k = 0; k < 6; ++k) s[k] *= factor;
     // b_e = s / G + x I with x such that det b_e = 1 (the isochoric b_e of Simo's

@@ -52,6 +52,11 @@ inline MaterialLaw make_law(const input::MaterialOptions& options, input::Kinema
       law.flow = FlowRule::johnson_cook;
       law.johnson_cook = {options.jc_a, options.jc_b, options.jc_n, options.jc_c,
                           options.reference_strain_rate};
+      if (const auto& t = options.thermal_softening) {
+        law.johnson_cook.heating = t->taylor_quinney / (options.density * t->specific_heat *
+                                                        (t->melting_temperature - t->room_temperature));
+        law.johnson_cook.m = t->m;
+      }
       break;
   }
   return law;

@@ -176,6 +176,44 @@ TEST(JohnsonCook, ReturnLandsOnTheRateDependentSurface) {
   }
 }
 
+// Thermal softening: a point with plastic work W_p in its state returns onto the surface
+// q = (A + B eps_p^n)(1 + C ln(eps_dot_p / eps_dot_0))(1 - T*^m), T* = chi W_p / (rho c_p
+// (T_m - T_r)) of the work before the step, by hand: Weldox 460 E's m = 0.94, T_m =
+// 1800 K, T_r = 293 K, c_p = 452 J/(kg K), chi = 0.9, rho = 7850 kg/m^3, W_p = 2e9 J/m^3:
+// T* = 0.9 x 2e9 / (7850 x 452 x 1507) = 0.3366287165, 1 - T*^0.94 = 0.6406463242
+TEST(JohnsonCook, ThermalSofteningScalesTheSurfaceByTheAdiabaticTemperatureOfTheWorkDone) {
+  JohnsonCook flow{490e6, 383e6, 0.45, 0.0114, 5e-4};
+  flow.heating = 0.9 / (7850.0 * 452.0 * (1800.0 - 293.0));
+  flow.m = 0.94;
+  const double work = 2.0e9;
+  const double t_star = 0.9 * work / (7850.0 * 452.0 * 1507.0);
+  EXPECT_NEAR(t_star, 0.3366287165, 1e-10);
+  EXPECT_NEAR(flow.thermal_factor(work), 1.0 - std::pow(t_star, 0.94), 1e-15);
+  EXPECT_NEAR(flow.thermal_factor(work), 0.6406463242, 1e-10);
+  EXPECT_EQ(flow.thermal_factor(0.0), 1.0);
+  EXPECT_EQ(flow.thermal_factor(1e12), 0.0);  // molten: T* held at 1
+  const double dt = 1e-7;
+  Point p(false);
+  p.old_state[exdyn::material::state_plastic_work] = work;
+  const std::array<double, 9> h{-0.02, 0.004, 0, 0.004, 0.003, 0, 0, 0, 0.001};
+  const auto r = exdyn::material::update_small(copper, flow, h, p.old_state.data(), p.new_state.data(), dt);
+  ASSERT_GT(r.eps_p, 0.0);
+  const std::array<double, 6>& s = r.stress;
+  const double mean = (s[0] + s[1] + s[2]) / 3.0;
+  const double q = std::sqrt(
+      1.5 * ((s[0] - mean) * (s[0] - mean) + (s[1] - mean) * (s[1] - mean) + (s[2] - mean) * (s[2] - mean)) +
+      3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+  EXPECT_NEAR(q, flow.flow_stress(r.eps_p, r.eps_p / dt) * 0.6406463242, 1e-9 * q);
+  // Without the softening the same step flows less.
+  JohnsonCook cold = flow;
+  cold.heating = 0.0;
+  Point c(false);
+  c.old_state[exdyn::material::state_plastic_work] = work;
+  const auto rc = exdyn::material::update_small(copper, cold, h, c.old_state.data(), c.new_state.data(), dt);
+  EXPECT_GT(r.eps_p, rc.eps_p);  // the softer surface lets the point flow further
+  EXPECT_GT(rc.eps_p, 0.0);
+}
+
 // C = 0: Johnson-Cook with n = 1 is linear hardening A + B eps_p.
 TEST(JohnsonCook, WithoutTheRateTermAndLinearIsLinearHardening) {
   const JohnsonCook jc{yield, modulus, 1.0, 0.0, 1.0};
