@@ -27,7 +27,7 @@ struct JohnsonCook {
 
   // 1 - T*^m at the plastic work W_p (J/m^3); 1 without thermal softening.
   double thermal_factor(double plastic_work) const {
-    if (heating == 0.0) return 1.0;
+    if (heating == 0.0 || !(plastic_work > 0.0)) return 1.0;  // cold: no power to take
     const double t = std::clamp(heating * plastic_work, 0.0, 1.0);
     return 1.0 - std::pow(t, m);
   }
