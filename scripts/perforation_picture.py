@@ -53,14 +53,14 @@ def main():
     shown_text = pv.Show(text, view)
     shown_text.Color = [0, 0, 0]
     shown_text.FontSize = 14
-    shown_text.WindowLocation = "Lower Right Corner"
+    shown_text.WindowLocation = "Upper Right Corner"
     view.CameraPosition = [0.5 * args.width, -0.2, -0.015]
     view.CameraFocalPoint = [0.5 * args.width, 0.0, -0.015]
     view.CameraViewUp = [0, 0, 1]
     view.CameraParallelProjection = 1
     pv.Render(view)
-    view.CameraFocalPoint = [0.55 * args.width, 0.0, -0.02]
-    view.CameraPosition = [0.55 * args.width, -0.2, -0.02]
+    view.CameraFocalPoint = [0.55 * args.width, 0.0, -0.016]
+    view.CameraPosition = [0.55 * args.width, -0.2, -0.016]
     view.CameraParallelScale = 0.5 * args.width  # half the height shown, m
     pv.Render(view)
     pv.SaveScreenshot(args.out, view, ImageResolution=[1200, 800])
