@@ -49,8 +49,12 @@ class PackCorners {
     Real dt{};
     if (step || erode)
       dt = scale_ * hex8::current_characteristic_length(x);  // L_e / c1 times the family's scale, s
-    Real kept = Real{} + 1.0;                                // 0 in the lanes marked distorted
-    if (erode) kept = mark_distorted(x, dt, block, first, end);
+    // The corner determinants, once for the rule and the inversion check.
+    const bool inverting = inversion && !result_.inverted.found;
+    Real det[8], frobenius2[8];
+    if (erode || inverting) corner_determinants(x, det, frobenius2);
+    Real kept = Real{} + 1.0;  // 0 in the lanes marked distorted
+    if (erode) kept = mark_distorted(det, dt, block, first, end);
     if (step) {
       if (erode) dt = select(kept > 0.0, dt, Real{} + std::numeric_limits<double>::infinity());
       if (any_lane(dt < result_.step.dt))  // most packs set no new smallest: one compare
@@ -58,7 +62,7 @@ class PackCorners {
           if (dt[lane] < result_.step.dt)
             result_.step = {dt[lane], block.first_element + first + std::uint32_t(lane)};
     }
-    if (inversion && !result_.inverted.found) check(x, first, block, kept);
+    if (inverting) check(det, frobenius2, first, block, kept);
   }
 
   // The chunk's result: the first smallest step; the first inverted element, or the
@@ -92,10 +96,8 @@ class PackCorners {
   // block.failure.erode_step, or with a corner det J <= 0, is marked in
   // block.failure.distorted (the damage pass fails it). Returns 1 in the lanes kept,
   // 0 in those marked.
-  static Real mark_distorted(const BasicElementVectors<Real>& x, const Real& dt, const ElementBlock& block,
+  static Real mark_distorted(const Real (&det)[8], const Real& dt, const ElementBlock& block,
                              std::uint32_t first, std::uint32_t end) {
-    Real det[8], frobenius2[8];
-    corner_determinants(x, det, frobenius2);
     Real smallest = det[0];
     for (int a = 1; a < 8; ++a) smallest = select(det[a] < smallest, det[a], smallest);
     const double limit = block.failure.erode_step;
@@ -114,10 +116,8 @@ class PackCorners {
   // The inversion check of a pack (find_inverted_element's arithmetic, lane by lane):
   // the first lane and corner with det <= 0 (or not a number), else the running
   // smallest det / ||J||_F^2; lanes with kept = 0 (marked distorted) are left out.
-  void check(const BasicElementVectors<Real>& x, std::uint32_t first, const ElementBlock& block,
+  void check(Real (&det)[8], const Real (&frobenius2)[8], std::uint32_t first, const ElementBlock& block,
              const Real& kept) {
-    Real det[8], frobenius2[8];
-    corner_determinants(x, det, frobenius2);
     const Real one = Real{} + 1.0, infinity = Real{} + std::numeric_limits<double>::infinity();
     bool bad = false;
     for (int a = 0; a < 8; ++a) {

@@ -391,8 +391,7 @@ void TimeLoop::plan_time_step() {
     if (current.dt < finite.dt) finite = current;
   }
   const std::string collapse = clock_->plan(state_.step, d_, finite);
-  if (state_.step == 0 && deck_.time.erode)  // the step below which an element is too distorted
-    erode_distorted_elements(model_, deck_.time.min_dt_ratio * clock_->first() / deck_.time.courant);
+  if (state_.step == 0) erode_distorted_elements(model_, deck_.time, clock_->first());
   summary_.dt_min = clock_->smallest();
   if (!collapse.empty()) stop_run(collapse + when());
 }

@@ -405,7 +405,9 @@ void gather_plastic_strain(const Model& model, State& state) {
   }
 }
 
-void erode_distorted_elements(const Model& model, double erode_step) {
+void erode_distorted_elements(const Model& model, const input::TimeOptions& time, double first_dt) {
+  if (!time.erode) return;
+  const double erode_step = time.min_dt_ratio * first_dt / time.courant;  // s
   for (const element::ElementBlock& block : model.blocks) {
     if (block.failure.status.empty()) continue;
     block.failure.erode_step = erode_step;

@@ -124,9 +124,9 @@ void add_scaled(NodalVectors& y, double scale, const NodalVectors& x);
 // The blocks' per-element equivalent plastic strains into state.plastic_strain, and
 // their damage and status (1 alive, 0 failed or eroded) into state.damage and state.status.
 void gather_plastic_strain(const Model& model, State& state);
-// time.erode, from the first step on: each block that can fail marks, in its corner
-// checks, the live elements whose own stable step (without the Courant factor) is
-// below erode_step (s) or that invert, and its damage pass fails them.
-void erode_distorted_elements(const Model& model, double erode_step);
+// time.erode, from the first step dt (s) on: each block that can fail marks, in its
+// corner checks, the live elements whose own stable step (without the Courant factor)
+// is below min_dt_ratio dt / courant or that invert, and its damage pass fails them.
+void erode_distorted_elements(const Model& model, const input::TimeOptions& time, double first_dt);
 
 }  // namespace exdyn::solver
