@@ -18,8 +18,15 @@
 // State per point (state_size doubles): the plastic strain tensor (small) or the
 // isochoric inverse plastic right Cauchy-Green tensor Cp^-1 (finite), xx yy zz xy yz
 // xz; the equivalent plastic strain eps_bar_p; the plastic work per reference volume
-// (J/m^3). A Real is one point (double) or the points of a pack of elements (Pack<L>,
-// their states interleaved: load<Real>).
+// (J/m^3); the deviatoric stress s (Cauchy, or Kirchhoff for finite; Pa) the step
+// ended with.
+// The plastic work takes the trapezoid of the step, W_p += (sigma_n + sigma_n+1)/2 :
+// d eps_p with d eps_p = (3/2) d s_tr / q_tr, so W_p += d (q_n+1 + (3/2) s_n : s_tr /
+// q_tr) / 2: the rule of the central difference's work (f_n + f_n+1)/2 . du, under which
+// the stored energy plus W_p is the work the stresses did, to round-off for small strain
+// (docs/theory.md, "Energy"). The backward sum q_n+1 d misses (sigma_n - sigma_n+1)/2 :
+// d eps_p a step, first order: 8e-4 of the plane plastic wave's energy. A Real is one point (double) or the
+// points of a pack of elements (Pack<L>, their states interleaved: load<Real>).
 #pragma once
 
 #include <array>
@@ -29,9 +36,10 @@
 
 namespace exdyn::material {
 
-inline constexpr int j2_state_size = 8;
+inline constexpr int j2_state_size = 14;
 inline constexpr int state_eps_p = 6;         // equivalent plastic strain
 inline constexpr int state_plastic_work = 7;  // J/m^3
+inline constexpr int state_deviator = 8;      // s at the end of the step, 6 values, Pa
 
 // The state of a point before any load: eps_p = 0 (small) or Cp^-1 = I (finite).
 inline void initial_state(bool finite, double* state) {
@@ -59,6 +67,38 @@ template <class Real>
 inline Real von_mises_of_deviator(const std::array<Real, 6>& s) {
   return lane_sqrt(1.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2]) +
                    3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
+}
+// The step's plastic work per reference volume by the trapezoid (above), J/m^3: the
+// trial deviator s_tr, its q_tr, the increment d and the return's factor (s = factor
+// s_tr); the old deviator from state_old.
+template <class Real>
+inline Real plastic_work_increment(const std::array<Real, 6>& s_trial, const Real& q, const Real& d,
+                                   const Real& factor, const double* state_old) {
+  Real old_dot_trial{};  // s_n : s_tr
+  for (int k = 0; k < 6; ++k)
+    old_dot_trial += (k < 3 ? 1.0 : 2.0) * load<Real>(state_old, state_deviator + k) * s_trial[k];
+  const Real safe_q = select(q > 0.0, q, Real{} + 1.0);
+  return 0.5 * d * (factor * q + 1.5 * old_dot_trial / safe_q);
+}
+// Finite strain: the return at fixed F gives up the stored energy G/2 (tr b_e_tr - tr
+// b_e) = 3 G / 2 (i1_tr - i1), and the step's work differs from the predictor's by
+// (tau - tau_tr) : d eps / 2 = -(1 - factor) s_tr : d eps / 2 with the step's strain
+// d eps = (s_tr - s_n) / (2 G) to first order (rotations drop out of s_tr : d eps):
+//   d W_p = 3 G / 2 (i1_tr - i1) - (1 - factor) s_tr : (s_tr - s_n) / (4 G),
+// the trapezoid above in the small-strain limit and consistent with the stored energy
+// of Simo's return, which scales s by its factor and then restores det b_e = 1.
+template <class Real>
+inline Real finite_plastic_work_increment(double mu, const std::array<Real, 6>& s_trial, const Real& i1_trial,
+                                          const Real& i1, const Real& factor, const double* state_old) {
+  Real trial_dot_step{};  // s_tr : (s_tr - s_n)
+  for (int k = 0; k < 6; ++k)
+    trial_dot_step +=
+        (k < 3 ? 1.0 : 2.0) * s_trial[k] * (s_trial[k] - load<Real>(state_old, state_deviator + k));
+  return (1.5 * mu) * (i1_trial - i1) - (1.0 - factor) * trial_dot_step * (0.25 / mu);
+}
+template <class Real>
+inline void store_deviator(const std::array<Real, 6>& s, double* state_new) {
+  for (int k = 0; k < 6; ++k) store(state_new + lanes_of<Real> * (state_deviator + k), s[k]);
 }
 }  // namespace detail
 
@@ -94,6 +134,8 @@ inline PointResponse<Real> update_small(const ElasticConstants& elastic, const F
   // eps_p += (3/2) d s_tr / q = (1 - factor) s_tr / (2 G)
   const Real plastic_scale = (1.0 - factor) * (1.0 / two_mu);
   PointResponse<Real> out;
+  out.plastic_work =
+      load<Real>(state_old, state_plastic_work) + detail::plastic_work_increment(s, q, d, factor, state_old);
   const Real pressure = elastic.bulk_modulus() * trace;
   for (int k = 0; k < 6; ++k) {
     eps_p[k] += plastic_scale * s[k];
@@ -103,9 +145,9 @@ inline PointResponse<Real> update_small(const ElasticConstants& elastic, const F
     store(state_new + lanes_of<Real> * k, eps_p[k]);
   }
   out.eps_p = alpha + d;
-  out.plastic_work = load<Real>(state_old, state_plastic_work) + factor * q * d;  // q_new d
   store(state_new + lanes_of<Real> * state_eps_p, out.eps_p);
   store(state_new + lanes_of<Real> * state_plastic_work, out.plastic_work);
+  detail::store_deviator(s, state_new);
   out.elastic_energy =
       0.5 * (out.stress[0] * eps_e[0] + out.stress[1] * eps_e[1] + out.stress[2] * eps_e[2] +
              2.0 * (out.stress[3] * eps_e[3] + out.stress[4] * eps_e[4] + out.stress[5] * eps_e[5]));
@@ -150,6 +192,8 @@ inline PointResponse<Real> update_finite(const ElasticConstants& elastic, const 
     const Real alpha = load<Real>(state_old, state_eps_p);
     const Real d = flow_increment(flow, q, three_mu_bar, alpha, dt, state_old);
     const Real factor = detail::return_factor(three_mu_bar, d, q);
+    const std::array<Real, 6> s_trial = s;
+    const Real i1_trial = i1;
     for (int k = 0; k < 6; ++k) s[k] *= factor;
     // b_e = s / G + x I with x such that det b_e = 1 (the isochoric b_e of Simo's
     // update keeps its volume; without it the trace, and so the stored energy
@@ -165,7 +209,10 @@ inline PointResponse<Real> update_finite(const ElasticConstants& elastic, const 
     for (int iteration = 0; iteration < 3; ++iteration)
       i1 = i1 - (i1 * i1 * i1 - half_trace_d2 * i1 + det_d - 1.0) / (3.0 * i1 * i1 - half_trace_d2);
     out.eps_p = alpha + d;
-    out.plastic_work = load<Real>(state_old, state_plastic_work) + factor * q * d;
+    out.plastic_work =
+        load<Real>(state_old, state_plastic_work) +
+        select(d > 0.0, detail::finite_plastic_work_increment(mu, s_trial, i1_trial, i1, factor, state_old),
+               Real{});
     // Cp^-1 = J^(2/3) F^-1 b_e F^-T with b_e = s / G + i1 I; unchanged where d = 0
     // (no drift of an elastic point's state by round-off).
     const auto yielded = d > 0.0;
@@ -197,6 +244,7 @@ inline PointResponse<Real> update_finite(const ElasticConstants& elastic, const 
     for (int k = 0; k < 6; ++k) store(state_new + lanes_of<Real> * k, c[k]);
     store(state_new + lanes_of<Real> * state_eps_p, out.eps_p);
     store(state_new + lanes_of<Real> * state_plastic_work, out.plastic_work);
+    detail::store_deviator(s, state_new);
   } else {
     (void)state_old, (void)state_new, (void)dt, (void)flow;
   }

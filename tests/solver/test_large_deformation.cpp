@@ -158,7 +158,9 @@ TEST(PlasticWave, PrecursorAndPlateauWithinHalfAPercentFrontsWithinTwo) {
     // Behind the plastic front eps_p = 5.0337e-3 (the ringing's overshoots add about 1 %).
     const std::vector<double> eps_p = run.final("plastic_strain");
     EXPECT_NEAR(eps_p[eps_p.size() / 4], 5.0337e-3, 0.02 * 5.0337e-3) << formulation;
-    EXPECT_LT(run.summary.energy.max_relative_error, 1e-3);
+    // The stored energy and the plastic work by the trapezoid close the balance to
+    // round-off (j2.hpp; the backward sum q_n+1 d left 7.6e-4 of it open).
+    EXPECT_LT(run.summary.energy.max_relative_error, 1e-13) << formulation;
     EXPECT_GT(run.history("plastic_work").back(), 0.0);
   }
 }
