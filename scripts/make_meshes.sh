@@ -18,6 +18,7 @@ mesh plate_impact_hex8.msh plate_impact.geo -setnumber n 100
 mesh plate_impact_hex20.msh plate_impact.geo -setnumber n 50 -setnumber t 5e-5 "${quadratic[@]}"
 mesh hertz_ball_hex20.msh hertz_ball.geo "${quadratic[@]}"
 mesh hertz_ball_coarse_hex20.msh hertz_ball.geo -setnumber na 8 -setnumber nr 2 "${quadratic[@]}"
+mesh weldox_plate_hex8.msh weldox_plate.geo
 mesh tube_hex8.msh tube.geo
 mesh tube_crush_hex8.msh tube.geo -setnumber ri 9.2e-3 -setnumber L 40e-3 -setnumber z0 0 \
   -setnumber na 24 -setnumber nz 100

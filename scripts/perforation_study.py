@@ -8,9 +8,11 @@ meshes, with a Recht-Ipson fit of each (docs/verification.md, "The punched plate
   of 0.3, a quarter model;
 - `--deck perforation` (input/perforation.yaml): the 20 mm blunt projectile of 197 g
   against the 12 mm Weldox 460 E plate of Borvik et al. (2002), Johnson-Cook with its
-  damage and `time.erode`; the chart marks the test series' ballistic limit.
+  damage and `time.erode`; the chart marks the test series' ballistic limit;
+- `--deck perforation_fine` (input/perforation_fine.yaml): the same on a round plate
+  whose Gmsh mesh is fine where the plug is cut (`--meshes deck`, its only mesh).
 
-    /usr/bin/python3 scripts/perforation_study.py [--deck punch_through|perforation]
+    /usr/bin/python3 scripts/perforation_study.py [--deck punch_through|perforation|perforation_fine]
         [--exdyn PATH] [--out DIR] [--threads 2] [--speeds ...] [--meshes ...] [--figure PNG]
 
 Each run: the projectile at v_i until it is through and clear of the plate
@@ -54,19 +56,24 @@ DECKS = {
                         speeds="200,225,250,275,300,350,400", meshes="20x6,30x9,40x12",
                         title="input/perforation.yaml: 20 mm blunt projectile, 12 mm Weldox 460 E",
                         test_limit=184.5, must_be_free=True),
+    # Its plate a Gmsh mesh (input/meshes/weldox_plate.geo): the deck's own, no mesh sizes.
+    "perforation_fine": dict(file="perforation_fine.yaml", back=-12.0e-3, end=lambda v: max(200.0e-6, 45.0e-3 / v),
+                             speeds="175,190,200,225,250,300", meshes="deck",
+                             title="input/perforation_fine.yaml: the round plate, 0.4 mm bricks in the band",
+                             test_limit=184.5, must_be_free=True),
 }
 
 
 def run(exdyn, deck, out, speed, mesh, threads, read_only=False):
     """(v_r in m/s, nose z at the end, the summary) of one run; None with --read-only
     where the run is not there."""
-    n, layers = mesh
     end = deck["end"](speed)
     name = os.path.splitext(deck["file"])[0]
     cmd = [exdyn, "run", os.path.join(REPO, "input", deck["file"]), "--quiet", "--output", out, "--threads", str(threads),
            "--set", f"parts[0].initial_velocity=[0, 0, {-speed}]", "--set", f"time.end_time={end}",
-           "--set", f"parts[1].elements=[{n}, {n}, {layers}]", "--set", "output.every=1000000",
-           "--set", "output.fields=[displacement, velocity, status]"]
+           "--set", "output.every=1000000", "--set", "output.fields=[displacement, velocity, status]"]
+    if mesh is not None:  # (bricks across x and y, through); None: the deck's own mesh
+        cmd += ["--set", f"parts[1].elements=[{mesh[0]}, {mesh[0]}, {mesh[1]}]"]
     summary_path = os.path.join(out, name + ".json")
     done = os.path.exists(summary_path) and json.load(open(summary_path)).get("status") == "completed"
     if not done and read_only:
@@ -134,22 +141,25 @@ def main():
     deck = DECKS[args.deck]
     args.speeds = args.speeds or deck["speeds"]
     args.meshes = args.meshes or deck["meshes"]
-    study = "perforation_study" if args.deck == "punch_through" else "weldox_study"
+    study = {"punch_through": "perforation_study", "perforation": "weldox_study"}.get(args.deck, args.deck + "_study")
     args.figure = args.figure or os.path.join(REPO, "docs", "figures", study + ".png")
     speeds = [float(s) for s in args.speeds.split(",")]
-    meshes = [tuple(int(k) for k in m.split("x")) for m in args.meshes.split(",")]
+    meshes = [None if m == "deck" else tuple(int(k) for k in m.split("x")) for m in args.meshes.split(",")]
+
+    def label_of(mesh):
+        return "the deck's" if mesh is None else f"{mesh[0]} x {mesh[0]} x {mesh[1]}"
     work = args.out or tempfile.mkdtemp(prefix="exdyn_" + args.deck + "_")
     results = {}
     print("| plate bricks | v_i (m/s) | v_r (m/s) | nose z (mm) | eroded | steps | wall (s) |")
     print("|---|---|---|---|---|---|---|")
     for mesh in meshes:
         for speed in speeds:
-            out = os.path.join(work, f"{mesh[0]}x{mesh[1]}_{int(speed)}")
+            out = os.path.join(work, ("deck" if mesh is None else f"{mesh[0]}x{mesh[1]}") + f"_{int(speed)}")
             ran = run(args.exdyn, deck, out, speed, mesh, args.threads, args.read_only)
             if ran is None:
                 continue
             residual, nose, summary = ran
-            label = f"{mesh[0]} x {mesh[0]} x {mesh[1]}"
+            label = label_of(mesh)
             if residual is None:
                 print(f"| {label} | {speed:g} | run {summary['status']}: {summary.get('message', '')[:80]} "
                       f"| | | {summary['steps']} | {summary['wall_seconds']:.1f} |", flush=True)
@@ -166,7 +176,7 @@ def main():
     for mesh, points in results.items():
         fit = recht_ipson(points)
         fits[mesh] = fit
-        label = f"{mesh[0]} x {mesh[0]} x {mesh[1]}"
+        label = label_of(mesh)
         if fit is None:
             print(f"| {label} | fewer than 3 perforations | | | |")
         else:
@@ -176,10 +186,10 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.4, 4.4), dpi=100)
-    for k, (mesh, points) in enumerate(sorted(results.items())):
+    for k, (mesh, points) in enumerate(sorted(results.items(), key=lambda item: item[0] or (0, 0))):
         colour = f"C{k}"
         vi, vr = zip(*sorted(points))
-        ax.plot(vi, vr, "o", color=colour, label=f"plate {mesh[0]} x {mesh[0]} x {mesh[1]}")
+        ax.plot(vi, vr, "o", color=colour, label="the deck's plate" if mesh is None else "plate " + label_of(mesh))
         fit = fits[mesh]
         if fit is not None:
             a, power, v_bl, _ = fit

@@ -64,6 +64,12 @@ struct ElementFailure {
   // such elements, and inverted ones, here (corner_pack.hpp) and the damage pass fails them.
   double erode_step = 0.0;
   std::vector<std::uint8_t> distorted;
+  // What an element marked distorted carried at its last step n, held for the pass of
+  // n+1 to book E = U^n + H^n + dt/2 f^n.v^{n+1/2} exactly (held_size values per
+  // element: U^n + H^n, NaN while none is held, then f^n node by node): evaluated at
+  // u^{n+1}, a crushed element's energy and forces are no measure of what it carried.
+  std::vector<double> held;
+  static constexpr std::size_t held_size(int nodes) { return 1 + 3 * std::size_t(nodes); }
   std::vector<std::uint32_t> chunk_counts;  // scratch of update_damage
 };
 

@@ -11,6 +11,7 @@
 #include <cassert>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #include "common/nodal_vectors.hpp"
@@ -212,6 +213,36 @@ double failed_energy(const ElementBlock& block, const NodeValues<Nodes, Real>& f
   return energy - 0.5 * block.material_state.dt * power;
 }
 
+// Holds what an element marked distorted in this pass carries (ElementFailure::held).
+template <int Nodes, class Real>
+void hold_distorted(const ElementBlock& block, const NodeValues<Nodes, Real>& f, int lane,
+                    std::uint32_t element, double energy) {
+  double* held = block.failure.held.data() + ElementFailure::held_size(Nodes) * element;
+  held[0] = energy;
+  for (int k = 0; k < Nodes; ++k) {
+    held[1 + 3 * k] = lane_value(f.x[std::size_t(k)], lane);
+    held[2 + 3 * k] = lane_value(f.y[std::size_t(k)], lane);
+    held[3 + 3 * k] = lane_value(f.z[std::size_t(k)], lane);
+  }
+}
+
+// The energy that leaves with an element held at its last step: U^n + H^n + dt/2
+// f^n.v^{n+1/2}, J; NaN where none was held.
+template <int Nodes>
+double held_energy(const ElementBlock& block, std::uint32_t element, const std::uint32_t* nodes) {
+  const ElementFailure& failure = block.failure;
+  if (failure.held.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const double* held = failure.held.data() + ElementFailure::held_size(Nodes) * element;
+  const NodalVectors& v = *failure.velocity;
+  double power = 0.0;  // f^n.v^{n+1/2}, W
+  for (int k = 0; k < Nodes; ++k) {
+    const std::uint32_t n = nodes[k];
+    assert(n < v.size());
+    power += held[1 + 3 * k] * v.x[n] + held[2 + 3 * k] * v.y[n] + held[3 + 3 * k] * v.z[n];
+  }
+  return held[0] + 0.5 * block.material_state.dt * power;
+}
+
 // The element loop over packs of Lanes consecutive elements: kernel(pack, u, f, stress)
 // on the elements Lanes pack .. Lanes pack + Lanes - 1 at once returns their energies
 // (strain, hourglass, and plastic work for the kernels of a material law); it finds the pack's reference data
@@ -276,9 +307,13 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
     for (int lane = 0; lane < Lanes; ++lane) {
       if (element[lane] < begin || element[lane] >= end) continue;
       if (!all_alive && status[element[lane]] != ElementStatus::alive) {
-        if (status[element[lane]] == ElementStatus::failed)
-          total.eroded += failed_energy(block, f_local, lane, nodes[lane],
-                                        lane_value(energies[0], lane) + lane_value(energies[1], lane));
+        if (status[element[lane]] == ElementStatus::failed) {
+          const double held = held_energy<Nodes>(block, element[lane], nodes[lane]);
+          total.eroded += held == held
+                              ? held
+                              : failed_energy(block, f_local, lane, nodes[lane],
+                                              lane_value(energies[0], lane) + lane_value(energies[1], lane));
+        }
         if (stress != nullptr) {
           double* out = stress + 6 * (static_cast<std::size_t>(block.first_element) + element[lane]);
           for (int k = 0; k < 6; ++k) out[k] = 0.0;
@@ -286,6 +321,9 @@ ElementEnergies element_pack_loop(const ElementBlock& block, std::uint32_t begin
         continue;
       }
       if (!row) scatter_add_lane(f_local, lane, nodes[lane], f_int);
+      if (!block.failure.held.empty() && block.failure.distorted[element[lane]] != 0)
+        hold_distorted(block, f_local, lane, element[lane],
+                       lane_value(energies[0], lane) + lane_value(energies[1], lane));
       total.strain += lane_value(energies[0], lane);
       total.hourglass += lane_value(energies[1], lane);
       if constexpr (std::tuple_size_v < std::decay_t < decltype(energies) >>> 2)

@@ -412,6 +412,9 @@ void erode_distorted_elements(const Model& model, const input::TimeOptions& time
     if (block.failure.status.empty()) continue;
     block.failure.erode_step = erode_step;
     block.failure.distorted.assign(block.count, 0);
+    block.failure.held.assign(
+        std::size_t(block.count) * element::ElementFailure::held_size(block.nodes_per_element),
+        std::numeric_limits<double>::quiet_NaN());
   }
 }
 

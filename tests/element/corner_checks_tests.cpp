@@ -2,6 +2,7 @@
 // the packed, threaded passes against the simple ones, element by element.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -37,6 +38,15 @@ CurrentStep simple_time_step(const ElementBlock& block, const NodalVectors& x_re
     if (dt < result.dt) result = {dt, block.first_element + e};
   }
   return result;
+}
+
+// Finite-strain steel with linear hardening that fails at a plastic strain of 0.5.
+material::MaterialLaw failing_law() {
+  material::MaterialLaw law;
+  law.finite = true;
+  law.flow = material::FlowRule::hardening, law.hardening = material::Hardening::linear(400e6, 100e6);
+  law.failure.model = input::FailureModel::plastic_strain, law.failure.strain = 0.5;
+  return law;
 }
 
 // A random state with nodes moved by up to `amplitude` (h = 1): from 0.3 on, some
@@ -210,10 +220,7 @@ TEST(CornerChecks, TheElementPassRunsThemToTheBitOfTheCornerPass) {
 // step and are not reported inverted.
 TEST(CornerChecks, TimeErodeMarksTheElementsTheSimpleChecksNameAndLeavesThemOut) {
   const Box box = make_box(37, 5, 6, 1.0);
-  material::MaterialLaw law;
-  law.finite = true;
-  law.flow = material::FlowRule::hardening, law.hardening = material::Hardening::linear(400e6, 100e6);
-  law.failure.model = input::FailureModel::plastic_strain, law.failure.strain = 0.5;
+  const material::MaterialLaw law = failing_law();
   const double c1 = steel.dilatational_wave_speed();
   const double limit = 0.75 / c1;  // 3/4 of an undeformed unit brick's L_e / c1
   const int threads = max_threads();
@@ -269,6 +276,62 @@ TEST(CornerChecks, TimeErodeMarksTheElementsTheSimpleChecksNameAndLeavesThemOut)
   set_threads(threads);
   EXPECT_GT(marked, 50);  // both kinds seen
   EXPECT_GT(inverted_marked, 5);
+}
+
+// An element marked distorted at step n leaves with what it carried then: the pass of
+// n+1 books U^n + H^n + dt/2 f^n.v^{n+1/2} from what the pass of n held (ElementFailure::
+// held), against the element's own energy and forces at u^n computed on their own. At
+// u^{n+1} the crushed and inverted elements' forces are no measure of it: the booking
+// from them is far off.
+TEST(CornerChecks, AnElementMarkedDistortedLeavesWithWhatItCarried) {
+  const Box box = make_box(37, 5, 6, 1.0);
+  const material::MaterialLaw law = failing_law();
+  const ElementBlock block = make_element_block(input::Formulation::hex8, steel, 0.0, 0, box.count,
+                                                box.connectivity.data(), box.x_ref, law);
+  const double dt = 1e-4;  // large: the step moves the nodes by up to 0.2
+  set_material_time_step(block, dt);
+  block.failure.erode_step = 0.75 / steel.dilatational_wave_speed();
+  block.failure.distorted.assign(block.count, 0);
+  block.failure.held.assign(block.count * ElementFailure::held_size(8),
+                            std::numeric_limits<double>::quiet_NaN());
+  std::mt19937_64 rng(5);
+  const NodalVectors u = shaken(box, 0.3, rng), v = shaken(box, 2e3, rng);
+  NodalVectors u_next(u.size());
+  for (std::size_t n = 0; n < u.size(); ++n)
+    u_next.x[n] = u.x[n] + dt * v.x[n], u_next.y[n] = u.y[n] + dt * v.y[n],
+    u_next.z[n] = u.z[n] + dt * v.z[n];
+  block.failure.velocity = &v;
+  // Step n: the marks, and what the marked elements carry, each on its own.
+  NodalVectors f(u.size());
+  request_corner_checks(block, box.x_ref, true, true);
+  add_internal_forces(block, u, f, nullptr);
+  corner_checks_of_pass(block);  // the request is for one pass
+  double expected = 0.0;
+  int marked = 0;
+  for (std::uint32_t e = 0; e < block.count; ++e) {
+    if (block.failure.distorted[e] == 0) continue;
+    ++marked;
+    NodalVectors f_e(u.size());
+    const ElementEnergies own = add_internal_forces(block, e, e + 1, u, f_e, nullptr);
+    double power = 0.0;
+    for (int k = 0; k < 8; ++k) {
+      const std::uint32_t n = block.connectivity[8 * std::size_t(e) + std::size_t(k)];
+      power += f_e.x[n] * v.x[n] + f_e.y[n] * v.y[n] + f_e.z[n] * v.z[n];
+    }
+    expected += own.strain + own.hourglass + 0.5 * dt * power;
+  }
+  ASSERT_GT(marked, 5);
+  // Step n+1: the damage pass failed them.
+  for (std::uint32_t e = 0; e < block.count; ++e)
+    if (block.failure.distorted[e] != 0) block.failure.status[e] = ElementStatus::failed;
+  block.failure.any_not_alive = true;
+  NodalVectors f_next(u.size());
+  const double booked = add_internal_forces(block, u_next, f_next, nullptr).eroded;
+  EXPECT_NEAR(booked, expected, 1e-12 * std::abs(expected));
+  // From the state at u^{n+1} instead (no element held):
+  std::fill(block.failure.held.begin(), block.failure.held.end(), std::numeric_limits<double>::quiet_NaN());
+  const double from_next = add_internal_forces(block, u_next, f_next, nullptr).eroded;
+  EXPECT_GT(std::abs(from_next - expected), 0.1 * std::abs(expected));
 }
 
 }  // namespace

@@ -45,8 +45,9 @@ struct DeckRun : exdyn::testing::DeckRun {
 // contact_patch_mortar.yaml: test_mortar_contact.cpp; u_shape.yaml, plates_one_surface.yaml:
 // test_single_surface.cpp; tube_crush.yaml: scripts/tube_crush_study.py --check (ctest
 // tube_crush_folds); cantilever.yaml: test_bending.cpp; tension_failure.yaml: test_failure.cpp;
-// eroding_column.yaml, punch_through.yaml: test_opened_faces.cpp; perforation.yaml:
-// test_distortion_erosion.cpp (coarse), scripts/perforation_study.py --deck perforation.
+// eroding_column.yaml, punch_through.yaml: test_opened_faces.cpp; perforation.yaml,
+// perforation_fine.yaml: test_distortion_erosion.cpp (coarse; the first 1.5 us),
+// scripts/perforation_study.py --deck perforation and --deck perforation_fine.
 const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "wave_bar.yaml",
                                           "shear_wave.yaml",
@@ -82,7 +83,8 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "tension_failure.yaml",
                                           "eroding_column.yaml",
                                           "punch_through.yaml",
-                                          "perforation.yaml"};
+                                          "perforation.yaml",
+                                          "perforation_fine.yaml"};
 
 TEST(Decks, EveryDeckInInputIsCheckedByATest) {
   std::set<std::string> found;

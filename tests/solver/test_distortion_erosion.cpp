@@ -71,3 +71,47 @@ TEST(DistortionErosion, AnElementThatWouldStopTheRunInvertedErodesInstead) {
 }
 
 }  // namespace
+
+namespace {
+
+// input/perforation_fine.yaml: the same scene on the round plate of
+// input/meshes/weldox_plate.geo. The mesh is the quarter disc (every node within R of
+// the axis, the clamped rim's at R), and the projectile, 0.2 mm above the plate at 300
+// m/s, touches it when the gap closes at 0.2 mm / 300 m/s = 0.667 us, not before.
+TEST(PerforationFine, TheRoundPlateIsTheQuarterDiscTouchedWhenTheGapCloses) {
+  const DeckRun run("perforation_fine.yaml", {exdyn::input::parse_override("time.end_time=1.5e-6"),
+                                              exdyn::input::parse_override("output.history_every=1"),
+                                              exdyn::input::parse_override("output.every=1000")});
+  ASSERT_EQ(run.summary.status, "completed") << run.summary.message;
+  const std::vector<double> x = exdyn::testing::read_dataset(run.h5(), "/mesh/coordinates").values;
+  const std::vector<double> part = exdyn::testing::read_dataset(run.h5(), "/mesh/part").values;
+  const std::vector<double> cells = exdyn::testing::read_dataset(run.h5(), "/mesh/connectivity").values;
+  constexpr double radius = 50e-3, thickness = 12e-3;
+  double largest = 0.0, lowest = 0.0;
+  for (std::size_t e = 0; e < part.size(); ++e) {
+    if (part[e] != 1.0) continue;
+    for (std::size_t k = 0; k < 8; ++k) {
+      const std::size_t n = std::size_t(cells[8 * e + k]);
+      largest = std::max(largest, std::hypot(x[3 * n], x[3 * n + 1]));
+      lowest = std::min(lowest, x[3 * n + 2]);
+    }
+  }
+  EXPECT_NEAR(largest, radius, 1e-12 * radius);
+  EXPECT_NEAR(lowest, -thickness, 1e-12 * thickness);
+  const std::vector<double> time = run.history("time");
+  const std::vector<double> force = run.history("contact/all/force");
+  const double touch = 0.2e-3 / 300.0, dt = run.summary.dt;
+  long touched = 0;
+  for (std::size_t n = 0; n < time.size(); ++n) {
+    if (time[n] < touch - dt) {
+      EXPECT_EQ(force[3 * n + 2], 0.0) << time[n];
+    } else if (time[n] > touch + dt) {
+      EXPECT_GT(std::abs(force[3 * n + 2]), 0.0) << time[n];
+      ++touched;
+    }
+  }
+  EXPECT_GT(touched, 10);
+  EXPECT_LT(run.summary.energy.max_relative_error, 1e-3);
+}
+
+}  // namespace
