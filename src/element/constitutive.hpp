@@ -80,9 +80,17 @@ ConstitutiveResult<Real> integrate_points(const material::ElasticConstants& elas
     for (int g = 0; g < Points; ++g) {
       std::array<Real, 9>& f = h[g];
       const Real jv = f_bar ? j_bar : det[g];
-      const material::PointResponse<Real> r =
-          material::update_finite(elastic, flow, f, jv, material::inverse_cube_root_squared(det[g]),
-                                  state_old + g * state_stride, state_new + g * state_stride, dt);
+      // F^-T = cof(F) / J, cof(F)_jk = d det F / d F_jk: for P = tau F^-T and for the law.
+      const Real inverse_det = 1.0 / det[g];
+      const std::array<Real, 9> f_inverse_transpose = {
+          (f[4] * f[8] - f[5] * f[7]) * inverse_det, (f[5] * f[6] - f[3] * f[8]) * inverse_det,
+          (f[3] * f[7] - f[4] * f[6]) * inverse_det, (f[2] * f[7] - f[1] * f[8]) * inverse_det,
+          (f[0] * f[8] - f[2] * f[6]) * inverse_det, (f[1] * f[6] - f[0] * f[7]) * inverse_det,
+          (f[1] * f[5] - f[2] * f[4]) * inverse_det, (f[2] * f[3] - f[0] * f[5]) * inverse_det,
+          (f[0] * f[4] - f[1] * f[3]) * inverse_det};
+      const material::PointResponse<Real> r = material::update_finite(
+          elastic, flow, f, f_inverse_transpose, jv, material::inverse_cube_root_squared(det[g]),
+          state_old + g * state_stride, state_new + g * state_stride, dt);
       const Real wg = w[g];
       // tau_eff = tau + K (J_g - J_v)(J_v - 1) I: the F-bar pressure term (0 without it).
       const Real shift = bulk * (det[g] - jv) * (jv - 1.0);
@@ -95,15 +103,12 @@ ConstitutiveResult<Real> integrate_points(const material::ElasticConstants& elas
       out.internal += wg * (r.elastic_energy + r.plastic_work);
       out.plastic += wg * r.plastic_work;
       out.eps_p += wg * r.eps_p;
-      // P = tau_eff F^-T = tau_eff cof(F) / J, cof(F)_jk = d det F / d F_jk.
-      const Real cof[9] = {f[4] * f[8] - f[5] * f[7], f[5] * f[6] - f[3] * f[8], f[3] * f[7] - f[4] * f[6],
-                           f[2] * f[7] - f[1] * f[8], f[0] * f[8] - f[2] * f[6], f[1] * f[6] - f[0] * f[7],
-                           f[1] * f[5] - f[2] * f[4], f[2] * f[3] - f[0] * f[5], f[0] * f[4] - f[1] * f[3]};
-      const Real scale = wg / det[g];
+      // w P = w tau_eff F^-T.
+      const std::array<Real, 9>& fit = f_inverse_transpose;
       std::array<Real, 9> p;
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-          p[3 * i + j] = scale * (t[i][0] * cof[j] + t[i][1] * cof[3 + j] + t[i][2] * cof[6 + j]);
+          p[3 * i + j] = wg * (t[i][0] * fit[j] + t[i][1] * fit[3 + j] + t[i][2] * fit[6 + j]);
       h[g] = p;
     }
   }

@@ -19,14 +19,17 @@
 // isochoric inverse plastic right Cauchy-Green tensor Cp^-1 (finite), xx yy zz xy yz
 // xz; the equivalent plastic strain eps_bar_p; the plastic work per reference volume
 // (J/m^3); the deviatoric stress s (Cauchy, or Kirchhoff for finite; Pa) the step
-// ended with.
+// ended with; finite strain, F and tr b_e / 3 the step ended with (unused under small
+// strain).
 // The plastic work takes the trapezoid of the step, W_p += (sigma_n + sigma_n+1)/2 :
 // d eps_p with d eps_p = (3/2) d s_tr / q_tr, so W_p += d (q_n+1 + (3/2) s_n : s_tr /
 // q_tr) / 2: the rule of the central difference's work (f_n + f_n+1)/2 . du, under which
 // the stored energy plus W_p is the work the stresses did, to round-off for small strain
 // (docs/theory.md, "Energy"). The backward sum q_n+1 d misses (sigma_n - sigma_n+1)/2 :
-// d eps_p a step, first order: 8e-4 of the plane plastic wave's energy. A Real is one point (double) or the
-// points of a pack of elements (Pack<L>, their states interleaved: load<Real>).
+// d eps_p a step, first order: 8e-4 of the plane plastic wave's energy. Finite strain
+// takes the same trapezoid on P : dF (finite_plastic_work_increment). A Real is one
+// point (double) or the points of a pack of elements (Pack<L>, their states
+// interleaved: load<Real>).
 #pragma once
 
 #include <array>
@@ -36,15 +39,23 @@
 
 namespace exdyn::material {
 
-inline constexpr int j2_state_size = 14;
+inline constexpr int j2_state_size = 24;
 inline constexpr int state_eps_p = 6;         // equivalent plastic strain
 inline constexpr int state_plastic_work = 7;  // J/m^3
 inline constexpr int state_deviator = 8;      // s at the end of the step, 6 values, Pa
+// Finite strain only: F the step ended at (9 values, row-major) and the mean trace
+// tr b_e / 3 of its isochoric elastic b_e, for the next step's plastic work.
+inline constexpr int state_deformation = 14;
+inline constexpr int state_mean_trace = 23;
 
-// The state of a point before any load: eps_p = 0 (small) or Cp^-1 = I (finite).
+// The state of a point before any load: eps_p = 0 (small) or Cp^-1 = I, F = I (finite).
 inline void initial_state(bool finite, double* state) {
   for (int k = 0; k < j2_state_size; ++k) state[k] = 0.0;
-  if (finite) state[0] = state[1] = state[2] = 1.0;
+  if (finite) {
+    state[0] = state[1] = state[2] = 1.0;
+    state[state_deformation] = state[state_deformation + 4] = state[state_deformation + 8] = 1.0;
+    state[state_mean_trace] = 1.0;
+  }
 }
 
 // What a point's update returns.
@@ -80,21 +91,44 @@ inline Real plastic_work_increment(const std::array<Real, 6>& s_trial, const Rea
   const Real safe_q = select(q > 0.0, q, Real{} + 1.0);
   return 0.5 * d * (factor * q + 1.5 * old_dot_trial / safe_q);
 }
-// Finite strain: the return at fixed F gives up the stored energy G/2 (tr b_e_tr - tr
-// b_e) = 3 G / 2 (i1_tr - i1), and the step's work differs from the predictor's by
-// (tau - tau_tr) : d eps / 2 = -(1 - factor) s_tr : d eps / 2 with the step's strain
-// d eps = (s_tr - s_n) / (2 G) to first order (rotations drop out of s_tr : d eps):
-//   d W_p = 3 G / 2 (i1_tr - i1) - (1 - factor) s_tr : (s_tr - s_n) / (4 G),
-// the trapezoid above in the small-strain limit and consistent with the stored energy
-// of Simo's return, which scales s by its factor and then restores det b_e = 1.
+// Finite strain: the work of the step by the trapezoid, as the element's forces do it
+// (f^n + f^{n+1})/2 . du = sum_g w_g (P^n + P^{n+1})/2 : (F^{n+1} - F^n): of the
+// isochoric part P = s F^-T, with tr s = 0 and R = F^{n+1} (F^n)^-1,
+//   (s_n F_n^-T + s F^-T)/2 : (F - F_n) = (s_n : R - s : R^-1) / 2,
+// less the change of the isochoric stored energy 3 G / 2 (i1 - i1_n): the plastic work
+// of the step, so that the stored energy plus W_p is the trapezoid's work to round-off
+// at the point (the volumetric part is elastic: U(J) against its trapezoid). f: F,
+// g: F^-1, s: the returned deviator, i1 its b_e's mean trace; F_n, s_n and i1_n from
+// state_old.
 template <class Real>
-inline Real finite_plastic_work_increment(double mu, const std::array<Real, 6>& s_trial, const Real& i1_trial,
-                                          const Real& i1, const Real& factor, const double* state_old) {
-  Real trial_dot_step{};  // s_tr : (s_tr - s_n)
-  for (int k = 0; k < 6; ++k)
-    trial_dot_step +=
-        (k < 3 ? 1.0 : 2.0) * s_trial[k] * (s_trial[k] - load<Real>(state_old, state_deviator + k));
-  return (1.5 * mu) * (i1_trial - i1) - (1.0 - factor) * trial_dot_step * (0.25 / mu);
+inline Real finite_plastic_work_increment(double mu, const std::array<Real, 9>& f, const Real (&g)[9],
+                                          const std::array<Real, 6>& s, const Real& i1,
+                                          const double* state_old) {
+  Real fo[9];  // F_n
+  for (int k = 0; k < 9; ++k) fo[k] = load<Real>(state_old, state_deformation + k);
+  const Real det_old = fo[0] * (fo[4] * fo[8] - fo[5] * fo[7]) - fo[1] * (fo[3] * fo[8] - fo[5] * fo[6]) +
+                       fo[2] * (fo[3] * fo[7] - fo[4] * fo[6]);
+  const Real inv = 1.0 / det_old;
+  const Real go[9] = {(fo[4] * fo[8] - fo[5] * fo[7]) * inv, (fo[2] * fo[7] - fo[1] * fo[8]) * inv,
+                      (fo[1] * fo[5] - fo[2] * fo[4]) * inv, (fo[5] * fo[6] - fo[3] * fo[8]) * inv,
+                      (fo[0] * fo[8] - fo[2] * fo[6]) * inv, (fo[2] * fo[3] - fo[0] * fo[5]) * inv,
+                      (fo[3] * fo[7] - fo[4] * fo[6]) * inv, (fo[1] * fo[6] - fo[0] * fo[7]) * inv,
+                      (fo[0] * fo[4] - fo[1] * fo[3]) * inv};  // F_n^-1
+  Real r[9], r_inverse[9];                                     // R = F F_n^-1, R^-1 = F_n F^-1
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      r[3 * i + j] = f[3 * i] * go[j] + f[3 * i + 1] * go[3 + j] + f[3 * i + 2] * go[6 + j];
+      r_inverse[3 * i + j] = fo[3 * i] * g[j] + fo[3 * i + 1] * g[3 + j] + fo[3 * i + 2] * g[6 + j];
+    }
+  // s : A for a symmetric s (xx yy zz xy yz xz) and any A.
+  const auto contract = [](const auto& t, const Real(&a)[9]) {
+    return t[0] * a[0] + t[1] * a[4] + t[2] * a[8] + t[3] * (a[1] + a[3]) + t[4] * (a[5] + a[7]) +
+           t[5] * (a[2] + a[6]);
+  };
+  std::array<Real, 6> s_old;
+  for (int k = 0; k < 6; ++k) s_old[k] = load<Real>(state_old, state_deviator + k);
+  return 0.5 * (contract(s_old, r) - contract(s, r_inverse)) -
+         (1.5 * mu) * (i1 - load<Real>(state_old, state_mean_trace));
 }
 template <class Real>
 inline void store_deviator(const std::array<Real, 6>& s, double* state_new) {
@@ -154,14 +188,16 @@ inline PointResponse<Real> update_small(const ElasticConstants& elastic, const F
   return out;
 }
 
-// Finite strain: f = F (row-major 9), volume_ratio = J_v (J, or the element's mean
-// for F-bar); jm23 = J^(-2/3) of F itself (the caller has it for the pack).
+// Finite strain: f = F (row-major 9), f_inverse_transpose = F^-T, volume_ratio = J_v
+// (J, or the element's mean for F-bar); jm23 = J^(-2/3) of F itself (the caller has
+// them for the pack: the element forms F^-T for its forces anyway).
 // Without a plastic flow (NoYield) the state is neither read nor written.
 template <class Flow, class Real>
 inline PointResponse<Real> update_finite(const ElasticConstants& elastic, const Flow& flow,
-                                         const std::array<Real, 9>& f, const Real& volume_ratio,
-                                         const Real& jm23, const double* state_old, double* state_new,
-                                         double dt) {
+                                         const std::array<Real, 9>& f,
+                                         const std::array<Real, 9>& f_inverse_transpose,
+                                         const Real& volume_ratio, const Real& jm23, const double* state_old,
+                                         double* state_new, double dt) {
   // c = Cp^-1 (symmetric), then b = J^(-2/3) F c F^T.
   std::array<Real, 6> c;
   if constexpr (Flow::plastic) {
@@ -192,8 +228,6 @@ inline PointResponse<Real> update_finite(const ElasticConstants& elastic, const 
     const Real alpha = load<Real>(state_old, state_eps_p);
     const Real d = flow_increment(flow, q, three_mu_bar, alpha, dt, state_old);
     const Real factor = detail::return_factor(three_mu_bar, d, q);
-    const std::array<Real, 6> s_trial = s;
-    const Real i1_trial = i1;
     for (int k = 0; k < 6; ++k) s[k] *= factor;
     // b_e = s / G + x I with x such that det b_e = 1 (the isochoric b_e of Simo's
     // update keeps its volume; without it the trace, and so the stored energy
@@ -209,22 +243,13 @@ inline PointResponse<Real> update_finite(const ElasticConstants& elastic, const 
     for (int iteration = 0; iteration < 3; ++iteration)
       i1 = i1 - (i1 * i1 * i1 - half_trace_d2 * i1 + det_d - 1.0) / (3.0 * i1 * i1 - half_trace_d2);
     out.eps_p = alpha + d;
-    out.plastic_work =
-        load<Real>(state_old, state_plastic_work) +
-        select(d > 0.0, detail::finite_plastic_work_increment(mu, s_trial, i1_trial, i1, factor, state_old),
-               Real{});
+    out.plastic_work = load<Real>(state_old, state_plastic_work);
     // Cp^-1 = J^(2/3) F^-1 b_e F^-T with b_e = s / G + i1 I; unchanged where d = 0
     // (no drift of an elastic point's state by round-off).
     const auto yielded = d > 0.0;
     if (any_lane(yielded)) {
-      const Real det = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[1] * (f[3] * f[8] - f[5] * f[6]) +
-                       f[2] * (f[3] * f[7] - f[4] * f[6]);
-      const Real inv_det = 1.0 / det;
-      const Real g[9] = {(f[4] * f[8] - f[5] * f[7]) * inv_det, (f[2] * f[7] - f[1] * f[8]) * inv_det,
-                         (f[1] * f[5] - f[2] * f[4]) * inv_det, (f[5] * f[6] - f[3] * f[8]) * inv_det,
-                         (f[0] * f[8] - f[2] * f[6]) * inv_det, (f[2] * f[3] - f[0] * f[5]) * inv_det,
-                         (f[3] * f[7] - f[4] * f[6]) * inv_det, (f[1] * f[6] - f[0] * f[7]) * inv_det,
-                         (f[0] * f[4] - f[1] * f[3]) * inv_det};  // F^-1
+      const std::array<Real, 9>& fit = f_inverse_transpose;
+      const Real g[9] = {fit[0], fit[3], fit[6], fit[1], fit[4], fit[7], fit[2], fit[5], fit[8]};  // F^-1
       const double inv_mu = 1.0 / mu;
       const Real be[3][3] = {{s[0] * inv_mu + i1, s[3] * inv_mu, s[5] * inv_mu},
                              {s[3] * inv_mu, s[1] * inv_mu + i1, s[4] * inv_mu},
@@ -240,13 +265,18 @@ inline PointResponse<Real> update_finite(const ElasticConstants& elastic, const 
       const std::array<Real, 6> c_new = {c_entry(0, 0), c_entry(1, 1), c_entry(2, 2),
                                          c_entry(0, 1), c_entry(1, 2), c_entry(0, 2)};
       for (int k = 0; k < 6; ++k) c[k] = select(yielded, c_new[k], c[k]);
+      out.plastic_work =
+          out.plastic_work +
+          select(yielded, detail::finite_plastic_work_increment(mu, f, g, s, i1, state_old), Real{});
     }
     for (int k = 0; k < 6; ++k) store(state_new + lanes_of<Real> * k, c[k]);
+    for (int k = 0; k < 9; ++k) store(state_new + lanes_of<Real> * (state_deformation + k), f[k]);
+    store(state_new + lanes_of<Real> * state_mean_trace, i1);
     store(state_new + lanes_of<Real> * state_eps_p, out.eps_p);
     store(state_new + lanes_of<Real> * state_plastic_work, out.plastic_work);
     detail::store_deviator(s, state_new);
   } else {
-    (void)state_old, (void)state_new, (void)dt, (void)flow;
+    (void)state_old, (void)state_new, (void)dt, (void)flow, (void)f_inverse_transpose;
   }
   for (int k = 0; k < 6; ++k) out.stress[k] = s[k] + (k < 3 ? tau_volumetric : Real{});
   // W = K/2 (J_v - 1)^2 + G/2 (tr b_e - 3), tr b_e = 3 i1 (s is deviatoric; i1 the

@@ -10,7 +10,7 @@ namespace {
 
 // The velocity update of one node component, scalar: the tail of the pack loop below.
 struct ScalarSums {
-  double non_finite = 0.0, twice_kinetic = 0.0, m_a2 = 0.0, largest = 0.0;
+  double non_finite = 0.0, twice_kinetic = 0.0, m_a2 = 0.0, old_power = 0.0, new_power = 0.0, largest = 0.0;
 };
 
 // Nodes [begin, end) in packs of Lanes (the rest one by one), the three components of
@@ -22,7 +22,7 @@ NodalSums velocity_range(const NodalArrays& d, std::size_t begin, std::size_t en
   using Real = Pack<Lanes>;
   using Mask = IntPack<Lanes>;
   const double half_step_back = -0.5 * dt;
-  Real non_finite{}, twice_kinetic{}, m_a2{}, largest{};
+  Real non_finite{}, twice_kinetic{}, m_a2{}, old_power{}, new_power{}, largest{};
   std::size_t i = begin;
   for (; i + Lanes <= end; i += Lanes) {
     const Real m = load<Real>(d.mass + i, 0);
@@ -49,6 +49,8 @@ NodalSums velocity_range(const NodalArrays& d, std::size_t begin, std::size_t en
       const Real v_new = v_old + dt * a_i;
       twice_kinetic += m * v_old * v_new;
       m_a2 += m * a_i * a_i;
+      old_power += m * v_old * a_i;
+      new_power += m * v_new * a_i;
       const Real speed = v_new < 0.0 ? -v_new : v_new;
       largest = speed > largest ? speed : largest;
       store(v, zero_if_finite == 0.0 ? v_new : v_i);  // a non-finite a leaves v^{n-1/2}
@@ -68,6 +70,8 @@ NodalSums velocity_range(const NodalArrays& d, std::size_t begin, std::size_t en
       const double v_new = v_old + dt * a_i;
       tail.twice_kinetic += d.mass[i] * v_old * v_new;
       tail.m_a2 += d.mass[i] * a_i * a_i;
+      tail.old_power += d.mass[i] * v_old * a_i;
+      tail.new_power += d.mass[i] * v_new * a_i;
       tail.largest = std::max(tail.largest, std::abs(v_new));
       if (zero_if_finite == 0.0) v = v_new;
     }
@@ -77,11 +81,15 @@ NodalSums velocity_range(const NodalArrays& d, std::size_t begin, std::size_t en
     sums.non_finite += non_finite[lane];
     sums.twice_kinetic += twice_kinetic[lane];
     sums.mass_acceleration_squared += m_a2[lane];
+    sums.old_power += old_power[lane];
+    sums.new_power += new_power[lane];
     sums.largest_component = std::max(sums.largest_component, largest[lane]);
   }
   sums.non_finite += tail.non_finite;
   sums.twice_kinetic += tail.twice_kinetic;
   sums.mass_acceleration_squared += tail.m_a2;
+  sums.old_power += tail.old_power;
+  sums.new_power += tail.new_power;
   sums.largest_component = std::max(sums.largest_component, tail.largest);
   return sums;
 }

@@ -44,6 +44,8 @@ struct NodalSums {
   double non_finite = 0.0;                 // sum 0 * a_raw: 0 unless some a is inf or NaN
   double twice_kinetic = 0.0;              // sum m v^{n-1/2} v^{n+1/2}, J
   double mass_acceleration_squared = 0.0;  // sum m a^2, kg m^2/s^4
+  double old_power = 0.0;                  // sum m v^{n-1/2} a^n, W
+  double new_power = 0.0;                  // sum m v^{n+1/2} a^n, W
   double largest_component = 0.0;          // max |v^{n+1/2}_c|, m/s
 };
 

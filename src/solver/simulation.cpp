@@ -106,6 +106,7 @@ class TimeLoop {
   std::vector<std::array<double, 3>> boundary_reaction_;  // each condition's, over all ranks, N
   Energies energy_;
   NodalUpdate update_;
+  VaryingStep varying_step_;
   Stopwatch loop_watch_;
   double last_progress_ = -1.0;
   double initial_total_ = 0.0, largest_energy_ = 0.0, max_energy_error_ = 0.0;
@@ -405,7 +406,8 @@ void TimeLoop::update_velocities_and_energy() {
     update_ = reduce_over_ranks(controls_.comm, mine, energy_, boundary_reaction_, state_.reaction_error,
                                 controls_.stop_signal, stop_requested_);
     if (!update_.finite) step_back_and_stop(describe_non_finite(model_, d_, state_) + when());
-    energy_.kinetic = update_.kinetic;
+    varying_step_.add(state_.step, clock_->previous(), clock_->next(), update_.old_power, update_.new_power);
+    energy_.kinetic = update_.kinetic - varying_step_.correction;
     failed_everywhere_ = long(energy_.eroded_elements);
     energy_.external_work += state_.wall_work;
     const double dt = clock_->next();

@@ -357,6 +357,8 @@ NodalUpdate update_velocities(const Model& model, State& state, double dt, bool 
     state.partial[1][k] = sums.twice_kinetic;
     state.partial[2][k] = sums.mass_acceleration_squared;
     state.partial[3][k] = sums.largest_component;
+    state.partial[4][k] = sums.old_power;
+    state.partial[5][k] = sums.new_power;
   });
   if (!keep_internal_force) state.internal_force_zero = true, state.force_step = -1;
   NodalUpdate update;
@@ -365,6 +367,8 @@ NodalUpdate update_velocities(const Model& model, State& state, double dt, bool 
   update.kinetic = 0.5 * ordered_sum(state.partial[1]);
   update.mass_acceleration_squared = 0.125 * ordered_sum(state.partial[2]);
   update.largest_component = *std::max_element(state.partial[3].begin(), state.partial[3].end());
+  update.old_power = ordered_sum(state.partial[4]);
+  update.new_power = ordered_sum(state.partial[5]);
   return update;
 }
 

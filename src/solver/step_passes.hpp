@@ -51,7 +51,7 @@ struct State {
   // The reaction force of each boundary condition on the bodies at step n and n-1, N
   // (this rank's owned nodes), and the compensation of its sum (see add_boundary_reactions).
   std::vector<std::array<double, 3>> reaction, previous_reaction, reaction_error;
-  std::array<std::vector<double>, 4> partial;            // per-chunk sums of the nodal loops (parallel.hpp)
+  std::array<std::vector<double>, 6> partial;            // per-chunk sums of the nodal loops (parallel.hpp)
   std::vector<element::ElementEnergies> block_energies;  // per block, scratch of compute_forces_side_by_side
 };
 
@@ -78,6 +78,32 @@ struct NodalUpdate {
   // unstable run K^n + U^n stays constant while both grow without bound).
   double mass_acceleration_squared = 0.0;
   double largest_component = 0;  // max |v^{n+1/2}| over nodes and components, m/s
+  double old_power = 0.0;        // sum m v^{n-1/2}.a^n, W
+  double new_power = 0.0;        // sum m v^{n+1/2}.a^n, W
+};
+
+// What a varying step adds to K^n (docs/theory.md, "Energy"). The velocity update
+// weighs a^n by h^n = (dt^{n-1/2} + dt^{n+1/2}) / 2, so
+//   K^n - K^{n-1} = 1/2 v^{n-1/2}.(h^{n-1} F^{n-1} + h^n F^n)      (F = M a),
+// while the internal, contact and external terms take the trapezoid over
+// u^n - u^{n-1} = dt^{n-1/2} v^{n-1/2}. The reported kinetic energy is K^n - C^n with
+//   C^n - C^{n-1} = 1/4 [(dt^{n+1/2} - dt^{n-1/2}) v^{n-1/2}.F^n
+//                      + (dt^{n-3/2} - dt^{n-1/2}) v^{n-1/2}.F^{n-1}],   C^0 = 0,
+// so that its change is the trapezoid's too; with a fixed step C stays exactly 0.
+struct VaryingStep {
+  double correction = 0.0;  // C^n, J
+  void add(long step, double previous_dt, double next_dt, double old_power, double new_power) {
+    if (step > 0)
+      correction +=
+          0.25 * ((next_dt - previous_dt) * old_power + (step_before_ - previous_dt) * previous_new_power_);
+    // dt^{n-1/2} for the next step; at step 0 the step of v^{-1/2} = v^0 - dt^{1/2} a^0 / 2.
+    step_before_ = step > 0 ? previous_dt : next_dt;
+    previous_new_power_ = new_power;
+  }
+
+ private:
+  double step_before_ = 0.0;         // dt^{n-3/2} at step n, s
+  double previous_new_power_ = 0.0;  // v^{n-1/2}.F^{n-1}, W
 };
 
 // f_int(u^n) of every block (on many ranks with the running sums of the shared

@@ -262,7 +262,7 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
       for (std::size_t c = 0; c < 3; ++c) reactions[b][c] += reaction_errors[b][c];
     return update;
   }
-  constexpr std::size_t fixed = 11;
+  constexpr std::size_t fixed = 13;
   const std::size_t n = fixed + 6 * reactions.size();
   std::vector<double> mine = {update.finite ? 0.0 : 1.0,
                               update.kinetic,
@@ -274,7 +274,9 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
                               energy.plastic,
                               energy.external_work,
                               energy.eroded,
-                              energy.eroded_elements};
+                              energy.eroded_elements,
+                              update.old_power,
+                              update.new_power};
   for (std::size_t b = 0; b < reactions.size(); ++b)
     for (std::size_t c = 0; c < 3; ++c) mine.insert(mine.end(), {reactions[b][c], reaction_errors[b][c]});
   const std::vector<double> all = mpi::all_gather(comm, mine.data(), int(n));
@@ -301,6 +303,8 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
   energy.external_work = all[8];
   energy.eroded = all[9];
   energy.eroded_elements = all[10];
+  total.old_power = all[11];
+  total.new_power = all[12];
   for (std::size_t r = 1; r < std::size_t(comm.size); ++r) {
     const double* f = all.data() + n * r;
     total.finite = total.finite && f[0] == 0.0;
@@ -314,6 +318,8 @@ NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update,
     energy.external_work += f[8];
     energy.eroded += f[9];
     energy.eroded_elements += f[10];
+    total.old_power += f[11];
+    total.new_power += f[12];
   }
   return total;
 }

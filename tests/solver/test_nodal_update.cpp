@@ -1,7 +1,8 @@
 // The nodal update (solver/nodal_update.hpp), its velocity and position passes, of
 // every instruction set this CPU runs against the plain loops of the central-difference
 // step, on a node count that leaves a partial pack, with fixed components, both the
-// first and a later step, with and without clearing f_int.
+// first and a later step, with and without clearing f_int; and the kinetic energy of a
+// varying step (step_passes.hpp, VaryingStep) on an oscillator.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 
 #include "common/isa.hpp"
 #include "solver/nodal_update.hpp"
+#include "solver/step_passes.hpp"
 
 namespace exdyn::solver {
 namespace {
@@ -77,6 +79,8 @@ NodalSums plain_velocity_update(Nodes& d, double dt, bool first_step) {
       const double v_new = v_old + dt * a;
       sums.twice_kinetic += d.mass[i] * v_old * v_new;
       sums.mass_acceleration_squared += d.mass[i] * a * a;
+      sums.old_power += d.mass[i] * v_old * a;
+      sums.new_power += d.mass[i] * v_new * a;
       sums.largest_component = std::max(sums.largest_component, std::abs(v_new));
       d.v[c][i] = v_new;
     }
@@ -120,6 +124,14 @@ TEST(NodalUpdate, EveryInstructionSetMatchesThePlainLoop) {
         EXPECT_NEAR(sums.mass_acceleration_squared, plain.mass_acceleration_squared,
                     1e-12 * plain.mass_acceleration_squared);
         EXPECT_NEAR(sums.largest_component, plain.largest_component, 1e-12 * plain.largest_component);
+        // The powers sum terms of either sign: to 1e-12 of the sum of their sizes,
+        // sum m |v| |a| <= max |v| sqrt(sum m) sqrt(sum m a^2).
+        double mass = 0.0;
+        for (const double m : expected.mass) mass += 3.0 * m;
+        const double power_scale =
+            2.0 * plain.largest_component * std::sqrt(mass * plain.mass_acceleration_squared);
+        EXPECT_NEAR(sums.old_power, plain.old_power, 1e-12 * power_scale);
+        EXPECT_NEAR(sums.new_power, plain.new_power, 1e-12 * power_scale);
         ++compared;
       }
     // A non-finite force anywhere, in a pack or in the tail, is reported, and that
@@ -136,6 +148,47 @@ TEST(NodalUpdate, EveryInstructionSetMatchesThePlainLoop) {
     }
   }
   EXPECT_GE(compared, 4);  // the baseline runs everywhere
+}
+
+// A linear spring and mass stepped as the time loop steps it, the step drawn anew
+// each time in [0.5, 1] of 0.04 / omega (so never near the stability limit 2 / omega):
+// 1/2 k u^2 changes by the trapezoid of the spring's work exactly, so K^n - C^n + U^n
+// must stay at its start to round-off. K^n alone (C left out) drifts by the varying
+// step, which the test sees too.
+TEST(VaryingStep, ASpringAndMassKeepTheirEnergyToRoundOffWhateverTheSteps) {
+  const double m = 2.0, k = 5.0e3, omega = std::sqrt(k / m);  // kg, N/m, rad/s
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> fraction(0.5, 1.0);
+  const auto draw = [&] { return 0.04 / omega * fraction(rng); };
+  double u = 0.01, v = 0.3, previous_dt = 0.0, next_dt = draw();
+  VaryingStep varying;
+  double start = 0.0, worst = 0.0, worst_uncorrected = 0.0;
+  for (long step = 0; step < 20000; ++step) {
+    if (step == 0) previous_dt = next_dt;  // StepClock: previous() is the first step at step 0
+    const double a = -k * u / m;
+    const double h = step == 0 ? next_dt : 0.5 * (previous_dt + next_dt);
+    const double v_old = step == 0 ? v - 0.5 * next_dt * a : v;
+    const double v_new = v_old + h * a;
+    varying.add(step, previous_dt, next_dt, m * v_old * a, m * v_new * a);
+    const double kinetic = 0.5 * m * v_old * v_new, strain = 0.5 * k * u * u;
+    const double energy = kinetic - varying.correction + strain;
+    if (step == 0) start = energy;
+    worst = std::max(worst, std::abs(energy - start));
+    worst_uncorrected = std::max(worst_uncorrected, std::abs(kinetic + strain - start));
+    v = v_new;
+    u = u + next_dt * v;
+    previous_dt = next_dt;
+    next_dt = draw();
+  }
+  EXPECT_LT(worst, 1e-13 * start);
+  EXPECT_GT(worst_uncorrected, 1e-4 * start);
+}
+
+TEST(VaryingStep, AFixedStepAddsExactlyNothing) {
+  VaryingStep varying;
+  const double dt = 1.7e-8;
+  for (long step = 0; step < 100; ++step) varying.add(step, dt, dt, 3.0 + double(step), -1.0 - double(step));
+  EXPECT_EQ(varying.correction, 0.0);
 }
 
 }  // namespace

@@ -86,7 +86,8 @@ TEST(PunchThrough, TheRodLeavesThroughThePlugItCutsNeverInsideAnExposedFace) {
   ASSERT_EQ(run.summary.status, "completed");
   EXPECT_GT(run.summary.energy.eroded_elements, 500);
   EXPECT_LT(run.summary.contact.pairs.at(0).figures.max_penetration_over_h, 0.15);
-  EXPECT_LT(run.summary.energy.max_relative_error, 1.0e-3);
+  // Finite strain: second order in the step (measured 2.8e-6; docs/theory.md, "Energy").
+  EXPECT_LT(run.summary.energy.max_relative_error, 1.0e-5);
   // The rod's nodes (those of the first part's elements): its mean velocity, and its
   // nose below the plate.
   const std::vector<double> x_ref = read_dataset(run.h5(), "/mesh/coordinates").values;
