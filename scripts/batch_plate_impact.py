@@ -127,7 +127,7 @@ class Case:
             sets += [f"parts[1].elements=[{n},1,{n}]",
                      f"parts[1].box={{min: [0, 0, 0], max: [{d!r}, {h!r}, {d!r}]}}",
                      f"parts[1].formulation={self.formulation}",
-                     f"contact[0].local_search.method={self.method}",
+                     f"contact[0].local_search.method={self.method}", "contact[0].local_search.fallback=none",
                      f"contact[0].slave_points={self.slave_points}"]
         if self.pictures:
             every = max(1, round(64 * n / 100))       # 8 outputs over the run (448 steps at n = 100)

@@ -144,8 +144,10 @@ def test_stiff_penalty(exdyn, work):
 
 def test_failed_projections(exdyn, work):
     out = os.path.join(work, "failed_search")
-    # One simplex iteration never meets the stopping test: every projection fails.
-    status, text = run(exdyn, "plate_impact.yaml", out, "contact[0].local_search={method: simplex, max_iterations: 1}",
+    # One simplex iteration never meets the stopping test: every projection fails (the method
+    # bare: no fallback).
+    status, text = run(exdyn, "plate_impact.yaml", out,
+                       "contact[0].local_search={method: simplex, max_iterations: 1, fallback: none}",
                        "output.every=64", name="nosearch")
     s = summary(out, "nosearch")
     c = s["contact"]

@@ -19,7 +19,11 @@ Measured from the run (the quarter's figures times 4 for the whole tube):
   thickness h;
 - the energy balance, |E_kin + E_int + E_contact - W_ext| over the external work;
 - the self-contact's work: its friction work (the wall has none) and the contact
-  force on the folds (nodes more than 2 h below the wall) at the written steps.
+  force on the folds (nodes more than 2 h below the wall) at the written steps;
+- the self-contact's history: the sum of its points' normal force magnitudes
+  (/history/contact/folds/normal_force_sum, whole tube), which shows each fold closing
+  (its force on the tube, /history/contact/folds/force, cancels within the one body),
+  and the points pressed at its peak (the summary's points_in_contact_at_peak).
 The study also writes docs/figures/tube_crush_force.png (force against crush distance)
 and, with ParaView, docs/figures/tube_crush_folds.png (scripts/paraview/tube_picture.py).
 Theory (h the wall thickness, D the mean diameter, sigma_0 the flow stress,
@@ -112,6 +116,7 @@ def measure(out, summary):
         kinetic, internal = f["history/kinetic_energy"][:], f["history/internal_energy"][:]
         contact, external = f["history/contact_energy"][:], f["history/external_work"][:]
         friction = f["history/friction_work"][:]
+        self_contact = SYMMETRY * f["history/contact/folds/normal_force_sum"][:]
         x_ref = f["mesh/coordinates"][:]
         steps = sorted(f["steps"].keys())
         last = f["steps"][steps[-1]]
@@ -148,7 +153,11 @@ def measure(out, summary):
         "external_work": float(external[-1]), "fold_contact_force": max(fold_force) if fold_force else 0.0,
         "contact_share": contact_share(summary),
         "not_converged": summary["contact"]["not_converged"],
-        "history": {"d": d, "force": force},
+        "fallbacks": summary["contact"].get("fallbacks", 0),
+        "self_contact_peak": float(self_contact.max()),
+        "self_contact_first": float(d[np.argmax(self_contact > 0)]) if self_contact.max() > 0 else float("nan"),
+        "points_at_peak": summary["contact"]["pairs"]["folds"].get("points_in_contact_at_peak", 0),
+        "history": {"d": d, "force": force, "self_contact": self_contact},
     }
 
 
@@ -168,7 +177,10 @@ def report(m):
           f"fold length {m['fold_length'] * 1e3:.2f} mm (Alexander {th['fold_length'] * 1e3:.2f}); "
           f"crush per fold {m['crush_per_fold'] * 1e3:.2f} mm (A-J {th['crush_per_fold'] * 1e3:.2f}); "
           f"penetration {100 * m['penetration_over_h']:.2f} % of h; energy {100 * m['energy_error']:.3f} %; "
-          f"friction work {m['friction_work']:.3f} J; contact share {100 * m['contact_share']:.0f} %",
+          f"friction work {m['friction_work']:.3f} J; contact share {100 * m['contact_share']:.0f} %; "
+          f"self-contact: first pressed at {m['self_contact_first'] * 1e3:.2f} mm, peak sum of normal forces "
+          f"{m['self_contact_peak'] / 1e3:.2f} kN with {m['points_at_peak']} points pressed (a quarter); "
+          f"{m['fallbacks']} searches settled by the fallback",
           flush=True)
 
 
@@ -193,6 +205,11 @@ def check(args):
             expect(m["friction_work"] > 0.0 and m["fold_contact_force"] > 0.0,
                    f"the folds touch: friction work {m['friction_work']:.3f} J, "
                    f"{m['fold_contact_force']:.0f} N on the folds")
+            sums = m["history"]["self_contact"]
+            expect(sums[0] == 0.0 and m["self_contact_peak"] > 0.0 and m["points_at_peak"] > 0,
+                   f"the self-contact's history shows the folds: nothing at the start, from "
+                   f"{m['self_contact_first'] * 1e3:.2f} mm of crush a sum of normal forces up to "
+                   f"{m['self_contact_peak'] / 1e3:.2f} kN, {m['points_at_peak']} points pressed at its peak")
             error = m["mean_force"] / th["abramowicz_jones_effective"] - 1.0
             expect(abs(error) <= 0.25, f"mean force {m['mean_force'] / 1e3:.2f} kN, {100 * error:+.1f} % "
                    f"from Abramowicz and Jones (25 %)")
@@ -217,6 +234,8 @@ def plot(m, path):
                label=f"Abramowicz-Jones (1984), effective distance: {th['abramowicz_jones_effective'] / 1e3:.2f} kN")
     ax.axhline(1e-3 * th["alexander"], color="tab:blue", lw=1.0,
                label=f"Alexander (1960): {th['alexander'] / 1e3:.2f} kN")
+    ax.plot(1e3 * h["d"], 1e-3 * h["self_contact"], lw=0.8, color="tab:green",
+            label="exdyn, self-contact: sum of its points' normal forces (whole tube)")
     ax.set_xlabel("crush distance (mm)")
     ax.set_ylabel("crush force (kN)")
     ax.set_ylim(bottom=0)
@@ -273,6 +292,9 @@ def study(args):
         ["largest penetration / h (every history row)", f"{100 * m['penetration_over_h']:.2f} %", "< 5 %", ""],
         ["energy balance / external work", f"{100 * m['energy_error']:.3f} %", "< 1 %", ""],
         ["friction work of the folds (J, quarter)", f"{m['friction_work']:.3f}", "", ""],
+        ["self-contact: first pressed at (mm of crush)", f"{m['self_contact_first'] * 1e3:.2f}", "", ""],
+        ["self-contact: peak sum of normal forces (kN, whole tube); points pressed then (quarter)",
+         f"{m['self_contact_peak'] / 1e3:.2f}; {m['points_at_peak']}", "", ""],
         ["contact's share of the step", f"{100 * m['contact_share']:.0f} %", "", ""],
         ["bricks, steps, wall time", f"{m['elements']}, {m['steps']}, {m['wall_seconds']:.0f} s "
          f"({summary['threads']} threads)", "", ""],

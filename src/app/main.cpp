@@ -116,7 +116,8 @@ int run_command(const RunArguments& arguments, const exdyn::mpi::Communicator& c
   if (!arguments.quiet && comm.root() && isatty(STDERR_FILENO)) controls.on_progress = print_progress;
   try {
     const exdyn::output::RunSummary summary = exdyn::solver::run_simulation(deck, controls);
-    // A failed local search gives no contact force (docs/stability.md): say so, even with --quiet.
+    // A local search that failed, and its fallback too, gives no contact force (docs/stability.md):
+    // say so, even with --quiet.
     if (!comm.root()) return exit_success;
     for (const std::string& warning : summary.warnings)
       std::fprintf(stderr, "exdyn: warning: %s\n", warning.c_str());

@@ -6,6 +6,7 @@
 
 #include "common/parallel.hpp"
 #include "common/timer.hpp"
+#include "contact/contact_choice.hpp"
 #include "contact/force_scatter.hpp"
 #include "contact/mortar_pass.hpp"
 #include "contact/penalty.hpp"
@@ -31,96 +32,6 @@ double largest_motion_since_build(const ContactSurfaces& surfaces, const Contact
 }
 
 namespace {
-
-// What the edges of slave point p's candidates say (edge_contact.hpp): its closest
-// boundary point (ties to the first), if nearer than `limit` and the surface goes on past
-// it, decides. Behind it, along the mean normal of the segments that meet there, the
-// point is in contact there (`contact` filled); in front of it, it is outside the
-// master body, whatever a face further away says.
-enum class FoldContact { none, contact, in_front };
-
-// Whether candidate pair c may touch: always, but on a single surface only where the
-// point and the segment face each other (admit_candidates).
-bool admitted(const ContactSurfaces& surfaces, const ContactPassState& state, std::size_t c) {
-  return !surfaces.single_surface || state.admitted[c] != 0;
-}
-
-// What the surface does past a segment's edges, for slave point p. On a single surface
-// it goes on past an edge only to a segment that p may touch there (a candidate it
-// faces), or across a symmetry plane: past a convex edge whose other face turns away
-// from the point (a rod's side beside its end), the point is beside the surface.
-SegmentEdges edges_for_point(const ContactSurfaces& surfaces, const ContactPassState& state, std::size_t p,
-                             std::uint32_t segment) {
-  SegmentEdges edges = surfaces.edges[segment];
-  if (!surfaces.single_surface) return edges;
-  const auto first = state.candidates.begin() + std::ptrdiff_t(state.point_begin[p]);
-  const auto last = state.candidates.begin() + std::ptrdiff_t(state.point_begin[p + 1]);
-  for (std::size_t e = 0; e < 4; ++e) {
-    const std::int32_t next = surfaces.edge_neighbours[segment][e];
-    if (edges.mirror_axis[e] >= 0 || next == -2) continue;  // a mirror, or several segments: goes on
-    const auto found =
-        next < 0
-            ? last
-            : std::lower_bound(first, last, std::uint32_t(next),
-                               [](const CandidatePair& pair, std::uint32_t s) { return pair.segment < s; });
-    if (found == last || found->segment != std::uint32_t(next) ||
-        state.admitted[std::size_t(found - state.candidates.begin())] == 0)
-      edges.continued &= static_cast<std::uint8_t>(~(1u << e));
-  }
-  return edges;
-}
-
-// A single surface's rule (single_surface.hpp): point p's candidates count where the
-// point's outward normal and the segment's at the projection (kept on the closed
-// segment) face each other, n_p . n_m < -facing_cosine, and the point is less than the
-// search distance behind the segment.
-void admit_candidates(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
-                      ContactPassState& state, std::size_t p, const NodalVectors& x_ref,
-                      const NodalVectors& u) {
-  if (state.point_begin[p] == state.point_begin[p + 1]) return;
-  const Vec3 n = point_normal(surfaces, p, x_ref, u);
-  for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
-    const ProjectionResult& r = state.results[c];
-    auto kept = [](double xi) { return std::isfinite(xi) ? std::clamp(xi, -1.0, 1.0) : 0.0; };
-    const Vec3 m = outward_normal(current_segment(surfaces.segments[state.candidates[c].segment], x_ref, u),
-                                  Xi{kept(r.xi[0]), kept(r.xi[1])});
-    state.admitted[c] = dot(n, m) < -facing_cosine && !(r.gap < -settings.search_distance);
-  }
-}
-
-FoldContact fold_contact(const ContactSurfaces& surfaces, ContactPassState& state, const NodalVectors& x_ref,
-                         const NodalVectors& u, std::size_t p, double limit,
-                         ContactPassState::Contact& contact) {
-  if (surfaces.edges.empty()) return FoldContact::none;
-  const Vec3 point{state.slave_points.x[p], state.slave_points.y[p], state.slave_points.z[p]};
-  EdgeContact closest;
-  std::size_t closest_candidate = 0;
-  for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
-    state.edge_contacts[c] = EdgeContact{};
-    if (!admitted(surfaces, state, c)) continue;
-    const std::uint32_t segment = state.candidates[c].segment;
-    const EdgeContact edge = edge_contact(current_segment(surfaces.segments[segment], x_ref, u), point,
-                                          state.results[c], edges_for_point(surfaces, state, p, segment));
-    state.edge_contacts[c] = edge;
-    if (edge.found && (!closest.found || edge.distance < closest.distance))
-      closest = edge, closest_candidate = c;
-  }
-  if (!closest.found || !closest.continued || !(closest.distance < limit)) return FoldContact::none;
-  const double same_point = 1.0e-9 * surfaces.normal_length[p];
-  Vec3 normal{};
-  for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c)
-    if (state.edge_contacts[c].found && norm(state.edge_contacts[c].y - closest.y) <= same_point)
-      normal = normal + state.edge_contacts[c].normal;
-  if (!(norm(normal) > 0.0)) return FoldContact::none;  // a sheet folded flat on itself: no side is behind
-  normal = (1.0 / norm(normal)) * normal;
-  const double depth = dot(point - closest.y, normal);  // the gap, m
-  if (!(depth < 0.0)) return FoldContact::in_front;
-  contact.segment = state.candidates[closest_candidate].segment;
-  contact.xi = closest.xi;
-  contact.gap = depth;
-  contact.normal = normal;
-  return FoldContact::contact;
-}
 
 // Global search: new candidates from the bucket grid; a pair that was a
 // candidate before keeps its point from the last step (both lists are sorted).
@@ -197,7 +108,8 @@ Anchor relocate_anchor(const ContactSurfaces& surfaces, const ContactPassSetting
   // flat segment, so that mirror images stay mirror images.
   auto project_onto = [&](std::int64_t segment) {
     const Segment current = current_segment(surfaces.segments[static_cast<std::size_t>(segment)], x_ref, u);
-    return settings.project(current, y, initial_guess_lsp(current, y), settings.projection);
+    bool settled = false;
+    return project_settled(settings, current, y, initial_guess_lsp(current, y), settled);
   };
   auto is_minimum_inside = [](const ProjectionResult& r) {
     return r.converged && r.inside && r.stationary == StationaryKind::minimum;
@@ -365,10 +277,10 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
       rebuild_candidates(surfaces, settings, state, x_ref, u);
   }
 
-  // Local search: project every candidate; each slave point keeps the closest
-  // projection that converged to a minimum inside its segment. Ties (a point on
-  // an edge or a corner shared by segments) go to the lowest segment index, so
-  // such a point is counted once, never twice and never zero times.
+  // Local search: project every candidate; each slave point keeps one contact
+  // (contact_choice.hpp): the closest projection that converged to a minimum inside its
+  // segment, or at an edge or corner shared by segments, or at a fold's edge. A point on
+  // a shared edge or corner is counted once, never twice and never zero times.
   {
     ScopedTimer timer(seconds.local_search);
     // The projections are independent: on the threads, each into its own slot. A few
@@ -378,7 +290,8 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     state.results.resize(state.candidates.size());
     state.edge_contacts.resize(state.candidates.size());
     if (surfaces.single_surface) state.admitted.resize(state.candidates.size());
-#pragma omp parallel for schedule(dynamic, 64) if (candidates >= 512)
+    long fallbacks = 0;
+#pragma omp parallel for schedule(dynamic, 64) if (candidates >= 512) reduction(+ : fallbacks)
     for (std::ptrdiff_t k = 0; k < candidates; ++k) {
       const auto c = static_cast<std::size_t>(k);
       const CandidatePair pair = state.candidates[c];
@@ -391,7 +304,9 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         start = initial_guess_lsp(segment, point);
       else if (settings.initial_guess == InitialGuess::previous)
         start = state.previous_xi[c];
-      state.results[c] = settings.project(segment, point, start, settings.projection);
+      bool settled = false;
+      state.results[c] = project_settled(settings, segment, point, start, settled);
+      fallbacks += settled ? 1 : 0;
     }
     // The choice: per slave point, its candidates in order (ties to the first), so the
     // same on any number of threads; the statistics are integer sums and a max.
@@ -403,8 +318,6 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     for (std::ptrdiff_t q = 0; q < points; ++q) {
       const auto p = static_cast<std::size_t>(q);
       if (surfaces.single_surface) admit_candidates(surfaces, settings, state, p, x_ref, u);
-      double best_distance = std::numeric_limits<double>::infinity();
-      std::size_t best = state.candidates.size();  // none
       for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1]; ++c) {
         const ProjectionResult& r = state.results[c];
         ++projections;
@@ -412,46 +325,12 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         max_iterations = std::max<long>(max_iterations, r.iterations);
         state.previous_xi[c] = std::isfinite(r.xi[0]) && std::isfinite(r.xi[1]) ? r.xi : Xi{0.0, 0.0};
         if (!admitted(surfaces, state, c)) continue;
-        if (!r.converged) {
+        if (!r.converged)
           ++not_converged;
-          continue;
-        }
-        if (r.stationary == StationaryKind::saddle || r.stationary == StationaryKind::maximum) {
+        else if (r.stationary == StationaryKind::saddle || r.stationary == StationaryKind::maximum)
           ++saddle_points;
-          continue;
-        }
-        if (r.stationary != StationaryKind::minimum) continue;
-        if (!r.inside && !(surfaces.own_segment && std::abs(r.xi[0]) <= 1.0 + own_segment_reach &&
-                           std::abs(r.xi[1]) <= 1.0 + own_segment_reach))
-          continue;
-        if (r.distance < best_distance) best_distance = r.distance, best = c;
       }
-      auto& contact = state.contacts[p];
-      // A candidate whose plane is nearer than the best inside projection, its projection
-      // outside: the point may lie in the dead zone of a fold (no inside projection at
-      // all); or on a face's boundary, or in the dead zone of a shallow valley between
-      // two segments, while a face further away still takes it inside (a point under a
-      // rod's end face, beside its side). The nearer edge point decides then (a plane's
-      // distance is a lower bound of its segment's, so no other candidate is nearer).
-      // (Nearer by more than round-off: a point on an edge or corner between coplanar
-      // segments is as near to their planes as to the one that takes it inside.)
-      const bool none_inside = best == state.candidates.size();
-      const double nearer = best_distance - 1.0e-9 * surfaces.normal_length[p];
-      bool nearer_outside = none_inside;
-      for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1] && !nearer_outside; ++c) {
-        const ProjectionResult& r = state.results[c];
-        nearer_outside = admitted(surfaces, state, c) && r.converged && !r.inside && r.distance < nearer;
-      }
-      if (nearer_outside) {
-        const FoldContact fold = fold_contact(surfaces, state, x_ref, u, p, nearer, contact);
-        if (fold != FoldContact::none) continue;  // in contact at the edge, or in front of it
-      }
-      if (none_inside) continue;
-      const std::uint32_t segment = state.candidates[best].segment;
-      contact.segment = segment;
-      contact.xi = state.results[best].xi;
-      contact.gap = state.results[best].gap;
-      contact.normal = outward_normal(current_segment(surfaces.segments[segment], x_ref, u), contact.xi);
+      choose_contact(surfaces, state, p, x_ref, u);
     }
     if (surfaces.single_surface) apply_exposure_offsets(surfaces, state);
     statistics.projections += projections;
@@ -459,6 +338,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     statistics.max_iterations = std::max(statistics.max_iterations, max_iterations);
     statistics.not_converged += not_converged;
     statistics.saddle_points += saddle_points;
+    statistics.fallbacks += fallbacks;
   }
 
   // Penalty forces: F = max(0, -k g - c (v_s - v_m).n) along n on the slave point,
@@ -488,6 +368,8 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
     // The pass's sums and largest figures, in slave point order.
     state.slave_force = state.slave_normal_force = state.slave_tangential_force = Vec3{};
     state.max_penetration = 0.0;
+    state.normal_force_sum = state.tangential_force_sum = 0.0;
+    state.points_in_contact = 0;
     state.slipping = state.sticking = 0;
     // A single surface's force is the force on its first part from the others: its
     // points' forces on the others' segments, less the forces of the others' points on
@@ -501,6 +383,11 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
         ++(state.dissipation[p] > 0.0 ? state.slipping : state.sticking);
       }
       statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
+      if (state.force_magnitude[p] > 0.0) {
+        ++state.points_in_contact;
+        state.normal_force_sum += state.force_magnitude[p];
+        if (friction) state.tangential_force_sum += norm(state.tangential_force[p]);
+      }
       const bool own_point = !surfaces.single_surface || surfaces.first_part_point[p] != 0;
       const bool own_segment =
           surfaces.single_surface && surfaces.first_part_segment[std::size_t(contact.segment)] != 0;

@@ -122,6 +122,9 @@ inline constexpr double begun_inside = 0.1;
 
 struct ContactPassSettings {
   ProjectFn project = nullptr;  // chosen once from the deck's method
+  // The method that settles a projection `project` failed on (project_settled); null:
+  // none, the failure gives no contact (the method studies).
+  ProjectFn fallback = nullptr;
   ProjectionSettings projection;
   InitialGuess initial_guess = InitialGuess::lsp;
   double damping_ratio = 0.0;  // zeta, fraction of critical
@@ -217,6 +220,12 @@ struct ContactPassState {
   Vec3 slave_normal_force{};
   Vec3 slave_tangential_force{};
   double max_penetration = 0.0;
+  // The sums of the magnitudes of the points' normal and tangential forces (N) and the
+  // number of points pressed: on a single surface, where the vector sums cancel, what
+  // shows the contact.
+  double normal_force_sum = 0.0;
+  double tangential_force_sum = 0.0;
+  long points_in_contact = 0;
   long slipping = 0;            // slave points in contact that slip this step
   long sticking = 0;            // and those that stick
   double friction_work = 0.0;   // dissipated by friction since the start, J
@@ -242,6 +251,8 @@ struct ContactStatistics {
   long max_iterations = 0;
   long not_converged = 0;  // stopping test not met (no force from them)
   long saddle_points = 0;  // converged to a saddle or a maximum (no force from them)
+  long fallbacks = 0;      // projections the method failed on, settled again by the fallback
+                           // (counted above only when that failed too)
   double max_penetration_over_h = 0.0;
   std::uint32_t deepest_node = 0;   // the slave node of that largest penetration (for a
                                     // quadrature point, the first node of its segment)
@@ -284,6 +295,22 @@ struct RecordSink {
     records.push_back({key(p, slot), node, ForceRecord::gap, {g, 0.0, 0.0}});
   }
 };
+
+// Whether a projection failed: its stopping test not met, or it stopped on a saddle or
+// a maximum of the distance. It gives no contact as it is.
+inline bool projection_failed(const ProjectionResult& r) {
+  return !r.converged || r.stationary == StationaryKind::saddle || r.stationary == StationaryKind::maximum;
+}
+
+// The point's projection onto the segment by the pass's method from `start`; where that
+// failed, by the fallback method from the same start (`settled` true then).
+inline ProjectionResult project_settled(const ContactPassSettings& settings, const Segment& segment, Vec3 point,
+                                        Xi start, bool& settled) {
+  ProjectionResult r = settings.project(segment, point, start, settings.projection);
+  settled = settings.fallback != nullptr && projection_failed(r);
+  if (settled) r = settings.fallback(segment, point, start, settings.projection);
+  return r;
+}
 
 // The largest distance (m) a node of the pass has moved since its last candidate
 // search (infinite before the first): the search is redone beyond margin / 2.

@@ -178,6 +178,22 @@ void box_of(const Polygon& polygon, Vec2& lo, Vec2& hi) {
 
 }  // namespace
 
+void snap_to_slave_corners(const SlaveFacet& slave, const std::array<Vec3, 8>& master,
+                           std::array<Vec2, 4>& master_corners) {
+  for (std::size_t i = 0; i < 4; ++i) {
+    std::size_t nearest = 4;
+    double nearest_offset = 0.0;
+    for (std::size_t j = 0; j < 4; ++j) {
+      const Vec2 offset = minus(master_corners[i], slave.polygon.vertex[j]);
+      const double length = std::hypot(offset.x, offset.y);
+      if (length <= shared_point_band * norm(master[i] - slave.corner[j]) &&
+          (nearest == 4 || length < nearest_offset))
+        nearest = j, nearest_offset = length;
+    }
+    if (nearest < 4) master_corners[i] = slave.polygon.vertex[nearest];
+  }
+}
+
 SlaveFacet slave_facet(const Segment& slave) {
   SlaveFacet out;
   if (slave.type == SegmentType::quad4) {
@@ -187,6 +203,7 @@ SlaveFacet slave_facet(const Segment& slave) {
     out.surface = make_surface<8>(slave);
   }
   out.plane = facet_plane(slave.nodes);
+  for (std::size_t i = 0; i < 4; ++i) out.corner[i] = slave.nodes[i];
   out.polygon.count = 4;
   std::array<Vec2, 4> corners;
   for (int i = 0; i < 4; ++i)
@@ -207,6 +224,7 @@ int mortar_points(const SlaveFacet& slave, const Segment& master, const PieceRul
   if (!(dot(cross(m[2] - m[0], m[3] - m[1]), plane.normal) < 0.0)) return 0;  // not facing
   std::array<Vec2, 4> master_corners;
   for (int i = 0; i < 4; ++i) master_corners[std::size_t(i)] = plane.project(m[std::size_t(i)]);
+  snap_to_slave_corners(slave, m, master_corners);
   // Seen along the slave normal the master's corners run clockwise: reversed.
   Polygon master_polygon;
   master_polygon.count = 4;

@@ -99,8 +99,18 @@ struct SlaveFacet {
   double area = 0.0;
   Vec2 lo, hi;         // the polygon's box
   Surface<8> surface;  // quad4: the last 4 terms zero (the same values)
+  std::array<Vec3, 4> corner{};  // its corners, m
 };
 SlaveFacet slave_facet(const Segment& slave);
+
+// The master's corners projected onto the slave's plane, each that lies within
+// shared_point_band of its distance from a slave corner (m) put on that corner: two faces
+// that meet node to node cut each slave segment into its whole self on the master
+// segment opposite and nothing on its neighbours, however the two faces tilt, so that
+// the pieces, and their points, do not switch between shapes with the round-off of a
+// step (segment.hpp, shared_point_band).
+void snap_to_slave_corners(const SlaveFacet& slave, const std::array<Vec3, 8>& master,
+                           std::array<Vec2, 4>& master_corners);
 
 // A point of a piece: where it lies on the slave segment, its weight (m^2 of the slave
 // surface) and where the projection along the slave facet's normal meets the master

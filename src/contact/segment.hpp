@@ -34,6 +34,16 @@ constexpr Vec3 cross(Vec3 a, Vec3 b) {
 }
 inline double norm(Vec3 a) { return std::sqrt(dot(a, a)); }
 
+// Where two faces meet node to node (every node of one exactly opposite a node of the
+// other, as two equal meshes start), a point's projections onto the segments around the
+// node opposite spread around it by |g| tan(alpha), |g| the distance between the two and
+// alpha the tilt of each segment from the line joining them. Within this fraction of that
+// distance a projection is taken to be at the corner or edge it is near (contact_choice.hpp),
+// and a mortar master corner at the slave corner (mortar.hpp): while the faces turn by less
+// than atan(0.1) = 5.7 degrees, a point that stays opposite a node never sits on the band's
+// boundary, where the round-off of the two sides of a mirror would choose differently.
+inline constexpr double shared_point_band = 0.1;
+
 // Parametric coordinates (xi1, xi2) on [-1,1]^2.
 using Xi = std::array<double, 2>;
 

@@ -168,7 +168,7 @@ GlobalSearchOptions DeckValidator::global_search(const YAML::Node& node, const s
 LocalSearchOptions DeckValidator::local_search(const YAML::Node& node, const std::string& path) const {
   LocalSearchOptions result;
   if (node.IsNull()) return result;
-  check_map(node, path, {"method", "tolerance", "max_iterations", "initial_guess"});
+  check_map(node, path, {"method", "tolerance", "max_iterations", "initial_guess", "fallback"});
   if (const YAML::Node method = optional(node, "method"); method.IsDefined())
     result.method =
         contact::search_method_names[choice(method, child_path(path, "method"), "local search method",
@@ -184,6 +184,14 @@ LocalSearchOptions DeckValidator::local_search(const YAML::Node& node, const std
         contact::initial_guess_names[choice(guess, child_path(path, "initial_guess"), "initial guess",
                                             names_of(contact::initial_guess_names))]
             .first;
+  if (const YAML::Node fallback = optional(node, "fallback"); fallback.IsDefined()) {
+    std::vector<std::string> names = names_of(contact::search_method_names);
+    names.push_back("none");
+    const std::size_t k = choice(fallback, child_path(path, "fallback"), "fallback method", names);
+    result.fallback = k < contact::search_method_names.size()
+                          ? std::optional(contact::search_method_names[k].first)
+                          : std::nullopt;
+  }
   return result;
 }
 

@@ -224,7 +224,8 @@ std::string to_yaml(const Deck& deck) {
         << (pair.search.cell_size ? yaml_number(*pair.search.cell_size) : "auto") << "}\n"
         << "    local_search: {method: " << contact::name(local.method)
         << ", tolerance: " << yaml_number(local.tolerance) << ", max_iterations: " << local.max_iterations
-        << ", initial_guess: " << contact::name(local.initial_guess) << "}\n"
+        << ", initial_guess: " << contact::name(local.initial_guess)
+        << ", fallback: " << (local.fallback ? contact::name(*local.fallback) : std::string_view("none")) << "}\n"
         << yaml_friction(pair.friction, "    ");
   }
 

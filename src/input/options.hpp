@@ -223,6 +223,9 @@ struct LocalSearchOptions {
   double tolerance = 1.0e-10;  // stop when |step in (xi1, xi2)| <= tolerance
   int max_iterations = 100;
   contact::InitialGuess initial_guess = contact::InitialGuess::lsp;
+  // The method that settles a projection `method` failed on (not converged, a saddle or a
+  // maximum) before the point is dropped; unset (`none`): the method alone.
+  std::optional<contact::SearchMethod> fallback = contact::SearchMethod::robust;
 
   bool operator==(const LocalSearchOptions&) const = default;
 };

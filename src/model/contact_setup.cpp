@@ -291,6 +291,8 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
     }
     auto& settings = pair.settings;
     settings.project = contact::select_method(options.local_search.method);
+    if (const auto fallback = options.local_search.fallback; fallback && *fallback != options.local_search.method)
+      settings.fallback = contact::select_method(*fallback);
     settings.projection.method = options.local_search.method;
     settings.projection.tolerance = options.local_search.tolerance;
     settings.projection.max_iterations = options.local_search.max_iterations;
@@ -354,6 +356,32 @@ double ContactModel::friction_work() const {
 
 contact::Vec3 ContactPair::slave_force() const {
   return first_pass_less_second(&contact::ContactPassState::slave_force);
+}
+
+double ContactPair::normal_force_sum() const {
+  double sum = 0.0;
+  for (const auto& state : states) sum += state.normal_force_sum;
+  return sum;
+}
+
+double ContactPair::tangential_force_sum() const {
+  double sum = 0.0;
+  for (const auto& state : states) sum += state.tangential_force_sum;
+  return sum;
+}
+
+long ContactPair::points_in_contact() const {
+  long count = 0;
+  for (const auto& state : states) count += state.points_in_contact;
+  return count;
+}
+
+void ContactPair::follow_peaks() {
+  max_force = std::max(max_force, contact::norm(slave_force()));
+  if (const double sum = normal_force_sum(); sum > peak_normal_force_sum) {
+    peak_normal_force_sum = sum;
+    points_in_contact_at_peak = points_in_contact();
+  }
 }
 
 double ContactPair::max_penetration() const {

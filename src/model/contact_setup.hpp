@@ -33,6 +33,10 @@ struct ContactPair {
   contact::ContactStatistics statistics;
   contact::ContactPhaseSeconds seconds;
   double max_force = 0.0;  // largest |force on the slave side| of a step, N
+  // The step of the largest sum of the points' normal force magnitudes: that sum (N) and
+  // the points pressed then (both passes).
+  double peak_normal_force_sum = 0.0;
+  long points_in_contact_at_peak = 0;
 
   // This step's total contact force on the pair's slave side (N): the first pass's
   // slave-side force minus the second pass's (whose slave side is the pair's master side).
@@ -42,6 +46,12 @@ struct ContactPair {
   contact::Vec3 tangential_force() const;
   // This step's deepest penetration of either pass, m.
   double max_penetration() const;
+  // This step's sums over both passes' points of |F_n| and |F_t| (N), and the points pressed.
+  double normal_force_sum() const;
+  double tangential_force_sum() const;
+  long points_in_contact() const;
+  // After a step's passes: max_force and the peak of normal_force_sum() followed.
+  void follow_peaks();
   contact::Vec3 first_pass_less_second(contact::Vec3 contact::ContactPassState::*member) const;
 };
 

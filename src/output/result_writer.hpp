@@ -80,6 +80,10 @@ struct ContactHistoryRow {
   double max_penetration = 0.0;   // the pair's deepest penetration at that step, m (>= 0)
   double normal_force = 0.0;      // |the normal part of force|, N
   double tangential_force = 0.0;  // |its tangential (friction) part|, N
+  // The sums over the pair's points (both passes) of |F_n| and |F_t|, N: on a single
+  // surface, whose force on itself cancels, what shows the contact.
+  double normal_force_sum = 0.0;
+  double tangential_force_sum = 0.0;
 };
 
 // One history row of one rigid wall.

@@ -93,6 +93,8 @@ void ResultWriter::Impl::write_mesh(const MeshView& mesh) {
       create_series(errors, file.get(), "/history/contact/" + pair + "/max_penetration");
       create_series(errors, file.get(), "/history/contact/" + pair + "/normal_force");
       create_series(errors, file.get(), "/history/contact/" + pair + "/tangential_force");
+      create_series(errors, file.get(), "/history/contact/" + pair + "/normal_force_sum");
+      create_series(errors, file.get(), "/history/contact/" + pair + "/tangential_force_sum");
     }
   }
   for (const char* parent : {"/history/wall/", "/history/boundary/"}) {
@@ -128,7 +130,9 @@ void ResultWriter::Impl::write_history(hid_t file, const std::vector<HistoryRow>
     for (const auto& [column, member] :
          {std::pair{"/max_penetration", &ContactHistoryRow::max_penetration},
           std::pair{"/normal_force", &ContactHistoryRow::normal_force},
-          std::pair{"/tangential_force", &ContactHistoryRow::tangential_force}}) {
+          std::pair{"/tangential_force", &ContactHistoryRow::tangential_force},
+          std::pair{"/normal_force_sum", &ContactHistoryRow::normal_force_sum},
+          std::pair{"/tangential_force_sum", &ContactHistoryRow::tangential_force_sum}}) {
       for (std::size_t i = 0; i < rows.size(); ++i) column_values[i] = contact_rows[pairs * i + k].*member;
       append_series(errors, file, group + column, history_rows_on_disk, column_values);
     }

@@ -53,6 +53,7 @@ Json to_json(const RunSummary& s) {
     json["saddle_points"] = f.saddle_points;
     json["max_penetration_over_h"] = number(f.max_penetration_over_h);
     json["penalty_stiffness"] = number(f.penalty_stiffness);
+    json["fallbacks"] = f.fallbacks;  // ours, after the spec's
     return json;
   };
   Json contact = figures(s.contact);
@@ -65,6 +66,8 @@ Json to_json(const RunSummary& s) {
     json["segmentation_seconds"] = number(pair.segmentation_seconds);
     json["max_force"] = number(pair.max_force);
     json["friction_work"] = number(pair.friction_work);
+    json["peak_normal_force_sum"] = number(pair.peak_normal_force_sum);
+    json["points_in_contact_at_peak"] = pair.points_in_contact_at_peak;
     pairs[pair.name] = std::move(json);
   }
   contact["pairs"] = std::move(pairs);

@@ -38,6 +38,7 @@ struct ContactFigures {
   long saddle_points = 0;
   double max_penetration_over_h = 0.0;
   double penalty_stiffness = 0.0;  // the largest node (or point) pair stiffness used, N/m
+  long fallbacks = 0;              // failed projections settled again by local_search.fallback
 };
 
 // One contact pair's figures (contact.pairs.NAME).
@@ -50,6 +51,9 @@ struct ContactPairSummary {
   double segmentation_seconds = 0.0;  // mortar: wall time of its segmentation, s
   double max_force = 0.0;             // largest |total force on the slave side| over the steps, N
   double friction_work = 0.0;         // dissipated by its friction, J
+  // The step of the largest sum of the points' |F_n| (N) and the points pressed then.
+  double peak_normal_force_sum = 0.0;
+  long points_in_contact_at_peak = 0;
 };
 
 // One rigid wall's figures (contact.rigid_walls.NAME), an addition to the spec's keys.

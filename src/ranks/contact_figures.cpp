@@ -2,6 +2,7 @@
 // contact power gathered and added rank after rank, so every rank reports the same
 // figures as one process would (distributed_contact.hpp, docs/parallel.md).
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "common/timer.hpp"
@@ -13,17 +14,18 @@ namespace {
 
 // The figures of a step, packed per rank: per pair and wall its statistics, per pass
 // its state's, per wall its state's; then the contact power.
-constexpr std::size_t statistics_size = 8, pass_size = 13;
+constexpr std::size_t statistics_size = 9, pass_size = 16;
 
 void pack(const contact::ContactStatistics& s, std::vector<double>& out) {
   out.insert(out.end(), {double(s.projections), double(s.iterations), double(s.not_converged),
                          double(s.saddle_points), double(s.max_iterations), s.max_penetration_over_h,
-                         double(s.deepest_node), s.max_pair_stiffness});
+                         double(s.deepest_node), s.max_pair_stiffness, double(s.fallbacks)});
 }
+// (sums: |F_n| and |F_t| summed over the points, the points pressed; zero for a wall.)
 void pack(contact::Vec3 a, contact::Vec3 b, contact::Vec3 c, double penetration, long slipping, long sticking,
-          double friction_work, std::vector<double>& out) {
+          double friction_work, std::array<double, 3> sums, std::vector<double>& out) {
   out.insert(out.end(), {a.x, a.y, a.z, b.x, b.y, b.z, c.x, c.y, c.z, penetration, double(slipping),
-                         double(sticking), friction_work});
+                         double(sticking), friction_work, sums[0], sums[1], sums[2]});
 }
 
 // Rank r's figures added to `total` (r = 0: `total` is rank 0's).
@@ -35,10 +37,12 @@ void add_statistics(const double* f, contact::ContactStatistics& s) {
   s.max_iterations = std::max(s.max_iterations, long(f[4]));
   if (f[5] > s.max_penetration_over_h) s.max_penetration_over_h = f[5], s.deepest_node = std::uint32_t(f[6]);
   s.max_pair_stiffness = std::max(s.max_pair_stiffness, f[7]);
+  s.fallbacks += long(f[8]);
 }
 struct PassFigures {
   contact::Vec3 a{}, b{}, c{};
   double penetration = 0.0, slipping = 0.0, sticking = 0.0, friction_work = 0.0;
+  double normal_sum = 0.0, tangential_sum = 0.0, points = 0.0;
 };
 void add_pass(const double* f, PassFigures& t) {
   t.a = t.a + contact::Vec3{f[0], f[1], f[2]};
@@ -48,6 +52,9 @@ void add_pass(const double* f, PassFigures& t) {
   t.slipping += f[10];
   t.sticking += f[11];
   t.friction_work += f[12];
+  t.normal_sum += f[13];
+  t.tangential_sum += f[14];
+  t.points += f[15];
 }
 
 }  // namespace
@@ -59,11 +66,12 @@ double reduce_contact_figures(ContactModel& contact, DistributedContact& dc, dou
   for (const ContactPair& pair : contact.pairs)
     for (const contact::ContactPassState& s : pair.states)
       pack(s.slave_force, s.slave_normal_force, s.slave_tangential_force, s.max_penetration, s.slipping,
-           s.sticking, dc.passes[k++].local_friction_work, mine);
+           s.sticking, dc.passes[k++].local_friction_work,
+           {s.normal_force_sum, s.tangential_force_sum, double(s.points_in_contact)}, mine);
   for (const RigidWall& wall : contact.walls) {
     const contact::WallState& s = wall.state;
     pack(s.force, s.normal_force, s.tangential_force, s.max_penetration, s.slipping, s.sticking,
-         dc.passes[k++].local_friction_work, mine);
+         dc.passes[k++].local_friction_work, {0.0, 0.0, 0.0}, mine);
   }
   mine.push_back(power);
   const std::size_t n = mine.size();
@@ -97,8 +105,10 @@ double reduce_contact_figures(ContactModel& contact, DistributedContact& dc, dou
       s.max_penetration = t.penetration;
       s.slipping = long(t.slipping), s.sticking = long(t.sticking);
       s.friction_work = t.friction_work;
+      s.normal_force_sum = t.normal_sum, s.tangential_force_sum = t.tangential_sum;
+      s.points_in_contact = long(t.points);
     }
-    pair.max_force = std::max(pair.max_force, contact::norm(pair.slave_force()));
+    pair.follow_peaks();
   }
   for (RigidWall& wall : contact.walls) {
     wall.statistics = statistics[c++];

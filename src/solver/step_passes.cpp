@@ -94,7 +94,7 @@ void run_contact_passes(const Model& model, ContactModel& contact, State& state)
       contact::run_contact_pass(pair.passes[p], pair.settings, pair.states[p], model.mesh.x_ref,
                                 state.displacement, state.velocity, model.mass, state.contact_force,
                                 state.gap, pair.statistics, pair.seconds);
-    pair.max_force = std::max(pair.max_force, contact::norm(pair.slave_force()));
+    pair.follow_peaks();
   }
   for (auto& wall : contact.walls) {
     contact::run_wall_pass(wall.surfaces, wall.plane, wall.settings, wall.state, model.mesh.x_ref,
@@ -273,6 +273,7 @@ contact::ContactStatistics total_statistics(const ContactModel& contact) {
     total.max_iterations = std::max(total.max_iterations, s.max_iterations);
     total.not_converged += s.not_converged;
     total.saddle_points += s.saddle_points;
+    total.fallbacks += s.fallbacks;
     if (s.max_penetration_over_h > total.max_penetration_over_h) {
       total.max_penetration_over_h = s.max_penetration_over_h;
       total.deepest_node = s.deepest_node;
@@ -291,7 +292,9 @@ std::vector<output::ContactHistoryRow> contact_history(const ContactModel& conta
     rows.push_back({{f.x, f.y, f.z},
                     pair.max_penetration(),
                     contact::norm(pair.normal_force()),
-                    contact::norm(pair.tangential_force())});
+                    contact::norm(pair.tangential_force()),
+                    pair.normal_force_sum(),
+                    pair.tangential_force_sum()});
   }
   return rows;
 }

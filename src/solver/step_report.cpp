@@ -161,6 +161,7 @@ output::ContactFigures contact_figures(const contact::ContactStatistics& statist
   c.max_iterations = statistics.max_iterations;
   c.not_converged = statistics.not_converged;
   c.saddle_points = statistics.saddle_points;
+  c.fallbacks = statistics.fallbacks;
   c.max_penetration_over_h = statistics.max_penetration_over_h;
   c.penalty_stiffness = statistics.max_pair_stiffness;
   return c;
@@ -183,6 +184,8 @@ void summarise_contact(const ContactModel& contact, const contact::ContactStatis
     out.local_search_seconds = pair.seconds.local_search;
     out.segmentation_seconds = pair.seconds.segmentation;
     out.max_force = pair.max_force;
+    out.peak_normal_force_sum = pair.peak_normal_force_sum;
+    out.points_in_contact_at_peak = pair.points_in_contact_at_peak;
     out.friction_work = 0.0;
     for (const auto& state : pair.states) out.friction_work += state.friction_work;
     global_search += pair.seconds.global_search;

@@ -63,6 +63,8 @@ const BadDeck bad_decks[] = {
     {"unknown_top_level_key.yaml", "solver", 12, "unknown key 'solver'; the keys here are name, materials"},
     {"max_iterations_zero.yaml", "contact[0].local_search.max_iterations", 21,
      "expected an integer >= 1, got 0"},
+    {"unknown_fallback.yaml", "contact[0].local_search.fallback", 21,
+     "unknown fallback method 'robustly'; did you mean 'robust'?"},
     {"unknown_initial_guess.yaml", "contact[0].local_search.initial_guess", 21,
      "unknown initial guess 'corner'; expected lsp, center, previous"},
     {"run_name_with_space.yaml", "name", 2, "expected a name of letters, digits, _ and -"},

@@ -72,6 +72,7 @@ TEST(DeckReader, SpecExamplePlateImpactReadsToItsValues) {
   EXPECT_EQ(interface.local_search.tolerance, 1.0e-10);
   EXPECT_EQ(interface.local_search.max_iterations, 100);
   EXPECT_EQ(interface.local_search.initial_guess, contact::InitialGuess::lsp);
+  EXPECT_EQ(interface.local_search.fallback, contact::SearchMethod::robust);
 
   EXPECT_EQ(deck.time.end_time, 2.32551069659978e-7);
   EXPECT_EQ(deck.time.courant, 0.125);
@@ -148,7 +149,7 @@ contact:
     two_pass: false
     penalty: {stiffness: 1.0e9, damping: 0}
     search: {cell_size: 0.25}
-    local_search: {method: robust, tolerance: 1.0e-12, max_iterations: 7, initial_guess: previous}
+    local_search: {method: robust, tolerance: 1.0e-12, max_iterations: 7, initial_guess: previous, fallback: none}
 time: {end_time: 1.0e-3, dt: 1.0e-7}
 output: {directory: "out dir", every: 3, fields: [gap, stress], history_every: 5, background: false}
 )";
@@ -176,6 +177,7 @@ output: {directory: "out dir", every: 3, fields: [gap, stress], history_every: 5
   EXPECT_EQ(pair.local_search.tolerance, 1.0e-12);
   EXPECT_EQ(pair.local_search.max_iterations, 7);
   EXPECT_EQ(pair.local_search.initial_guess, contact::InitialGuess::previous);
+  EXPECT_FALSE(pair.local_search.fallback.has_value());
   EXPECT_EQ(deck.time.dt, 1.0e-7);
   EXPECT_EQ(deck.time.courant, 0.9);
   EXPECT_EQ(deck.output.directory, "out dir");

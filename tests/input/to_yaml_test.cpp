@@ -42,7 +42,8 @@ TEST(ToYaml, ContactPairIsWrittenWithAllItsKeys) {
   for (const char* line :
        {"slave: [plate_a.xmax]\n", "master: [plate_b.xmin]\n", "two_pass: true\n",
         "penalty: {scale: 1, damping: 0.2}\n", "search: {cell_size: auto}\n",
-        "local_search: {method: bfgs, tolerance: 1e-10, max_iterations: 100, initial_guess: lsp}\n",
+        "local_search: {method: bfgs, tolerance: 1e-10, max_iterations: 100, initial_guess: lsp, "
+        "fallback: robust}\n",
         "- {faces: [plate_a.ymin, plate_a.ymax, plate_b.ymin, plate_b.ymax], fix: [y]}\n",
         "end_time: 2.32551069659978e-07\n", "courant: 0.125\n"})
     EXPECT_TRUE(contains(text, line)) << line << " missing from\n" << text;

@@ -51,7 +51,7 @@ RunSummary example() {
   s.element_cycles_per_second = 716800.0;
   s.phase_seconds = {1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0};
   s.energy = {10.0, 9.5, 0.05};
-  static_cast<ContactFigures&>(s.contact) = {1000, 3.5, 12, 2, 1, 0.01, 1.5e9};
+  static_cast<ContactFigures&>(s.contact) = {1000, 3.5, 12, 2, 1, 0.01, 1.5e9, 3};
   return s;
 }
 
@@ -101,6 +101,7 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                                 {"saddle_points", 1},
                                 {"max_penetration_over_h", 0.01},
                                 {"penalty_stiffness", 1.5e9},
+                                {"fallbacks", 3},
                                 {"pairs", Json::object()},
                                 {"rigid_walls", Json::object()}}));  // the spec's keys, then ours
   EXPECT_EQ(j["mpi"], (Json{{"ranks", 1},  // the spec's key, then ours (docs/output.md)
@@ -127,7 +128,7 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                               {"wait_seconds", Json::array()},
                               {"element_seconds", Json::array()},
                               {"contact_seconds", Json::array()}}}}));
-  for (const char* integer : {"projections", "max_iterations", "not_converged", "saddle_points"}) {
+  for (const char* integer : {"projections", "max_iterations", "not_converged", "saddle_points", "fallbacks"}) {
     EXPECT_TRUE(j["contact"][integer].is_number_integer()) << integer;
   }
   EXPECT_FALSE(fs::exists(directory_ / "plate_impact.json.tmp"));

@@ -348,8 +348,7 @@ TEST_P(TaylorRods, EachRodIsTheOneRodRunOnARigidWallAndTheTwoAreMirrorImages) {
   // passes are also the same geometry under the half turn about the line x = y, z = 0:
   // rod_b's node (y, x, -z) with u_b = (u_y, u_x, -u_z). With slave quadrature points
   // both hold to round-off (measured 6e-17 and 5e-17 m with robust, 6e-17 m with bfgs);
-  // slave nodes pressed onto the facets' vertices amplify the passes' last bits and
-  // lose the mirror past 50 us (docs/verification.md, "Two rods through contact").
+  // the other slave points: MirrorRods (test_mirror_contact.cpp).
   const std::size_t half = model.mesh.node_count() / 2;
   std::map<std::array<long long, 3>, std::size_t> rod_b;
   const auto nm = [](double c) { return std::llround(c * 1e9); };  // to the nanometre

@@ -49,8 +49,10 @@ void expect_same_run(const DeckRun& pair, const DeckRun& surface, const std::str
   ASSERT_EQ(pair.summary.steps, surface.summary.steps);
   for (const char* field : {"displacement", "velocity", "stress", "contact_force"})
     EXPECT_EQ(pair.final(field), surface.final(field)) << field;
-  for (const char* history : {"force", "normal_force", "max_penetration"}) {
-    if (!two_parts && history != std::string("max_penetration")) continue;
+  // The sums of the points' force magnitudes do not cancel within one part: the same
+  // as the pair's (summed in another order) on one body too.
+  for (const char* history : {"force", "normal_force", "max_penetration", "normal_force_sum"}) {
+    if (!two_parts && (history == std::string("force") || history == std::string("normal_force"))) continue;
     const std::string name = "contact/" + contact + "/" + history;
     EXPECT_LE(relative_difference(pair.history(name), surface.history(name)), 1.0e-12) << name;
   }
@@ -130,6 +132,20 @@ TEST(SingleSurface, TheArmsOfAUTouchAsThePairBetweenThemSays) {
   EXPECT_LE(single.summary.energy.max_relative_error, 0.01);
   // Within one part the contact force on it is zero: its points' forces and their reactions.
   for (double f : single.history("contact/self/force")) EXPECT_EQ(f, 0.0);
+  // What shows the contact: the sum of the points' normal force magnitudes, and the
+  // points pressed at its peak, the pair's.
+  const std::vector<double> sum = single.history("contact/self/normal_force_sum");
+  const double peak = *std::max_element(sum.begin(), sum.end());
+  const auto& mine = single.summary.contact.pairs.front();
+  const auto& theirs = paired.summary.contact.pairs.front();
+  std::printf("u shape: normal force sum peak %.4g N, %ld points pressed then (pair: %.4g N, %ld)\n",
+              mine.peak_normal_force_sum, mine.points_in_contact_at_peak, theirs.peak_normal_force_sum,
+              theirs.points_in_contact_at_peak);
+  EXPECT_GT(peak, 0.0);
+  EXPECT_LE(peak, mine.peak_normal_force_sum);
+  EXPECT_NEAR(mine.peak_normal_force_sum, theirs.peak_normal_force_sum, 1e-12 * theirs.peak_normal_force_sum);
+  EXPECT_EQ(mine.points_in_contact_at_peak, theirs.points_in_contact_at_peak);
+  EXPECT_GT(mine.points_in_contact_at_peak, 0);
 }
 
 // The L (the U without its right arm; input/meshes/u_shape.geo, right = 0): its arm
