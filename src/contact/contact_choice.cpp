@@ -129,6 +129,15 @@ void settle_shared_point(const ContactSurfaces& surfaces, const ContactPassState
                          const NodalVectors& x_ref, const NodalVectors& u, std::size_t p, std::size_t best,
                          double best_distance, ContactPassState::Contact& contact) {
   const double band = shared_point_band * best_distance + same_point * surfaces.normal_length[p];
+  // Which other candidates may meet it there (the cheap tests first: most points have none).
+  auto may_meet = [&](std::size_t c) {
+    const ProjectionResult& r = state.results[c];
+    return c != best && admitted(surfaces, state, c) && on_segment(r) &&
+           r.distance <= best_distance + 2.0 * band;
+  };
+  bool any = false;
+  for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1] && !any; ++c) any = may_meet(c);
+  if (!any) return;
   const Vec3 point = slave_point(state, p);
   auto edge_point = [&](std::size_t c) {
     const std::uint32_t segment = state.candidates[c].segment;
@@ -142,10 +151,7 @@ void settle_shared_point(const ContactSurfaces& surfaces, const ContactPassState
   std::size_t count = 1;
   const double meet = same_point * surfaces.normal_length[p];
   for (std::size_t c = state.point_begin[p]; c < state.point_begin[p + 1] && count < max_meeting; ++c) {
-    const ProjectionResult& r = state.results[c];
-    if (c == best || !admitted(surfaces, state, c) || !on_segment(r) ||
-        !(r.distance <= best_distance + 2.0 * band))
-      continue;
+    if (!may_meet(c)) continue;
     const EdgeContact other = edge_point(c);
     if (other.found && norm(other.y - first.y) <= meet) normals[count++] = other.normal;
   }
