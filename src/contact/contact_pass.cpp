@@ -254,6 +254,58 @@ void apply_exposure_offsets(const ContactSurfaces& surfaces, ContactPassState& s
 // few hundred points starting threads costs more than the work).
 constexpr std::size_t force_chunk = 256;
 
+// The pass's sums and largest figures (the histories and the summary's), in slave point
+// order.
+void sum_pass_figures(const ContactSurfaces& surfaces, bool friction, ContactPassState& state,
+                      ContactStatistics& statistics) {
+  state.slave_force = state.slave_normal_force = state.slave_tangential_force = Vec3{};
+  state.max_penetration = 0.0;
+  state.normal_force_sum = state.tangential_force_sum = 0.0;
+  state.points_in_contact = 0;
+  state.slipping = state.sticking = 0;
+  // A single surface's force is the force on its first part from the others: its
+  // points' forces on the others' segments, less the forces of the others' points on
+  // its segments (their reactions); within one part they cancel (sums `reaction`).
+  Vec3 reaction_force{}, reaction_normal{}, reaction_tangential{};
+  for (std::size_t p = 0; p < state.contacts.size(); ++p) {
+    const auto& contact = state.contacts[p];
+    if (contact.segment < 0 || contact.gap >= 0.0) continue;
+    if (friction && state.force_magnitude[p] > 0.0) {
+      state.friction_work += state.dissipation[p];
+      ++(state.dissipation[p] > 0.0 ? state.slipping : state.sticking);
+    }
+    statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
+    if (state.force_magnitude[p] > 0.0) {
+      ++state.points_in_contact;
+      state.normal_force_sum += state.force_magnitude[p];
+      if (friction) state.tangential_force_sum += norm(state.tangential_force[p]);
+    }
+    const bool own_point = !surfaces.single_surface || surfaces.first_part_point[p] != 0;
+    const bool own_segment =
+        surfaces.single_surface && surfaces.first_part_segment[std::size_t(contact.segment)] != 0;
+    if (own_point != own_segment) {
+      Vec3& force_sum = own_point ? state.slave_force : reaction_force;
+      Vec3& normal_sum = own_point ? state.slave_normal_force : reaction_normal;
+      Vec3& tangential_sum = own_point ? state.slave_tangential_force : reaction_tangential;
+      if (friction && state.force_magnitude[p] > 0.0)
+        tangential_sum = tangential_sum + state.tangential_force[p];
+      normal_sum = normal_sum + state.force_magnitude[p] * contact.normal;
+      force_sum = force_sum + state.point_force[p];
+    }
+    state.max_penetration = std::max(state.max_penetration, -contact.gap);
+    if (const double depth = -contact.gap / surfaces.normal_length[p];
+        depth > statistics.max_penetration_over_h) {
+      statistics.max_penetration_over_h = depth;
+      statistics.deepest_node = surfaces.quadrature
+                                    ? surfaces.slave_segments[surfaces.quadrature_points[p].segment].nodes[0]
+                                    : surfaces.slave_nodes[p];
+    }
+  }
+  state.slave_force = state.slave_force - reaction_force;
+  state.slave_normal_force = state.slave_normal_force - reaction_normal;
+  state.slave_tangential_force = state.slave_tangential_force - reaction_tangential;
+}
+
 }  // namespace
 
 void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
@@ -365,53 +417,7 @@ void run_contact_pass(const ContactSurfaces& surfaces, const ContactPassSettings
             point_force(surfaces, settings, state, p, x_ref, u, v, mass);
         },
         force_chunk);
-    // The pass's sums and largest figures, in slave point order.
-    state.slave_force = state.slave_normal_force = state.slave_tangential_force = Vec3{};
-    state.max_penetration = 0.0;
-    state.normal_force_sum = state.tangential_force_sum = 0.0;
-    state.points_in_contact = 0;
-    state.slipping = state.sticking = 0;
-    // A single surface's force is the force on its first part from the others: its
-    // points' forces on the others' segments, less the forces of the others' points on
-    // its segments (their reactions); within one part they cancel (sums `reaction`).
-    Vec3 reaction_force{}, reaction_normal{}, reaction_tangential{};
-    for (std::size_t p = 0; p < n_points; ++p) {
-      const auto& contact = state.contacts[p];
-      if (contact.segment < 0 || contact.gap >= 0.0) continue;
-      if (friction && state.force_magnitude[p] > 0.0) {
-        state.friction_work += state.dissipation[p];
-        ++(state.dissipation[p] > 0.0 ? state.slipping : state.sticking);
-      }
-      statistics.max_pair_stiffness = std::max(statistics.max_pair_stiffness, state.pair_stiffness[p]);
-      if (state.force_magnitude[p] > 0.0) {
-        ++state.points_in_contact;
-        state.normal_force_sum += state.force_magnitude[p];
-        if (friction) state.tangential_force_sum += norm(state.tangential_force[p]);
-      }
-      const bool own_point = !surfaces.single_surface || surfaces.first_part_point[p] != 0;
-      const bool own_segment =
-          surfaces.single_surface && surfaces.first_part_segment[std::size_t(contact.segment)] != 0;
-      if (own_point != own_segment) {
-        Vec3& force_sum = own_point ? state.slave_force : reaction_force;
-        Vec3& normal_sum = own_point ? state.slave_normal_force : reaction_normal;
-        Vec3& tangential_sum = own_point ? state.slave_tangential_force : reaction_tangential;
-        if (friction && state.force_magnitude[p] > 0.0)
-          tangential_sum = tangential_sum + state.tangential_force[p];
-        normal_sum = normal_sum + state.force_magnitude[p] * contact.normal;
-        force_sum = force_sum + state.point_force[p];
-      }
-      state.max_penetration = std::max(state.max_penetration, -contact.gap);
-      if (const double depth = -contact.gap / surfaces.normal_length[p];
-          depth > statistics.max_penetration_over_h) {
-        statistics.max_penetration_over_h = depth;
-        statistics.deepest_node =
-            surfaces.quadrature ? surfaces.slave_segments[surfaces.quadrature_points[p].segment].nodes[0]
-                                : surfaces.slave_nodes[p];
-      }
-    }
-    state.slave_force = state.slave_force - reaction_force;
-    state.slave_normal_force = state.slave_normal_force - reaction_normal;
-    state.slave_tangential_force = state.slave_tangential_force - reaction_tangential;
+    sum_pass_figures(surfaces, friction, state, statistics);
     // The forces and gaps onto the nodes: a surface of more than one chunk on the
     // threads, in the order of one process (force_scatter.hpp).
     if (records != nullptr)

@@ -304,8 +304,8 @@ inline bool projection_failed(const ProjectionResult& r) {
 
 // The point's projection onto the segment by the pass's method from `start`; where that
 // failed, by the fallback method from the same start (`settled` true then).
-inline ProjectionResult project_settled(const ContactPassSettings& settings, const Segment& segment, Vec3 point,
-                                        Xi start, bool& settled) {
+inline ProjectionResult project_settled(const ContactPassSettings& settings, const Segment& segment,
+                                        Vec3 point, Xi start, bool& settled) {
   ProjectionResult r = settings.project(segment, point, start, settings.projection);
   settled = settings.fallback != nullptr && projection_failed(r);
   if (settled) r = settings.fallback(segment, point, start, settings.projection);

@@ -97,8 +97,8 @@ struct SlaveFacet {
   Polygon polygon;  // its corners in the plane, counter-clockwise
   Bilinear map;     // xi -> the plane
   double area = 0.0;
-  Vec2 lo, hi;         // the polygon's box
-  Surface<8> surface;  // quad4: the last 4 terms zero (the same values)
+  Vec2 lo, hi;                   // the polygon's box
+  Surface<8> surface;            // quad4: the last 4 terms zero (the same values)
   std::array<Vec3, 4> corner{};  // its corners, m
 };
 SlaveFacet slave_facet(const Segment& slave);

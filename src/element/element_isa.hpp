@@ -21,9 +21,10 @@ namespace exdyn::element {
 // starting 48 bytes into a line than at its start (the same code, 0x...470 against
 // 0x...180).
 template <ElementLoopFn Loop>
-[[gnu::flatten, gnu::aligned(64)]] ElementEnergies loop_x86_64_v2(const ElementBlock& block, std::uint32_t begin,
-                                                std::uint32_t end, const NodalVectors& u, NodalVectors& f_int,
-                                                double* stress) {
+[[gnu::flatten, gnu::aligned(64)]] ElementEnergies loop_x86_64_v2(const ElementBlock& block,
+                                                                  std::uint32_t begin, std::uint32_t end,
+                                                                  const NodalVectors& u, NodalVectors& f_int,
+                                                                  double* stress) {
   return Loop(block, begin, end, u, f_int, stress);
 }
 

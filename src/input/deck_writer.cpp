@@ -225,7 +225,8 @@ std::string to_yaml(const Deck& deck) {
         << "    local_search: {method: " << contact::name(local.method)
         << ", tolerance: " << yaml_number(local.tolerance) << ", max_iterations: " << local.max_iterations
         << ", initial_guess: " << contact::name(local.initial_guess)
-        << ", fallback: " << (local.fallback ? contact::name(*local.fallback) : std::string_view("none")) << "}\n"
+        << ", fallback: " << (local.fallback ? contact::name(*local.fallback) : std::string_view("none"))
+        << "}\n"
         << yaml_friction(pair.friction, "    ");
   }
 

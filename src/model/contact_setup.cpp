@@ -291,7 +291,8 @@ ContactModel build_contact(const input::Deck& deck, const Model& model, double d
     }
     auto& settings = pair.settings;
     settings.project = contact::select_method(options.local_search.method);
-    if (const auto fallback = options.local_search.fallback; fallback && *fallback != options.local_search.method)
+    if (const auto fallback = options.local_search.fallback;
+        fallback && *fallback != options.local_search.method)
       settings.fallback = contact::select_method(*fallback);
     settings.projection.method = options.local_search.method;
     settings.projection.tolerance = options.local_search.tolerance;

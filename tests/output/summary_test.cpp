@@ -128,7 +128,8 @@ TEST_F(SummaryTest, EveryKeyOfTheSpecIsWrittenInItsOrder) {
                               {"wait_seconds", Json::array()},
                               {"element_seconds", Json::array()},
                               {"contact_seconds", Json::array()}}}}));
-  for (const char* integer : {"projections", "max_iterations", "not_converged", "saddle_points", "fallbacks"}) {
+  for (const char* integer :
+       {"projections", "max_iterations", "not_converged", "saddle_points", "fallbacks"}) {
     EXPECT_TRUE(j["contact"][integer].is_number_integer()) << integer;
   }
   EXPECT_FALSE(fs::exists(directory_ / "plate_impact.json.tmp"));

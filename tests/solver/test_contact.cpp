@@ -268,8 +268,9 @@ std::vector<Override> coarse_plates(const char* local_search) {
 // every projection settled again by the robust method from the same start, counted, and
 // the run the robust method's own, bit for bit.
 TEST(FailedSearch, IsSettledByTheFallbackAndCounted) {
-  const ContactRun bare("plate_impact.yaml",
-                        coarse_plates("{method: simplex, max_iterations: 20, initial_guess: center, fallback: none}"));
+  const ContactRun bare(
+      "plate_impact.yaml",
+      coarse_plates("{method: simplex, max_iterations: 20, initial_guess: center, fallback: none}"));
   const ContactRun settled("plate_impact.yaml",
                            coarse_plates("{method: simplex, max_iterations: 20, initial_guess: center}"));
   const ContactRun robust("plate_impact.yaml",
@@ -297,8 +298,8 @@ TEST(FailedSearch, IsSettledByTheFallbackAndCounted) {
 // directions: row by row the magnitude of the pair's normal force; no friction, no
 // tangential sum; at the peak every node of both faces pressed (21 x 2 a face).
 TEST(ContactHistory, TheSumOfMagnitudesIsTheNormalForceOfTwoFlatFaces) {
-  const ContactRun run("plate_impact.yaml", {{"parts[0].elements", "[20, 1, 20]"},
-                                             {"parts[1].elements", "[20, 1, 20]"}});
+  const ContactRun run("plate_impact.yaml",
+                       {{"parts[0].elements", "[20, 1, 20]"}, {"parts[1].elements", "[20, 1, 20]"}});
   const std::vector<double> sum = run.history("contact/interface/normal_force_sum");
   const std::vector<double> normal = run.history("contact/interface/normal_force");
   const std::vector<double> tangential = run.history("contact/interface/tangential_force_sum");
