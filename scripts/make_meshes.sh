@@ -24,6 +24,8 @@ mesh tube_crush_hex8.msh tube.geo -setnumber ri 9.2e-3 -setnumber L 40e-3 -setnu
   -setnumber na 24 -setnumber nz 100
 mesh u_shape_hex8.msh u_shape.geo
 mesh l_shape_hex8.msh u_shape.geo -setnumber right 0
+mesh c_slot_hex8.msh c_slot.geo
+mesh c_slot_hex20.msh c_slot.geo "${quadratic[@]}"
 # The bad-input tests' meshes (tests/mesh/meshes/).
 cd ../../tests/mesh/meshes
 mesh cube_tets.msh cube.geo

@@ -8,13 +8,20 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
-scripts/install_deps.sh --test
-scripts/build.sh release
-(cd build/release && ctest --output-on-failure -j "$(nproc)")
-scripts/check_paraview.sh
+# Each phase's wall time, so that a CI log shows where its minutes go.
+phase() {  # phase NAME COMMAND...
+  local name=$1 start=$SECONDS
+  shift
+  "$@"
+  echo "test.sh: $name took $((SECONDS - start)) s (total $SECONDS s)"
+}
+phase install scripts/install_deps.sh --test
+phase "release build" scripts/build.sh release
+phase "release tests" bash -c 'cd build/release && ctest --output-on-failure -j "$(nproc)"'
+phase paraview scripts/check_paraview.sh
 if [ "${EXDYN_SKIP_ASAN:-0}" != "1" ]; then
-  scripts/build.sh asan
-  (cd build/asan && ctest --output-on-failure -j "$(nproc)")
+  phase "sanitizer build" scripts/build.sh asan
+  phase "sanitizer tests" bash -c 'cd build/asan && ctest --output-on-failure -j "$(nproc)"'
 fi
-scripts/fuzz.sh 60
+phase fuzz scripts/fuzz.sh 60
 echo "test.sh: all tests passed"

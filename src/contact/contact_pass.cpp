@@ -190,10 +190,17 @@ void point_force(const ContactSurfaces& surfaces, const ContactPassSettings& set
   const double slave_inverse_mass = motion.inverse_mass;
   const Vec3 n = contact.normal;
   const double normal_velocity = dot(slave_velocity - master_velocity, n);
-  // The point pair's stiffness: a single surface's node takes its side's facing the contact.
-  double k = surfaces.single_surface && !surfaces.quadrature
-                 ? side_stiffness(surfaces, p, contact.normal, x_ref, u)
-                 : surfaces.stiffness[p];
+  // The point pair's stiffness: a single surface's node takes its side's facing the
+  // contact, its Gauss point the kappa capped for the face of the segment it meets.
+  double k = surfaces.stiffness[p];
+  if (surfaces.single_surface && !surfaces.quadrature) {
+    k = side_stiffness(surfaces, p, contact.normal, x_ref, u);
+  } else if (!surfaces.face_kappa.empty()) {
+    const QuadraturePoint& q = surfaces.quadrature_points[p];
+    k = surfaces.face_kappa[q.segment * surfaces.face_count +
+                            surfaces.segment_face[std::size_t(contact.segment)]] *
+        q.weight;
+  }
   if (settings.automatic_stiffness) k *= settings.stiffness_growth;
   if (settings.automatic_stiffness && !surfaces.quadrature) {
     const double inverse_mass = slave_inverse_mass + master_inverse_mass;

@@ -93,6 +93,14 @@ struct ContactSurfaces {
   // Per master segment, the segment across each edge (the order of SegmentEdges): -1
   // none (on a rank: or not in its view), -2 more than one.
   std::vector<std::array<std::int32_t, 4>> edge_neighbours;
+  // Quadrature points with the automatic penalty: each master segment's face (among
+  // the surface's faces, in order) and, per slave segment and face, the pressure per
+  // length kappa (Pa/m) capped for the largest 1/m of that face's nodes, as a pair whose
+  // master side is that face caps it. A point's stiffness is its slave segment's kappa
+  // for the face of the segment it meets, times its weight. Empty: `stiffness`.
+  std::vector<std::uint32_t> segment_face;
+  std::size_t face_count = 0;
+  std::vector<double> face_kappa;  // slave segment s, face f: [s * face_count + f]
 
   // Erosion (docs/contact.md, "Faces that erosion opens"), a single surface over parts
   // that can fail: per master segment the element it bounds and the element across it

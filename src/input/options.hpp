@@ -188,6 +188,9 @@ struct FaceRef {
   int part = -1;  // index into Deck::parts
   PartFace side = PartFace::xmin;
   int surface = -1;  // physical: index into the part's mesh.surfaces
+  // A side of the face between its folds (mesh::FaceSides): set by the model for a
+  // single surface, which takes each side as a face; -1: the whole face.
+  int fold_side = -1;
 
   bool operator==(const FaceRef&) const = default;
 };

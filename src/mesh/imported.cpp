@@ -8,6 +8,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "mesh/face_sides.hpp"
+
 namespace exdyn::mesh {
 
 namespace {
@@ -515,11 +517,14 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
          "periodically)");
   Face whole;
   double whole_length = 0.0;
+  std::vector<double> lengths;
   for (const BoundarySegment& b : boundary) {
     whole.segments.push_back(b.segment);
     whole_length += b.normal_length;
+    lengths.push_back(b.normal_length);
   }
   finish_face(whole, whole_length);
+  whole.sides = fold_sides(whole.segments, lengths, mesh.x_ref);
   part.faces.emplace_back(input::PartFace::surface, std::move(whole));
 
   std::vector<std::size_t> by_corners(boundary.size());
@@ -559,11 +564,14 @@ void add_imported_part(Mesh& mesh, const input::PartOptions& options, int part_i
     matched.erase(std::unique(matched.begin(), matched.end()), matched.end());
     Face face;
     double length = 0.0;
+    lengths.clear();
     for (const std::size_t b : matched) {
       face.segments.push_back(boundary[b].segment);
       length += boundary[b].normal_length;
+      lengths.push_back(boundary[b].normal_length);
     }
     if (!face.segments.empty()) finish_face(face, length);
+    face.sides = fold_sides(face.segments, lengths, mesh.x_ref);
     part.physical_faces.push_back(std::move(face));
   }
   mesh.parts.push_back(std::move(part));

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "mesh/face_sides.hpp"
 #include "mesh/imported.hpp"
 #include "mesh/mapped.hpp"
 
@@ -410,9 +411,6 @@ Face named_face(const std::vector<std::pair<input::PartFace, Face>>& faces, int 
   throw std::logic_error("face_of: part " + std::to_string(part_index) + " has no face " + input::name(side));
 }
 
-namespace {
-
-// face.nodes: every node of its segments, ascending, once.
 void nodes_of_segments(Face& face) {
   face.nodes.clear();
   for (const FaceSegment& segment : face.segments)
@@ -420,8 +418,6 @@ void nodes_of_segments(Face& face) {
   std::sort(face.nodes.begin(), face.nodes.end());
   face.nodes.erase(std::unique(face.nodes.begin(), face.nodes.end()), face.nodes.end());
 }
-
-}  // namespace
 
 void finish_face(Face& face, double normal_length_sum) {
   face.normal_length = normal_length_sum / static_cast<double>(face.segments.size());
@@ -431,6 +427,7 @@ void finish_face(Face& face, double normal_length_sum) {
 Face cut_face(const Face& whole, const KeepSegment& keep) {
   Face face;
   face.normal_length = whole.normal_length;
+  face.sides = whole.sides;
   face.whole_segments = whole.whole_count();
   for (std::size_t k = 0; k < whole.segments.size(); ++k)
     if (keep(whole.segments[k])) {
@@ -441,7 +438,9 @@ Face cut_face(const Face& whole, const KeepSegment& keep) {
   return face;
 }
 
-Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
+namespace {
+
+Face whole_face_of(const Mesh& mesh, const input::FaceRef& reference) {
   const int part_index = reference.part;
   const input::PartFace side = reference.side;
   const PartRange& part = mesh.parts.at(static_cast<std::size_t>(part_index));
@@ -460,6 +459,13 @@ Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
   if (part.lattice.empty()) return named_face(part.faces, part_index, side);  // a mapped or imported part
   return lattice_face(part.elements, part.order, side, part.normal_lengths,
                       [&](int i, int j, int k) { return part.node_at(i, j, k); });
+}
+
+}  // namespace
+
+Face face_of(const Mesh& mesh, const input::FaceRef& reference) {
+  Face face = whole_face_of(mesh, reference);
+  return reference.fold_side < 0 ? face : side_of(face, std::size_t(reference.fold_side));
 }
 
 Face lattice_face(const std::array<int, 3>& n, int order, input::PartFace side,

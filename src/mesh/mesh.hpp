@@ -38,13 +38,26 @@ struct FaceSegment {
   int node_count = 4;  // 4 or 8
 };
 
+// The sides of a face that folds (mesh/face_sides.hpp): the pieces between its
+// feature edges. Per segment of the whole face: its side and its index among that
+// side's segments; per side: its segment count and the mean length (m) of the elements
+// under it normal to it. Empty where the face is one side.
+struct FaceSides {
+  std::vector<std::uint32_t> side, index;
+  std::vector<std::uint64_t> count;
+  std::vector<double> normal_length;
+
+  std::size_t size() const { return count.empty() ? 1 : count.size(); }
+};
+
 // A named face of a part: its nodes (a box: sorted along the face's lattice; a mapped
 // part: ascending) and its segments, and the mean length (m) of the elements under it
-// normal to it (for the automatic penalty stiffness).
+// normal to it (for the automatic penalty stiffness); where it folds, its sides.
 struct Face {
   std::vector<std::uint32_t> nodes;
   std::vector<FaceSegment> segments;
   double normal_length = 0.0;
+  FaceSides sides;  // of the whole face, also when it is cut
   // A face cut to some of its segments (cut_face; a rank's contact faces,
   // ranks/rank_setup.cpp): each kept segment's index in the whole face, and the whole
   // face's segment count. Both empty for a whole face.
@@ -187,9 +200,11 @@ Face named_face(const std::vector<std::pair<input::PartFace, Face>>& faces, int 
 // A face's nodes (every node of its segments, ascending, once) and its mean normal
 // length, from its segments and the sum of their normal lengths.
 void finish_face(Face& face, double normal_length_sum);
+// The first half of it: face.nodes from its segments.
+void nodes_of_segments(Face& face);
 
 // The segments of `whole` that `keep` keeps, in its order, with their places in it
-// (Face::segment_index), its normal length and the nodes of the kept segments.
+// (Face::segment_index), its normal length and sides and the nodes of the kept segments.
 Face cut_face(const Face& whole, const KeepSegment& keep);
 
 // Lattice offsets (along x, y, z, in units of half an element) of the nodes of a brick

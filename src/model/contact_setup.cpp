@@ -28,14 +28,14 @@ double over_ranks(const ContactScope& scope, double figure) {
 // Whether node n's mass is this rank's (ContactScope::held).
 bool held(const ContactScope& scope, std::uint32_t n) { return !scope.held || (*scope.held)[n] != 0; }
 
-// The largest 1/m of the master nodes of a pass, 1/kg (a halo node's 1/m is 0; each
-// node is held by some rank).
-double largest_master_inverse_mass(const Model& model, const contact::ContactSurfaces& s,
-                                   const ContactScope& scope) {
+// The largest 1/m of the master nodes of segments [begin, end) of a pass, 1/kg (a halo
+// node's 1/m is 0; each node is held by some rank).
+double largest_master_inverse_mass(const Model& model, const contact::ContactSurfaces& s, std::size_t begin,
+                                   std::size_t end, const ContactScope& scope) {
   double largest = 0.0;
-  for (const auto& segment : s.segments)
-    for (int k = 0; k < contact::node_count(segment.type); ++k)
-      largest = std::max(largest, 1.0 / model.mass[segment.nodes[std::size_t(k)]]);
+  for (std::size_t seg = begin; seg < end; ++seg)
+    for (int k = 0; k < contact::node_count(s.segments[seg].type); ++k)
+      largest = std::max(largest, 1.0 / model.mass[s.segments[seg].nodes[std::size_t(k)]]);
   return over_ranks(scope, largest);
 }
 
@@ -43,37 +43,63 @@ double largest_master_inverse_mass(const Model& model, const contact::ContactSur
 // the deck's fixed value or the automatic scale 8 M / L capped per slave segment so
 // that no slave node's springs together exceed the frequency caps of penalty.hpp:
 // kappa a_I <= scale min(accurate, stable bound) for 1/m_I + the largest master 1/m,
-// with a_I the node's spring area (PassGeometry::spring_area).
+// with a_I the node's spring area (PassGeometry::spring_area). A single surface's
+// points also get the kappa for each of its faces as the master side
+// (ContactSurfaces::face_kappa): a point takes the one of the segment it meets.
 void quadrature_stiffness(const input::ContactOptions& options, const Model& model, PassGeometry& g,
                           double dt, double courant, const ContactScope& scope) {
   auto& s = g.surfaces;
-  const double master_inverse_mass = largest_master_inverse_mass(model, s, scope);
-  std::vector<double> segment_kappa(s.slave_segments.size(), std::numeric_limits<double>::infinity());
-  for (std::size_t seg = 0; seg < s.slave_segments.size(); ++seg) {
-    const contact::SegmentNodes& ids = s.slave_segments[seg];
-    for (int k = 0; k < contact::node_count(ids.type); ++k) {
-      const std::uint32_t node = ids.nodes[std::size_t(k)];
-      const std::size_t i = static_cast<std::size_t>(
-          std::lower_bound(s.slave_nodes.begin(), s.slave_nodes.end(), node) - s.slave_nodes.begin());
-      const double inverse_mass = 1.0 / model.mass[node] + master_inverse_mass;
-      const double cap =
-          options.penalty.scale *
-          std::min(contact::accurate_stiffness_bound(dt, inverse_mass),
-                   contact::stable_stiffness_bound(dt, courant, options.penalty.damping, inverse_mass));
-      segment_kappa[seg] = std::min(segment_kappa[seg], cap / g.spring_area[i]);
+  // Each slave segment's cap on kappa for the master inverse mass given.
+  auto segment_caps = [&](double master_inverse_mass) {
+    std::vector<double> segment_kappa(s.slave_segments.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t seg = 0; seg < s.slave_segments.size(); ++seg) {
+      const contact::SegmentNodes& ids = s.slave_segments[seg];
+      for (int k = 0; k < contact::node_count(ids.type); ++k) {
+        const std::uint32_t node = ids.nodes[std::size_t(k)];
+        const std::size_t i = static_cast<std::size_t>(
+            std::lower_bound(s.slave_nodes.begin(), s.slave_nodes.end(), node) - s.slave_nodes.begin());
+        const double inverse_mass = 1.0 / model.mass[node] + master_inverse_mass;
+        const double cap =
+            options.penalty.scale *
+            std::min(contact::accurate_stiffness_bound(dt, inverse_mass),
+                     contact::stable_stiffness_bound(dt, courant, options.penalty.damping, inverse_mass));
+        segment_kappa[seg] = std::min(segment_kappa[seg], cap / g.spring_area[i]);
+      }
     }
+    return segment_kappa;
+  };
+  auto automatic = [&](std::size_t p) {
+    return options.penalty.scale * contact::automatic_pressure_stiffness(g.modulus, s.normal_length[p]);
+  };
+  const bool per_face = options.single_surface && !options.penalty.stiffness;
+  std::vector<double> face_inverse_mass;  // the largest 1/m of each master face's nodes
+  double master_inverse_mass = 0.0;
+  if (per_face) {
+    for (std::size_t f = 0, begin = 0; f < g.master_face_end.size(); begin = g.master_face_end[f++]) {
+      face_inverse_mass.push_back(largest_master_inverse_mass(model, s, begin, g.master_face_end[f], scope));
+      master_inverse_mass = std::max(master_inverse_mass, face_inverse_mass.back());
+    }
+  } else {
+    master_inverse_mass = largest_master_inverse_mass(model, s, 0, s.segments.size(), scope);
   }
+  const std::vector<double> segment_kappa = segment_caps(master_inverse_mass);
   s.stiffness.resize(s.quadrature_points.size());
   for (std::size_t p = 0; p < s.quadrature_points.size(); ++p) {
     const contact::QuadraturePoint& q = s.quadrature_points[p];
-    double kappa = 0.0;  // Pa/m
-    if (options.penalty.stiffness)
-      kappa = *options.penalty.stiffness;
-    else
-      kappa = std::min(
-          options.penalty.scale * contact::automatic_pressure_stiffness(g.modulus, s.normal_length[p]),
-          segment_kappa[q.segment]);
+    const double kappa = options.penalty.stiffness ? *options.penalty.stiffness  // Pa/m
+                                                   : std::min(automatic(p), segment_kappa[q.segment]);
     s.stiffness[p] = kappa * q.weight;
+  }
+  if (!per_face) return;
+  // A slave segment's points share its face's length, so its automatic kappa.
+  s.face_count = face_inverse_mass.size();
+  s.face_kappa.assign(s.slave_segments.size() * s.face_count, 0.0);
+  for (std::size_t f = 0; f < s.face_count; ++f) {
+    const std::vector<double> caps = segment_caps(face_inverse_mass[f]);
+    for (std::size_t p = 0; p < s.quadrature_points.size(); ++p) {
+      const std::uint32_t seg = s.quadrature_points[p].segment;
+      s.face_kappa[seg * s.face_count + f] = std::min(automatic(p), caps[seg]);
+    }
   }
 }
 

@@ -16,12 +16,23 @@ namespace exdyn::solver {
 
 input::ContactOptions resolved_surface_options(const Model& model, const input::ContactOptions& options) {
   input::ContactOptions resolved = options;
+  // A face that folds (a Gmsh part's whole boundary) as its sides, each a face.
+  resolved.slave.clear();
+  for (const input::FaceRef& f : options.slave) {
+    const std::size_t sides = f.fold_side < 0 ? contact_face(model, f, {}).sides.size() : 1;
+    for (std::size_t k = 0; k < sides; ++k) {
+      input::FaceRef side = f;
+      if (sides > 1) side.fold_side = static_cast<int>(k);
+      resolved.slave.push_back(side);
+    }
+  }
+  resolved.master = resolved.slave;
   bool eight_node_segments = false;
-  for (const input::FaceRef& f : options.slave)
+  for (const input::FaceRef& f : resolved.slave)
     eight_node_segments = eight_node_segments || model.mesh.parts.at(std::size_t(f.part)).order == 2;
   resolved.slave_points = input::resolved_slave_points(options.slave_points, eight_node_segments);
   if (options.surface_all) {  // and the faces erosion can open
-    const std::vector<input::FaceRef> opening = opening_faces(model, options.slave);
+    const std::vector<input::FaceRef> opening = opening_faces(model, resolved.slave);
     EXDYN_ASSERT(opening.empty() || resolved.slave_points != input::SlavePoints::mortar);  // the validator's
     resolved.slave.insert(resolved.slave.end(), opening.begin(), opening.end());
     resolved.master = resolved.slave;
@@ -196,6 +207,7 @@ PassGeometry merge_surface_faces(const Model& model, const input::ContactOptions
       s.quadrature_points.push_back(q);
     }
     s.stiffness.insert(s.stiffness.end(), own.stiffness.begin(), own.stiffness.end());
+    s.face_kappa.insert(s.face_kappa.end(), own.face_kappa.begin(), own.face_kappa.end());
     s.normal_length.insert(s.normal_length.end(), own.normal_length.begin(), own.normal_length.end());
     s.first_part_point.insert(s.first_part_point.end(), own.quadrature_points.size(), first);
     for (std::uint32_t key : faces[k].place.point_keys)
@@ -205,6 +217,11 @@ PassGeometry merge_surface_faces(const Model& model, const input::ContactOptions
     first_point += face.whole_count() * side_points * side_points;
   }
   EXDYN_ASSERT(segment_face.size() == s.segments.size());
+  if (!s.face_kappa.empty()) {  // each face's kappa for each face as the master side
+    s.face_count = faces.size();
+    EXDYN_ASSERT(s.face_kappa.size() == s.slave_segments.size() * s.face_count);
+    s.segment_face.assign(segment_face.begin(), segment_face.end());
+  }
   s.edge_neighbours = edge_neighbours(s.segments);
   std::sort(s.slave_nodes.begin(), s.slave_nodes.end());
   s.slave_nodes.erase(std::unique(s.slave_nodes.begin(), s.slave_nodes.end()), s.slave_nodes.end());

@@ -33,10 +33,12 @@ struct SegmentPayload {
   contact::SegmentNodes nodes;
   contact::SegmentEdges edges;
   double area_per_mass = 0.0;  // mortar: the mean a / m of its nodes (ContactSurfaces), m^2/kg
-  // A single surface: whether it lies on the first part, and the segments across its
-  // edges by index in the whole pass (ContactSurfaces::edge_neighbours).
+  // A single surface: whether it lies on the first part, the segments across its
+  // edges by index in the whole pass (ContactSurfaces::edge_neighbours) and its face
+  // (ContactSurfaces::segment_face; 0 where the pass has none).
   std::uint8_t first_part = 0;
   std::array<std::int32_t, 4> neighbours{-1, -1, -1, -1};
+  std::uint32_t face = 0;
 };
 // A node the receiver does not hold: its owner and its data at the search.
 struct NodePayload {

@@ -136,10 +136,15 @@ void own_points(const contact::ContactSurfaces& whole, const PassPlace& place, c
     }
   } else {
     std::vector<std::int64_t> renumbered(whole.slave_segments.size(), -1);
+    own.face_count = whole.face_count;
     for (std::size_t s = 0; s < whole.slave_segments.size(); ++s)
       if (h.segment_owner(whole.slave_segments[s]) == h.me) {
         renumbered[s] = std::int64_t(own.slave_segments.size());
         own.slave_segments.push_back(whole.slave_segments[s]);
+        if (!whole.face_kappa.empty())
+          own.face_kappa.insert(own.face_kappa.end(),
+                                whole.face_kappa.begin() + std::ptrdiff_t(s * whole.face_count),
+                                whole.face_kappa.begin() + std::ptrdiff_t((s + 1) * whole.face_count));
       }
     for (std::size_t p = 0; p < whole.quadrature_points.size(); ++p) {
       contact::QuadraturePoint q = whole.quadrature_points[p];
@@ -168,6 +173,7 @@ void own_segments(const contact::ContactSurfaces& whole, const PassPlace& place,
       if (whole.mortar) own.master_area_per_mass.push_back(whole.master_area_per_mass[s]);
       if (whole.single_surface) {  // the segments across its edges by their index in the whole pass
         own.first_part_segment.push_back(whole.first_part_segment[s]);
+        if (!whole.segment_face.empty()) own.segment_face.push_back(whole.segment_face[s]);
         std::array<std::int32_t, 4> next = whole.edge_neighbours[s];
         for (std::int32_t& n : next)
           if (n >= 0 && !place.segment_ids.empty()) n = std::int32_t(place.segment_ids[std::size_t(n)]);

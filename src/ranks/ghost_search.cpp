@@ -125,6 +125,7 @@ GhostExchange exchange_ghosts(DistributedContact& dc, const PassShare& share,
       if (share.own.single_surface) {
         segments_out[r].back().first_part = share.own.first_part_segment[i];
         segments_out[r].back().neighbours = share.own.edge_neighbours[i];
+        if (!share.own.segment_face.empty()) segments_out[r].back().face = share.own.segment_face[i];
       }
       for (int k = 0; k < contact::node_count(s.type); ++k) {
         const std::uint32_t g = s.nodes[std::size_t(k)];
@@ -151,6 +152,7 @@ struct KnownSegments {
   std::vector<double> area_per_mass;
   std::vector<std::uint8_t> first_part;                 // single surface
   std::vector<std::array<std::int32_t, 4>> neighbours;  // single surface: by whole-pass index
+  std::vector<std::uint32_t> face;                      // single surface: segment_face
 };
 KnownSegments merge_known(const PassShare& share, const std::vector<SegmentPayload>& ghosts) {
   KnownSegments known;
@@ -169,6 +171,7 @@ KnownSegments merge_known(const PassShare& share, const std::vector<SegmentPaylo
       if (share.own.single_surface) {
         known.first_part.push_back(share.own.first_part_segment[i]);
         known.neighbours.push_back(share.own.edge_neighbours[i]);
+        if (!share.own.segment_face.empty()) known.face.push_back(share.own.segment_face[i]);
       }
       ++i;
     } else {
@@ -178,6 +181,7 @@ KnownSegments merge_known(const PassShare& share, const std::vector<SegmentPaylo
       known.area_per_mass.push_back(ghosts[j].area_per_mass);
       known.first_part.push_back(ghosts[j].first_part);
       known.neighbours.push_back(ghosts[j].neighbours);
+      if (!share.own.segment_face.empty()) known.face.push_back(ghosts[j].face);
       ++j;
     }
   }
@@ -277,6 +281,7 @@ void renumber_state(PassShare& share, KnownSegments known, contact::ContactPassS
   if (view.single_surface) {
     view.first_part_segment = std::move(known.first_part);
     view.edge_neighbours = std::move(known.neighbours);
+    view.segment_face = std::move(known.face);
     index_single_surface(share);
   }
   auto renumber = [&](std::uint32_t old) -> std::int64_t {
@@ -326,6 +331,7 @@ void index_single_surface(PassShare& share) {
   if (view.edge_neighbours.size() != view.segments.size()) {  // the first view: the own segments
     view.first_part_segment = own.first_part_segment;
     view.edge_neighbours = own.edge_neighbours;
+    view.segment_face = own.segment_face;
   }
   for (auto& next : view.edge_neighbours)
     for (std::int32_t& n : next)

@@ -451,6 +451,10 @@ struct SetupParts {
     out.put_value(face.normal_length);
     out.put(face.segment_index);
     out.put_value(std::uint64_t(face.whole_segments));
+    out.put(face.sides.side);
+    out.put(face.sides.index);
+    out.put(face.sides.count);
+    out.put(face.sides.normal_length);
   }
   static mesh::Face unpack_face(Unpacker& in) {
     mesh::Face face;
@@ -459,6 +463,10 @@ struct SetupParts {
     face.normal_length = in.value<double>();
     in.get(face.segment_index);
     face.whole_segments = in.value<std::uint64_t>();
+    in.get(face.sides.side);
+    in.get(face.sides.index);
+    in.get(face.sides.count);
+    in.get(face.sides.normal_length);
     return face;
   }
   static void pack_range(const mesh::PartRange& range, Packer& out, const mesh::KeepSegment& keep) {

@@ -16,6 +16,7 @@
 #include "common/parallel.hpp"
 #include "input/deck_reader.hpp"
 #include "input/gmsh_file.hpp"
+#include "mesh/face_sides.hpp"
 #include "mesh/imported.hpp"
 #include "mesh/mesh.hpp"
 
@@ -141,6 +142,86 @@ TEST(ImportedFaces, PhysicalSurfacesBecomeOutwardFacesOfEachVolumeTheyBound) {
     // The whole boundary: 2 x 100 x 100 + 4 x 100 faces.
     EXPECT_EQ(face_of(mesh, 0, input::PartFace::surface).segments.size(), 20400u);
   }
+}
+
+// A Gmsh part's whole boundary folds at its edges: its sides (mesh/face_sides.hpp) are
+// the pieces between them. The C of input/meshes/c_slot.geo (one brick thick): its
+// boundary's sides are the 8 straight pieces of its outline (the base, the lower arm's
+// end, the slot's three faces, the upper arm's end, the top, the back's outer face) and
+// the front and the back planes, each physical surface that lies in one plane is
+// one side with the same segments, the same mean normal length (bits) and its segments
+// in the same order; a side cut (a rank's face) keeps its indices in the whole side.
+TEST(ImportedFaces, AWholeBoundaryFoldsIntoSidesThatArePhysicalSurfaces) {
+  for (const auto& [file_name, formulation] : {std::pair{"c_slot_hex8.msh", input::Formulation::hex8},
+                                               std::pair{"c_slot_hex20.msh", input::Formulation::hex20}}) {
+    const auto file = input::read_gmsh(meshes + file_name, {}, "");
+    const std::vector<std::string> names{"slot_lower", "slot_upper", "slot_back", "lower_base", "upper_tip"};
+    const Mesh mesh = import(file, mesh_part("c", formulation, names));
+    const Face whole = face_of(mesh, 0, input::PartFace::surface);
+    ASSERT_EQ(whole.sides.size(), 8u + 2u) << file_name;
+    std::size_t segments = 0;
+    for (std::size_t k = 0; k < whole.sides.size(); ++k) {
+      input::FaceRef ref{0, input::PartFace::surface};
+      ref.fold_side = int(k);
+      const Face side = face_of(mesh, ref);
+      EXPECT_EQ(side.whole_count(), whole.sides.count[k]);
+      EXPECT_TRUE(side.sides.count.empty());  // a side is one side
+      segments += side.segments.size();
+      // Every segment of a side within 60 degrees of every neighbour's normal: here, one plane.
+      const auto n0 = segment_normal(mesh, side.segments.front());
+      for (const FaceSegment& s : side.segments) {
+        const auto n = segment_normal(mesh, s);
+        const double dot = n[0] * n0[0] + n[1] * n0[1] + n[2] * n0[2];
+        EXPECT_GT(dot, 0.999 * std::sqrt((n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) *
+                                         (n0[0] * n0[0] + n0[1] * n0[1] + n0[2] * n0[2])));
+      }
+    }
+    EXPECT_EQ(segments, whole.segments.size());
+    for (std::size_t f = 0; f < names.size(); ++f) {
+      const Face& physical = mesh.parts[0].physical_faces[f];
+      EXPECT_TRUE(physical.sides.count.empty()) << names[f];  // flat: one side
+      std::size_t matches = 0;
+      for (std::size_t k = 0; k < whole.sides.size(); ++k) {
+        input::FaceRef ref{0, input::PartFace::surface};
+        ref.fold_side = int(k);
+        const Face side = face_of(mesh, ref);
+        if (side.segments.size() != physical.segments.size()) continue;
+        bool same = true;
+        for (std::size_t s = 0; s < side.segments.size() && same; ++s)
+          same = side.segments[s].nodes == physical.segments[s].nodes;
+        if (!same) continue;
+        ++matches;
+        EXPECT_EQ(side.normal_length, physical.normal_length) << names[f];
+        EXPECT_EQ(side.nodes, physical.nodes) << names[f];
+      }
+      EXPECT_EQ(matches, 1u) << names[f];
+    }
+    // A side of a cut face: the cut's segments of that side, with their indices in the
+    // whole side.
+    const Face cut = cut_face(whole, [](const FaceSegment& s) { return s.nodes[0] % 2 == 0; });
+    for (std::size_t k = 0; k < whole.sides.size(); ++k) {
+      input::FaceRef ref{0, input::PartFace::surface};
+      ref.fold_side = int(k);
+      const Face side = face_of(mesh, ref);
+      const Face side_cut = side_of(cut, k);
+      EXPECT_EQ(side_cut.whole_count(), side.whole_count());
+      EXPECT_EQ(side_cut.normal_length, side.normal_length);
+      for (std::size_t s = 0; s < side_cut.segments.size(); ++s) {
+        EXPECT_EQ(side_cut.segments[s].nodes, side.segments[side_cut.index_in_whole(s)].nodes);
+        EXPECT_EQ(side_cut.segments[s].nodes[0] % 2, 0u);
+      }
+    }
+  }
+}
+
+// A curved face whose segments turn less than the feature angle from one to the next is
+// one side: the tube's (input/meshes/tube.geo, 24 segments a quarter turn) inner and
+// outer faces are one side each; its ends and the symmetry planes are sides too.
+TEST(ImportedFaces, ACurvedFaceIsOneSide) {
+  const auto file = input::read_gmsh(meshes + "tube_crush_hex8.msh", {}, "");
+  const Mesh mesh = import(file, mesh_part("tube", input::Formulation::hex8));
+  const Face whole = face_of(mesh, 0, input::PartFace::surface);
+  EXPECT_EQ(whole.sides.size(), 6u);  // inner, outer, two ends, two symmetry planes
 }
 
 // Two physical volumes that share the nodes of their common surface in the file are two

@@ -42,8 +42,8 @@ struct DeckRun : exdyn::testing::DeckRun {
 // full Taylor meshes: scripts/taylor_study.py); sliding_block.yaml, oblique_impact.yaml,
 // block_on_rail.yaml: test_friction.cpp; rod_on_plate.yaml: test_contact.cpp; plate_impact_gmsh.yaml,
 // plate_impact_hex20_gmsh.yaml, hertz_ball_gmsh.yaml (coarse), tube_impact.yaml: test_mesh_import.cpp;
-// contact_patch_mortar.yaml: test_mortar_contact.cpp; u_shape.yaml, plates_one_surface.yaml:
-// test_single_surface.cpp; tube_crush.yaml: scripts/tube_crush_study.py --check (ctest
+// contact_patch_mortar.yaml: test_mortar_contact.cpp; u_shape.yaml, plates_one_surface.yaml,
+// c_slot.yaml: test_single_surface.cpp; tube_crush.yaml: scripts/tube_crush_study.py --check (ctest
 // tube_crush_folds); cantilever.yaml: test_bending.cpp; tension_failure.yaml: test_failure.cpp;
 // eroding_column.yaml, punch_through.yaml: test_opened_faces.cpp; perforation.yaml,
 // perforation_fine.yaml: test_distortion_erosion.cpp (coarse; the first 1.5 us),
@@ -77,6 +77,7 @@ const std::set<std::string> checked_decks{"plate_impact_reference.yaml",
                                           "tube_impact.yaml",
                                           "rod_on_plate.yaml",
                                           "u_shape.yaml",
+                                          "c_slot.yaml",
                                           "plates_one_surface.yaml",
                                           "tube_crush.yaml",
                                           "cantilever.yaml",

@@ -315,7 +315,7 @@ std::vector<input::Deck> setup_decks() {
                                  deck_of("contact_patch_hex20.yaml"), deck_of("hertz_ball.yaml"),
                                  deck_of("taylor_rods.yaml"),         deck_of("cylinders.yaml"),
                                  deck_of("block_on_rail.yaml"),       deck_of("plate_impact_gmsh.yaml"),
-                                 deck_of("plate_impact.yaml")};
+                                 deck_of("plate_impact.yaml"),        deck_of("c_slot.yaml")};
   decks[1].parts[0].elements = {16, 16, 2};
   decks[1].parts[1].elements = {32, 28, 2};
   decks[2].parts[0].elements = {80, 1, 40};
@@ -338,6 +338,11 @@ std::vector<input::Deck> setup_decks() {
   perturbed.parts[0].perturbation_fraction = 0.2;
   perturbed.parts[1].perturbation_fraction = 0.1;
   perturbed.parts[1].perturbation_seed = 7;
+  // A single surface on a Gmsh part's whole boundary, by its sides, with quadrature points
+  // capped per face (ContactSurfaces::face_kappa).
+  input::Deck& slot = decks[13];
+  slot.parts[0].mesh.path = std::string(EXDYN_SOURCE_DIR) + "/input/meshes/c_slot_hex20.msh";
+  slot.parts[0].formulation = input::Formulation::hex20;
   return decks;
 }
 
@@ -412,6 +417,9 @@ TEST(RankSetup, ContactFromTheFacesIsTheWholeModels) {
       EXPECT_EQ(ids(a.segments), ids(b.segments)) << deck.name;
       EXPECT_EQ(a.stiffness, b.stiffness) << deck.name;
       EXPECT_EQ(a.normal_length, b.normal_length) << deck.name;
+      EXPECT_EQ(a.face_kappa, b.face_kappa) << deck.name;
+      EXPECT_EQ(a.face_count, b.face_count) << deck.name;
+      EXPECT_EQ(a.segment_face, b.segment_face) << deck.name;
       ASSERT_EQ(a.edges.size(), b.edges.size());
       for (std::size_t k = 0; k < a.edges.size(); ++k) {
         EXPECT_EQ(a.edges[k].continued, b.edges[k].continued) << deck.name;

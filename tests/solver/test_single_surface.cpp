@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -147,6 +148,59 @@ TEST(SingleSurface, TheArmsOfAUTouchAsThePairBetweenThemSays) {
   EXPECT_EQ(mine.points_in_contact_at_peak, theirs.points_in_contact_at_peak);
   EXPECT_GT(mine.points_in_contact_at_peak, 0);
 }
+
+struct SlotCase {
+  std::string name;
+  std::vector<Override> overrides;
+};
+
+void PrintTo(const SlotCase& c, std::ostream* out) { *out << c.name; }
+
+class ACWhoseSlotCloses : public ::testing::TestWithParam<SlotCase> {};
+
+// input/c_slot.yaml: a C whose slot closes as its upper arm swings down, the slot's back
+// one thin brick tall (0.16 of the others), the surface the Gmsh part's whole boundary.
+// The boundary is one face that folds: the surface takes each side between its folds as
+// a face (mesh/face_sides.hpp), so the slot's faces keep their own element length and a
+// node at the arm's tip its stiffness on each side; a Gauss point's penalty is capped
+// for the face it meets, not for the thin brick's light nodes elsewhere on the surface.
+// The fields are the two-pass pair's between the slot's faces, bit for bit.
+TEST_P(ACWhoseSlotCloses, AsOneSurfaceGivesThePairsFields) {
+  const SlotCase& c = GetParam();
+  const Deck surface = exdyn::input::read_deck(DeckRun::source_path("c_slot.yaml"), c.overrides);
+  ASSERT_TRUE(surface.contact.front().surface_all);
+  // The pair first, then the case's settings over it.
+  std::vector<Override> overrides{
+      {"contact", "[{name: self, slave: [c.slot_lower], master: [c.slot_upper], two_pass: true}]"}};
+  overrides.insert(overrides.end(), c.overrides.begin(), c.overrides.end());
+  const Deck as_pair = exdyn::input::read_deck(DeckRun::source_path("c_slot.yaml"), overrides);
+  const DeckRun single(surface);
+  const DeckRun paired(as_pair);
+  expect_same_run(paired, single, "self", false);
+  const auto& mine = single.summary.contact.pairs.front();
+  const auto& theirs = paired.summary.contact.pairs.front();
+  std::printf(
+      "c slot %s: peak normal force sum %.6g N, %ld points (pair: %.6g N, %ld), penetration / h %.4f\n",
+      c.name.c_str(), mine.peak_normal_force_sum, mine.points_in_contact_at_peak,
+      theirs.peak_normal_force_sum, theirs.points_in_contact_at_peak,
+      single.summary.contact.max_penetration_over_h);
+  EXPECT_EQ(mine.points_in_contact_at_peak, theirs.points_in_contact_at_peak);
+  EXPECT_GT(mine.points_in_contact_at_peak, 0);
+}
+
+// 20-node bricks to 24 us: 8 us after the first touch (a hex20 step is a fifth of a hex8 one).
+const std::vector<Override> hex20_slot{{"parts[0].mesh.file", "meshes/c_slot_hex20.msh"},
+                                       {"parts[0].formulation", "hex20"},
+                                       {"time.end_time", "2.4e-5"}};
+
+INSTANTIATE_TEST_SUITE_P(CSlot, ACWhoseSlotCloses,
+                         ::testing::Values(SlotCase{"hex8_nodes", {}},
+                                           SlotCase{"hex8_quadrature",
+                                                    {{"contact[0].slave_points", "quadrature"}}},
+                                           SlotCase{"hex8_mortar", {{"contact[0].slave_points", "mortar"}}},
+                                           SlotCase{"hex20_quadrature", hex20_slot},
+                                           SlotCase{"hex20_mortar", with(hex20_slot, "mortar")}),
+                         [](const ::testing::TestParamInfo<SlotCase>& param) { return param.param.name; });
 
 // The L (the U without its right arm; input/meshes/u_shape.geo, right = 0): its arm
 // pushed at the tip bends towards the base, so the inner corner closes. With every face
