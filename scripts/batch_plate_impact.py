@@ -55,6 +55,16 @@ REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CONTACT_DECK = os.path.join(REPO, "input", "plate_impact.yaml")
 REFERENCE_DECK = os.path.join(REPO, "input", "plate_impact_reference.yaml")
 PVPYTHON_RUNNER = os.path.join(os.path.dirname(REPO), "shared", "tools", "paraview", "run_pvpython.sh")
+# Two `xvfb-run -a` started at once can pick the same display: each ParaView run holds
+# this lock (flock, util-linux) for its own seconds, so that the tests that render run
+# beside each other and lock nothing else.
+XVFB_LOCK = os.path.join("/tmp", "exdyn-xvfb.lock")
+
+
+def pvpython(*args):
+    """The command that runs ../shared/tools/paraview/run_pvpython.sh with args, one
+    ParaView at a time on the machine."""
+    return ["flock", XVFB_LOCK, PVPYTHON_RUNNER, *args]
 PICTURES_SCRIPT = os.path.join(REPO, "scripts", "paraview", "plate_pictures.py")
 
 ALL_METHODS = ["newton", "lsp", "steepest_descent", "broyden", "bfgs", "dfp", "simplex", "hybrid", "robust"]
@@ -553,8 +563,8 @@ def make_pictures(cases, args, figdir):
     # (pvpython then aborts: "bad X server connection"): try again.
     # The script's JSON line is what counts: xvfb-run can fail to clean up after a good run.
     for attempt in range(4):
-        proc = subprocess.run([PVPYTHON_RUNNER, PICTURES_SCRIPT, c.xmf_path, "--out-dir", figdir,
-                               "--prefix", "results_pv"], capture_output=True, text=True)
+        proc = subprocess.run(pvpython(PICTURES_SCRIPT, c.xmf_path, "--out-dir", figdir, "--prefix", "results_pv"),
+                              capture_output=True, text=True)
         ok = '"ok": true' in proc.stdout
         if ok or "X server" not in proc.stderr:
             break

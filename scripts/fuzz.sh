@@ -19,9 +19,10 @@ build="$root/build/fuzz"
 
 scripts/install_deps.sh --fuzz
 # Only the readers' and the mesh libraries and the three targets are built (the rest is configured, not compiled).
-# Debug with -O1: assertions on, every sanitizer check, fast enough to fuzz. Warnings are not
+# Debug with -O1: assertions on, every sanitizer check, fast enough to fuzz; -g1: line
+# tables for the findings' stack traces. Warnings are not
 # errors: the project's warning set is GCC's (-Wno-restrict), and -Werror is the GCC build's job.
-CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-g -O1" \
+CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-g1 -O1" \
   -DEXDYN_BUILD_FUZZ=ON -DEXDYN_BUILD_TESTS=OFF -DEXDYN_BUILD_BENCHMARKS=OFF -DEXDYN_WERROR=OFF >/dev/null
 cmake --build "$build" -j "$jobs" --target fuzz_deck fuzz_cases fuzz_mesh
 
@@ -53,8 +54,7 @@ fuzz() {
     if ! "$binary" "${limits[@]}" -artifact_prefix="$findings/" "${regressions[@]}" >"$log" 2>&1; then
       tail -n 40 "$log"
       echo "fuzz.sh: $target: a regression input of tests/fuzz/regressions/$target/ fails again (log: $log)"
-      status=1
-      return
+      return 1
     fi
     echo "fuzz.sh: $target: ${#regressions[@]} regression inputs pass"
   fi
@@ -83,13 +83,23 @@ fuzz() {
     saved=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$log" | tail -n 1)
     echo "fuzz.sh: $target: FINDING after fuzzing; the input is saved as ${saved:-"(see $log)"}"
     echo "fuzz.sh: reproduce with $binary ${saved:-INPUT}; after the fix, copy it to tests/fuzz/regressions/$target/"
-    status=1
+    return 1
   fi
 }
 
-fuzz deck 8192 input tests/input/decks tests/input/bad_decks tests/fuzz/seeds/deck tests/fuzz/regressions/deck
-fuzz cases 4096 tests/contact/cases tests/contact/bad_cases tests/fuzz/seeds/cases tests/fuzz/regressions/cases
-fuzz mesh 256 tests/fuzz/seeds/mesh tests/fuzz/regressions/mesh
+# libFuzzer runs on one core: with two or more, the deck and cases targets fuzz side by
+# side, each still for SECONDS on a core of its own.
+if [ "$jobs" -ge 2 ]; then
+  fuzz deck 8192 input tests/input/decks tests/input/bad_decks tests/fuzz/seeds/deck tests/fuzz/regressions/deck &
+  deck_fuzzer=$!
+else
+  fuzz deck 8192 input tests/input/decks tests/input/bad_decks tests/fuzz/seeds/deck tests/fuzz/regressions/deck ||
+    status=1
+fi
+fuzz cases 4096 tests/contact/cases tests/contact/bad_cases tests/fuzz/seeds/cases tests/fuzz/regressions/cases ||
+  status=1
+if [ -n "${deck_fuzzer:-}" ]; then wait "$deck_fuzzer" || status=1; fi
+fuzz mesh 256 tests/fuzz/seeds/mesh tests/fuzz/regressions/mesh || status=1
 
 if [ "$status" -ne 0 ]; then
   echo "fuzz.sh: FAILED (logs in $build/logs/)"

@@ -105,9 +105,9 @@ def main():
     if pictures:   # what a user opening the picture case's .xmf in ParaView sees
         xmf = os.path.join(out, "cases", "contact_hex8_n20_bfgs", "plate_impact.xmf")
         report = os.path.join(work, "check_xdmf.json")
-        proc = subprocess.run([batch.PVPYTHON_RUNNER, "check_xdmf.py", xmf, "--fields",
-                               "displacement:point:3,velocity:point:3,stress:cell:6,von_mises:cell:1",
-                               "--strict", "--compact", "--json", report], capture_output=True, text=True,
+        proc = subprocess.run(batch.pvpython("check_xdmf.py", xmf, "--fields",
+                                            "displacement:point:3,velocity:point:3,stress:cell:6,von_mises:cell:1",
+                                            "--strict", "--compact", "--json", report), capture_output=True, text=True,
                               env=dict(os.environ, PV_HEADLESS="none"))   # reads only: no X needed
         try:
             with open(report) as f:

@@ -42,7 +42,10 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-CHECKER = os.path.join(ROOT, "..", "shared", "tools", "paraview", "run_pvpython.sh")
+sys.path.insert(0, HERE)
+import batch_plate_impact as batch  # noqa: E402  (the ParaView runner, one at a time)
+
+CHECKER = batch.PVPYTHON_RUNNER
 
 results = []
 
@@ -76,7 +79,7 @@ def xmf_steps(xmf_path):
 def paraview_reads(xmf_path, readers="all", max_steps=None):
     if not os.access(CHECKER, os.X_OK):
         return False, f"{CHECKER} not found (../shared must sit beside the repository)"
-    cmd = [CHECKER, "check_xdmf.py", xmf_path, "--strict", "--compact", "--readers", readers]
+    cmd = batch.pvpython("check_xdmf.py", xmf_path, "--strict", "--compact", "--readers", readers)
     if max_steps:
         cmd += ["--max-steps", str(max_steps)]
     proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)

@@ -251,7 +251,7 @@ def picture(xmf, png):
         return f"no picture: {batch.PVPYTHON_RUNNER} not found"
     script = os.path.join(HERE, "paraview", "tube_picture.py")
     for attempt in range(4):  # xvfb-run -a can lose a race for a display number
-        proc = subprocess.run([batch.PVPYTHON_RUNNER, script, xmf, "--out", png], capture_output=True, text=True)
+        proc = subprocess.run(batch.pvpython(script, xmf, "--out", png), capture_output=True, text=True)
         if '"ok": true' in proc.stdout:
             return f"wrote {png}"
         if "X server" not in proc.stderr:
