@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Fuzzes the input readers with libFuzzer (tests/fuzz/, docs/stability.md):
+# Fuzzes the input readers (decks, cases, meshes, restart checkpoints) with libFuzzer
+# (tests/fuzz/, docs/stability.md):
 #   1. installs what is missing (clang 14, libFuzzer) and builds build/fuzz with clang,
 #      ASan and UBSan;
-#   2. replays every file of tests/fuzz/regressions/{deck,cases,mesh}/ (past findings);
+#   2. replays every file of tests/fuzz/regressions/{deck,cases,mesh,checkpoint}/ (past findings);
 #   3. fuzzes each target for SECONDS (default 60) from a seed corpus copied to a
 #      temporary directory: the decks of input/ and tests/input/, the cases of
 #      tests/contact/, tests/fuzz/seeds/ and the regressions.
@@ -18,13 +19,13 @@ jobs="${EXDYN_JOBS:-$(nproc)}"
 build="$root/build/fuzz"
 
 scripts/install_deps.sh --fuzz
-# Only the readers' and the mesh libraries and the three targets are built (the rest is configured, not compiled).
+# Only the readers', the mesh and the output libraries and the four targets are built (the rest is configured, not compiled).
 # Debug with -O1: assertions on, every sanitizer check, fast enough to fuzz; -g1: line
 # tables for the findings' stack traces. Warnings are not
 # errors: the project's warning set is GCC's (-Wno-restrict), and -Werror is the GCC build's job.
 CC=clang-14 CXX=clang++-14 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-g1 -O1" \
   -DEXDYN_BUILD_FUZZ=ON -DEXDYN_BUILD_TESTS=OFF -DEXDYN_BUILD_BENCHMARKS=OFF -DEXDYN_WERROR=OFF >/dev/null
-cmake --build "$build" -j "$jobs" --target fuzz_deck fuzz_cases fuzz_mesh
+cmake --build "$build" -j "$jobs" --target fuzz_deck fuzz_cases fuzz_mesh fuzz_checkpoint
 
 # Stack traces of findings with file and line.
 if [ -z "${ASAN_SYMBOLIZER_PATH:-}" ] && [ -x /usr/lib/llvm-14/bin/llvm-symbolizer ]; then
@@ -99,7 +100,15 @@ fi
 fuzz cases 4096 tests/contact/cases tests/contact/bad_cases tests/fuzz/seeds/cases tests/fuzz/regressions/cases ||
   status=1
 if [ -n "${deck_fuzzer:-}" ]; then wait "$deck_fuzzer" || status=1; fi
-fuzz mesh 256 tests/fuzz/seeds/mesh tests/fuzz/regressions/mesh || status=1
+# The mesh and checkpoint targets side by side too.
+if [ "$jobs" -ge 2 ]; then
+  fuzz mesh 256 tests/fuzz/seeds/mesh tests/fuzz/regressions/mesh &
+  mesh_fuzzer=$!
+else
+  fuzz mesh 256 tests/fuzz/seeds/mesh tests/fuzz/regressions/mesh || status=1
+fi
+fuzz checkpoint 16384 tests/fuzz/seeds/checkpoint tests/fuzz/regressions/checkpoint || status=1
+if [ -n "${mesh_fuzzer:-}" ]; then wait "$mesh_fuzzer" || status=1; fi
 
 if [ "$status" -ne 0 ]; then
   echo "fuzz.sh: FAILED (logs in $build/logs/)"

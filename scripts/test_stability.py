@@ -13,8 +13,9 @@ Checks:
 - a fixed penalty stiffness above any stable bound: refused (exit 2) with the bound; one
   between that optimistic bound and the real one: caught by the energy guard;
 - every local search failing (simplex, one iteration): counted, reported, no force;
-- SIGTERM during a run: the run finishes its step, writes it, exits 1 with
-  "interrupted by SIGTERM"; the result is complete up to that step;
+- SIGTERM during a run: the run finishes its step, writes it and a checkpoint, exits 3
+  with "stopped by SIGTERM"; the result is complete up to that step (going on from the
+  checkpoint: scripts/test_restart.py);
 - SIGKILL at random moments of the run's progress (--kills, default 20): every time, the files left are a
   result that h5py and ParaView read, holding every step the .xmf lists, with the
   same data as an uninterrupted run of the same deck at those steps;
@@ -200,16 +201,17 @@ def test_sigterm(exdyn, work, reference):
     wait_for_step(proc, os.path.join(out, "term.xmf"), 10 * EVERY)
     proc.send_signal(signal.SIGTERM)
     text = proc.communicate(timeout=60)[0]
-    check("SIGTERM: exit 1, 'interrupted by SIGTERM'", proc.returncode == 1 and "interrupted by SIGTERM" in text,
-          f"{proc.returncode}: {text}")
-    m = re.search(r"at step (\d+),", text)
+    check("SIGTERM: exit 3, 'stopped by SIGTERM' and the command that goes on",
+          proc.returncode == 3 and "stopped by SIGTERM" in text and "--restart" in text, f"{proc.returncode}: {text}")
+    m = re.search(r"after step (\d+),", text)
     if not m:
         return
     step = int(m.group(1))
     s = summary(out, "term")
     steps = xmf_steps(os.path.join(out, "term.xmf"))
-    check(f"SIGTERM: summary failed at step {step}, the step written last",
-          s["status"] == "failed" and s["steps"] == step and steps[-1] == step, f"{s['steps']} {steps[-3:]}")
+    check(f"SIGTERM: summary stopped at step {step}, the step written last, a checkpoint of step {step + 1}",
+          s["status"] == "stopped" and s["steps"] == step and steps[-1] == step
+          and os.path.exists(os.path.join(out, f"term.{step + 1:08d}.restart")), f"{s['steps']} {steps[-3:]}")
     ok, detail = same_steps(os.path.join(out, "term.h5"), reference, [n for n in steps if n % EVERY == 0])
     check("SIGTERM: the steps written equal the uninterrupted run's", ok, detail)
     ok, detail = paraview_reads(os.path.join(out, "term.xmf"), readers="xdmf3s", max_steps=10)

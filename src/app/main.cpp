@@ -1,9 +1,11 @@
 // exdyn: the command line (../shared/spec/cli.md). The one try/catch of the
-// program: bad input or usage -> exit 2; a failed run -> exit 1.
+// program: bad input or usage -> exit 2; a failed run -> exit 1; a run stopped on
+// request after writing a checkpoint -> exit 3.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -27,6 +29,7 @@ namespace {
 constexpr int exit_success = 0;
 constexpr int exit_run_failed = 1;
 constexpr int exit_bad_input = 2;
+constexpr int exit_stopped = 3;
 
 std::vector<exdyn::input::Override> parse_overrides(const std::vector<std::string>& arguments) {
   std::vector<exdyn::input::Override> overrides;
@@ -55,9 +58,13 @@ void print_progress(const exdyn::solver::Progress& p) {
   std::fflush(stderr);
 }
 
-// SIGINT (Ctrl-C) and SIGTERM ask the run to finish its step, write it and stop;
-// a second one ends the process at once (the files stay valid: docs/stability.md).
+// SIGINT (Ctrl-C) and SIGTERM ask the run to finish its step, write it and a
+// checkpoint, and stop (exit 3); a second one ends the process at once (the files
+// stay valid, the last whole checkpoint stays: docs/stability.md).
 volatile std::sig_atomic_t stop_signal = 0;
+
+// The process's start, for --wall-limit (before MPI's and the deck's setup).
+const std::chrono::steady_clock::time_point process_start = std::chrono::steady_clock::now();
 
 extern "C" void request_stop(int signal_number) {
   if (stop_signal != 0) {
@@ -93,6 +100,9 @@ struct RunArguments {
   std::string partition = "bisection";
   std::string weigh = "elements";
   bool quiet = false;
+  bool restart = false;
+  std::string restart_file;  // empty: the newest checkpoint
+  double wall_limit = 0.0;
 };
 
 // On many ranks (mpirun) every rank runs the deck; rank 0 alone prints.
@@ -111,6 +121,10 @@ int run_command(const RunArguments& arguments, const exdyn::mpi::Communicator& c
                                                          : exdyn::solver::Partitioning::bisection;
   controls.weigh_by_work = arguments.weigh == "work";
   controls.stop_signal = &stop_signal;
+  controls.restart = arguments.restart;
+  controls.restart_file = arguments.restart_file;
+  controls.wall_limit = arguments.wall_limit;
+  controls.started = process_start;
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);
   if (!arguments.quiet && comm.root() && isatty(STDERR_FILENO)) controls.on_progress = print_progress;
@@ -135,6 +149,9 @@ int run_command(const RunArguments& arguments, const exdyn::mpi::Communicator& c
           summary.element_cycles_per_second,
           (arguments.output.empty() ? deck.output.directory : arguments.output).c_str(), deck.name.c_str());
   } catch (const exdyn::RunFailure&) {
+    if (controls.on_progress) std::fputc('\n', stderr);
+    throw;
+  } catch (const exdyn::RunStopped&) {
     if (controls.on_progress) std::fputc('\n', stderr);
     throw;
   }
@@ -184,6 +201,14 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"work", "elements"}))
       ->capture_default_str();
   run->add_flag("--quiet", run_arguments.quiet, "No progress line and no summary line");
+  run->add_option(
+         "--restart", run_arguments.restart_file,
+         "Go on from the newest checkpoint of the run in the output directory, or from the one named; "
+         "writes on into the same NAME.h5 (the same bits as a run never stopped)")
+      ->expected(0, 1);
+  run->add_option("--wall-limit", run_arguments.wall_limit,
+                  "Write a checkpoint and stop (exit 3) before this many wall seconds have passed")
+      ->check(CLI::PositiveNumber);
 
   std::string check_deck;
   std::vector<std::string> check_sets;
@@ -215,6 +240,7 @@ int main(int argc, char** argv) {
     return status == 0 ? exit_success : exit_bad_input;
   }
 
+  run_arguments.restart = run->count("--restart") > 0;
   try {
     if (*run) return run_command(run_arguments, world);
     if (*check) {
@@ -241,6 +267,9 @@ int main(int argc, char** argv) {
     // Bad input is the same on every rank (the same deck): rank 0 says it, all exit.
     if (world.root()) std::cerr << "exdyn: error: " << error.what() << '\n';
     return exit_bad_input;
+  } catch (const exdyn::RunStopped& stopped) {
+    if (world.root()) std::cerr << "exdyn: " << stopped.what() << '\n';
+    return exit_stopped;
   } catch (const exdyn::RunFailure& failure) {
     // The guards and the stop signals are agreed by all ranks, which fail together.
     if (world.root()) std::cerr << "exdyn: run failed: " << failure.what() << '\n';

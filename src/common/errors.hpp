@@ -59,6 +59,17 @@ class RunFailure : public std::runtime_error {
   double time_;
 };
 
+// Not an error but the fourth ending of a run (exit status 3): it stopped on request
+// (SIGTERM, SIGINT, --wall-limit) after writing a checkpoint it can go on from.
+class RunStopped : public std::runtime_error {
+ public:
+  RunStopped(const std::string& message, long step) : std::runtime_error(message), step_(step) {}
+  long step() const { return step_; }
+
+ private:
+  long step_;
+};
+
 }  // namespace exdyn
 
 #define EXDYN_ASSERT(condition) assert(condition)

@@ -20,6 +20,19 @@ namespace {
 // slave segment (the diagonal of its box) at the search: so the centre lay in m's box
 // inflated by d + margin + R. Of those pairs the bucket grid gives, the pairs kept are
 // those whose boxes overlap once s's is inflated by d + margin.
+}  // namespace
+
+// The view's segments are the pass's (they change only where a search is asked for).
+void set_mortar_view_segments(const ContactSurfaces& surfaces, MortarState& m) {
+  m.view.slave_segments = surfaces.slave_segments;
+  m.view.segments = surfaces.segments;
+  m.view.moving_nodes = surfaces.moving_nodes;  // the scatter's slots (force_scatter.hpp)
+  m.view.single_surface = surfaces.single_surface;
+  m.view.first_part_segment = surfaces.first_part_segment;
+}
+
+namespace {
+
 void search_segment_pairs(const ContactSurfaces& surfaces, const ContactPassSettings& settings,
                           ContactPassState& state, const NodalVectors& x_ref, const NodalVectors& u) {
   MortarState& m = state.mortar;
@@ -74,12 +87,7 @@ void search_segment_pairs(const ContactSurfaces& surfaces, const ContactPassSett
   }
   state.built = true;
   ++state.rebuilds;
-  // The view's segments are the pass's (they change only where a search is asked for).
-  m.view.slave_segments = surfaces.slave_segments;
-  m.view.segments = surfaces.segments;
-  m.view.moving_nodes = surfaces.moving_nodes;  // the scatter's slots (force_scatter.hpp)
-  m.view.single_surface = surfaces.single_surface;
-  m.view.first_part_segment = surfaces.first_part_segment;
+  set_mortar_view_segments(surfaces, m);
 }
 
 // Cuts the slave segments chunk by chunk on the threads, each chunk into its own list

@@ -16,6 +16,10 @@
 
 namespace exdyn::contact {
 
+// The segments of a mortar pass's view of its points (MortarState::view), set at each
+// search; a restart sets them again from the pass's surfaces (solver/checkpoint.cpp).
+void set_mortar_view_segments(const ContactSurfaces& surfaces, MortarState& mortar);
+
 // As run_contact_pass, for surfaces.mortar (which run_contact_pass hands over to it).
 // With records, (*records->point_keys)[s] is slave segment s's index in the whole pass;
 // a point's key is that index times 2^14 plus its place among the segment's points.

@@ -215,4 +215,57 @@ Deck read_deck(const std::string& path, const std::vector<Override>& overrides) 
   return parse_deck(content.str(), path, overrides);
 }
 
+namespace {
+
+std::string scalar_text(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) return "(none)";
+  if (node.IsScalar()) return node.Scalar();
+  YAML::Emitter out;
+  out << YAML::Flow << node;
+  return out.c_str();
+}
+
+bool may_change_at_restart(const std::string& path) {
+  return path == "time.end_time" || path == "output" || path == "checkpoint";
+}
+
+// The first difference of two YAML trees in document order, "" when none.
+std::string first_difference(const YAML::Node& a, const YAML::Node& b, const std::string& path) {
+  if (may_change_at_restart(path)) return {};
+  const auto differs = [&] {
+    return path + " (the checkpoint's " + scalar_text(a) + ", the deck's " + scalar_text(b) + ")";
+  };
+  if (!a.IsDefined() || !b.IsDefined() || a.Type() != b.Type()) return differs();
+  if (a.IsScalar()) return a.Scalar() == b.Scalar() ? std::string() : differs();
+  if (a.IsSequence()) {
+    if (a.size() != b.size()) return differs();
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (std::string d = first_difference(a[i], b[i], path + "[" + std::to_string(i) + "]"); !d.empty())
+        return d;
+    return {};
+  }
+  if (a.IsMap()) {
+    for (const auto& entry : a) {
+      const std::string key = entry.first.Scalar();
+      if (std::string d = first_difference(entry.second, b[key], path.empty() ? key : path + "." + key);
+          !d.empty())
+        return d;
+    }
+    for (const auto& entry : b) {
+      const std::string key = entry.first.Scalar();
+      if (!a[key].IsDefined())
+        if (std::string d = first_difference(a[key], entry.second, path.empty() ? key : path + "." + key);
+            !d.empty())
+          return d;
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+std::string restart_difference(const std::string& saved, const Deck& deck) {
+  return first_difference(YAML::Load(saved), YAML::Load(to_yaml(deck)), "");
+}
+
 }  // namespace exdyn::input

@@ -32,4 +32,10 @@ Deck parse_deck(const std::string& text, const std::string& source_name,
 // this text back gives the same Deck.
 std::string to_yaml(const Deck& deck);
 
+// What a restart may not change (docs/output.md, "Checkpoints"): the key path of the
+// first value in which `deck` differs from `saved` (to_yaml of the deck a checkpoint
+// was written by), with its two values; empty when they agree everywhere but in
+// time.end_time, output and checkpoint, which a restart may change.
+std::string restart_difference(const std::string& saved, const Deck& deck);
+
 }  // namespace exdyn::input

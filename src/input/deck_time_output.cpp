@@ -99,4 +99,20 @@ GuardOptions DeckValidator::guards(const YAML::Node& node, const std::string& pa
   return result;
 }
 
+CheckpointOptions DeckValidator::checkpoint(const YAML::Node& node, const std::string& path) const {
+  CheckpointOptions result;
+  if (node.IsNull()) return result;
+  check_map(node, path, {"every", "every_seconds", "keep"});
+  if (const YAML::Node every = optional(node, "every"); every.IsDefined())
+    result.every = integer_where(every, child_path(path, "every"), "an integer >= 1 (steps)", 1);
+  if (const YAML::Node seconds = optional(node, "every_seconds"); seconds.IsDefined())
+    result.every_seconds =
+        number_where(seconds, child_path(path, "every_seconds"), "a number > 0 (wall seconds)", positive);
+  if (const YAML::Node keep = optional(node, "keep"); keep.IsDefined())
+    result.keep = integer_where(keep, child_path(path, "keep"), "an integer >= 1", 1);
+  if (!result.enabled())
+    fail(node, path, "give every (steps) or every_seconds (wall seconds) between checkpoints, or both");
+  return result;
+}
+
 }  // namespace exdyn::input::deck

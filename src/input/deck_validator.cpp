@@ -18,8 +18,8 @@
 namespace exdyn::input::deck {
 
 std::vector<std::string> top_level_keys() {
-  return {"name", "materials", "parts", "boundary_conditions", "contact", "rigid_walls", "loads",
-          "time", "output",    "guards"};
+  return {"name", "materials", "parts",  "boundary_conditions", "contact", "rigid_walls", "loads",
+          "time", "output",    "guards", "checkpoint"};
 }
 
 // ---------------------------------------------------------------------------
@@ -338,6 +338,8 @@ Deck DeckValidator::deck(const YAML::Node& root) const {
     result.output.fields.insert(result.output.fields.end(), {OutputField::damage, OutputField::status});
   if (const YAML::Node node = optional(root, "guards"); node.IsDefined())
     result.guards = guards(node, "guards");
+  if (const YAML::Node node = optional(root, "checkpoint"); node.IsDefined())
+    result.checkpoint = checkpoint(node, "checkpoint");
   return result;
 }
 

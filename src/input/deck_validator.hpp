@@ -172,6 +172,7 @@ class DeckValidator {
   void check_erode(const YAML::Node& node, const Deck& deck) const;
   OutputOptions output(const YAML::Node& node, const std::string& path) const;
   GuardOptions guards(const YAML::Node& node, const std::string& path) const;
+  CheckpointOptions checkpoint(const YAML::Node& node, const std::string& path) const;
 
   std::string source_name_;
   const std::vector<Override>& overrides_;

@@ -268,6 +268,13 @@ std::string to_yaml(const Deck& deck) {
       << "guards:\n"
       << "  energy_growth: " << yaml_number(deck.guards.energy_growth) << "\n"
       << "  max_penetration: " << yaml_number(deck.guards.max_penetration) << "\n";
+  if (deck.checkpoint.enabled()) {
+    out << "checkpoint:\n";
+    if (deck.checkpoint.every > 0) out << "  every: " << deck.checkpoint.every << "\n";
+    if (deck.checkpoint.every_seconds > 0.0)
+      out << "  every_seconds: " << yaml_number(deck.checkpoint.every_seconds) << "\n";
+    out << "  keep: " << deck.checkpoint.keep << "\n";
+  }
   return out.str();
 }
 

@@ -371,6 +371,17 @@ struct GuardOptions {
 
 // Every struct compares member by member, so that a test can check that reading
 // to_yaml(deck) back gives the same deck.
+// Restart checkpoints (docs/output.md, "Checkpoints"): written when either rule is
+// given; a stop on request writes one all the same.
+struct CheckpointOptions {
+  int every = 0;               // steps between checkpoints; 0: not by steps
+  double every_seconds = 0.0;  // wall seconds between checkpoints; 0: not by time
+  int keep = 2;                // the newest checkpoints kept on disk
+  bool enabled() const { return every > 0 || every_seconds > 0.0; }
+
+  bool operator==(const CheckpointOptions&) const = default;
+};
+
 struct Deck {
   std::string source_file;  // path the deck was read from
   std::string name;
@@ -383,6 +394,7 @@ struct Deck {
   TimeOptions time;
   OutputOptions output;
   GuardOptions guards;
+  CheckpointOptions checkpoint;
 
   bool operator==(const Deck&) const = default;
 };

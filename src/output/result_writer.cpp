@@ -153,7 +153,9 @@ void ResultWriter::Impl::write_frame() {
   // Only now is the step on disk: record it, then let readers see it.
   steps_on_disk += 1;
   history_rows_on_disk += frame.history.size();
-  step_xml.push_back(grid_xml(frame.time, group_name));
+  step_xml.push_back(grid_xml(frame.time, group_name, fields));
+  written_steps.push_back(frame.step);
+  written_times.push_back(frame.time);
   write_xdmf();
 }
 
@@ -184,9 +186,10 @@ void ResultWriter::Impl::writer_loop() {
   }
 }
 
-std::string ResultWriter::Impl::grid_xml(double time, const std::string& group) const {
+std::string ResultWriter::Impl::grid_xml(double time, const std::string& group,
+                                         const std::vector<const FieldLayout*>& step_fields) const {
   xdmf::Grid grid{h5_reference, node_count, element_count, mixed, mixed_topology_size, nodes_per_element, {}};
-  for (const FieldLayout* layout : fields)
+  for (const FieldLayout* layout : step_fields)
     grid.attributes.push_back(
         {layout->dataset, layout->center == Center::node, layout->components, layout->attribute_type});
   return xdmf::grid(grid, time, group);
@@ -216,7 +219,8 @@ void ResultWriter::Impl::remove_stale_xdmf() const {
 
 ResultWriter::ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
                            const std::vector<input::OutputField>& fields, const HistoryGroups& groups,
-                           std::size_t expected_steps, const Distribution& distribution) {
+                           std::size_t expected_steps, const Distribution& distribution,
+                           const WrittenPosition* resume, long resume_step) {
   // Names end up in "NAME.h5:/path" inside the .xmf, which the XDMF readers
   // split at the colon; a slash would put the files somewhere else.
   if (name.empty() || name.find_first_of(":/\\") != std::string::npos) {
@@ -303,10 +307,7 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   for (const std::string& wall : groups.walls) impl_->walls.push_back("/history/wall/" + wall);
   for (std::size_t b = 0; b < groups.boundaries; ++b)
     impl_->walls.push_back("/history/boundary/" + std::to_string(b));
-  for (const FieldLayout& layout : field_layouts) {
-    if (std::find(fields.begin(), fields.end(), layout.field) != fields.end())
-      impl_->fields.push_back(&layout);
-  }
+  impl_->fields = impl_->layouts_of(fields);
   // The step fields' buffers, allocated and touched here, at setup: their first zero
   // fill (page faults, serial) was 1-3 % of a 110,592-brick run's time loop.
   impl_->frame.values.resize(impl_->fields.size());
@@ -319,9 +320,23 @@ ResultWriter::ResultWriter(const std::string& directory, const std::string& name
   // children", SIGSEGV; the two Xdmf3 readers show an empty dataset). A .xmf
   // left by an earlier run goes first, before the .h5 it names is truncated
   // (ParaView aborts on a missing dataset).
-  impl_->remove_stale_xdmf();
   const Hdf5ErrorPrintingOff quiet;
+  if (resume != nullptr) {
+    impl_->resume(*resume, resume_step);
+    return;
+  }
+  impl_->field_sets.push_back({0, fields});
+  impl_->remove_stale_xdmf();
   impl_->write_mesh(mesh);
+}
+
+std::vector<const FieldLayout*> ResultWriter::Impl::layouts_of(
+    const std::vector<input::OutputField>& requested) const {
+  std::vector<const FieldLayout*> out;
+  for (const FieldLayout& layout : field_layouts)
+    if (std::find(requested.begin(), requested.end(), layout.field) != requested.end())
+      out.push_back(&layout);
+  return out;
 }
 
 ResultWriter::~ResultWriter() {
@@ -351,7 +366,7 @@ ResultWriter::~ResultWriter() {
 
 void ResultWriter::write_in_background(bool background) {
   Impl& w = *impl_;
-  if (w.last_step >= 0)
+  if (w.thread.joinable() || w.written_steps.size() != w.steps_on_disk)
     throw std::logic_error("ResultWriter::write_in_background: a step is already written");
   w.background = background && !w.distribution.comm.distributed();
 }
@@ -430,6 +445,11 @@ void ResultWriter::flush() {
   w.pending_history.clear();
   w.pending_contact.clear();
   w.pending_walls.clear();
+}
+
+WrittenPosition ResultWriter::position() {
+  flush();
+  return {impl_->written_steps, impl_->written_times, impl_->history_rows_on_disk, impl_->field_sets};
 }
 
 std::string ResultWriter::h5_path() const { return impl_->h5_file.string(); }

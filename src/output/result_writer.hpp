@@ -103,6 +103,20 @@ struct HistoryGroups {
       : contact_pairs(std::move(pairs)), walls(std::move(wall_names)) {}
 };
 
+// Where a run stands in its files, as a checkpoint keeps it (docs/output.md,
+// "Checkpoints"): the steps written and their times, the history rows on disk, and
+// the output fields of each stretch of steps (a restart may change them: from_step).
+struct FieldSet {
+  long from_step = 0;
+  std::vector<input::OutputField> fields;
+};
+struct WrittenPosition {
+  std::vector<long> steps;
+  std::vector<double> times;
+  std::uint64_t history_rows = 0;
+  std::vector<FieldSet> field_sets;
+};
+
 // Call from one thread (the serial HDF5 library is not thread-safe; the writer's
 // own thread, in the background, is inside it only while the caller is not). HDF5 and
 // file-system failures throw std::runtime_error naming the file and dataset;
@@ -120,9 +134,13 @@ class ResultWriter {
   // expected_steps: how many steps the run plans to write; /steps is sized for
   // them, so that adding a step changes the file's structure in one place
   // (hdf5_support.hpp, create_step_group). More steps are fine.
+  // resume: instead, go on writing the NAME.h5 and NAME.xmf of a run that stood at
+  // *resume (a restart): the steps after it and the history rows beyond it are
+  // removed, and this writer's fields are those of the steps from resume_step on.
   ResultWriter(const std::string& directory, const std::string& name, const MeshView& mesh,
                const std::vector<input::OutputField>& fields, const HistoryGroups& groups = {},
-               std::size_t expected_steps = 64, const Distribution& distribution = {});
+               std::size_t expected_steps = 64, const Distribution& distribution = {},
+               const WrittenPosition* resume = nullptr, long resume_step = 0);
   ~ResultWriter();
   ResultWriter(const ResultWriter&) = delete;
   ResultWriter& operator=(const ResultWriter&) = delete;
@@ -145,6 +163,8 @@ class ResultWriter {
   void write_in_background(bool background);
   // Waits for a step in flight, then flushes buffered history rows (end of run).
   void flush();
+  // What is on disk after flush(): the position a checkpoint keeps.
+  WrittenPosition position();
 
   std::string h5_path() const;
   std::string xmf_path() const;

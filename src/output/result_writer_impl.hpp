@@ -115,7 +115,10 @@ struct ResultWriter::Impl {
   std::optional<double> last_time;
   long last_step = -1;
   std::vector<std::string> step_xml;  // one <Grid> per written step
-  Frame frame;                        // the step being written, or the last one
+  std::vector<long> written_steps;    // and its step and time
+  std::vector<double> written_times;
+  std::vector<FieldSet> field_sets;  // the fields of each stretch of steps; the last: `fields`
+  Frame frame;                       // the step being written, or the last one
 
   // The writer thread (write_in_background): it writes `frame` when `busy` is set and
   // clears `busy` when done; the caller fills `frame` only while `busy` is clear.
@@ -144,7 +147,10 @@ struct ResultWriter::Impl {
   void write_frame();
   void wait_until_written();
   void writer_loop();
-  std::string grid_xml(double time, const std::string& group) const;
+  std::string grid_xml(double time, const std::string& group,
+                       const std::vector<const FieldLayout*>& step_fields) const;
+  void resume(const WrittenPosition& position, long resume_step);
+  std::vector<const FieldLayout*> layouts_of(const std::vector<input::OutputField>& requested) const;
   void write_xdmf() const;
   void remove_stale_xdmf() const;
 

@@ -141,6 +141,21 @@ Json to_json(const RunSummary& s) {
   j["isa"] = s.isa;  // after the spec's keys, as every addition
   j["dt_min"] = number(s.dt_min > 0.0 ? s.dt_min : s.dt);
   j["warnings"] = s.warnings;
+  if (s.restart.from_step >= 0) {
+    Json restart;
+    restart["from_step"] = s.restart.from_step;
+    restart["checkpoint"] = s.restart.checkpoint;
+    j["restart"] = std::move(restart);
+  }
+  if (s.checkpoints.written > 0) {
+    Json checkpoints;
+    checkpoints["written"] = s.checkpoints.written;
+    checkpoints["seconds"] = number(s.checkpoints.seconds);
+    checkpoints["largest_seconds"] = number(s.checkpoints.largest_seconds);
+    checkpoints["bytes"] = number(s.checkpoints.bytes);
+    checkpoints["last"] = s.checkpoints.last;
+    j["checkpoints"] = std::move(checkpoints);
+  }
   return j;
 }
 

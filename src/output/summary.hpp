@@ -104,9 +104,23 @@ struct MpiSummary {
   std::vector<Rank> per_rank;
 };
 
+// Restart checkpoints (docs/output.md, "Checkpoints"): the one a run went on from
+// (restart), and those it wrote (checkpoints); additions to the spec's keys.
+struct RestartSummary {
+  long from_step = -1;     // the step the run went on at; < 0: not a restart
+  std::string checkpoint;  // the file it went on from
+};
+struct CheckpointSummary {
+  long written = 0;
+  double seconds = 0.0;          // wall time of writing them all, s
+  double largest_seconds = 0.0;  // of the slowest one, s
+  double bytes = 0.0;            // the size of one (the last), bytes
+  std::string last;              // the last one's file
+};
+
 struct RunSummary {
   std::string name;
-  std::string status = "completed";  // "completed" or "failed"
+  std::string status = "completed";  // "completed", "failed" or "stopped" (on request, after a checkpoint)
   std::string message;
   std::string exdyn_version;
   int threads = 1;  // per rank
@@ -126,6 +140,8 @@ struct RunSummary {
   EnergySummary energy;
   ContactSummary contact;
   GuardSummary guard_checks;
+  RestartSummary restart;
+  CheckpointSummary checkpoints;
 };
 
 // Writes the summary as JSON to `path` (atomically: temporary file + rename).

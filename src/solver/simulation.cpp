@@ -36,104 +36,9 @@
 #include "solver/step_clock.hpp"
 #include "solver/step_passes.hpp"
 #include "solver/step_report.hpp"
+#include "solver/time_loop.hpp"
 
 namespace exdyn::solver {
-
-namespace {
-
-// A run in progress: the model, its state and everything the loop reports to.
-class TimeLoop {
- public:
-  TimeLoop(const input::Deck& deck, const RunControls& controls, output::RunSummary& summary);
-  void run();
-  void flush() { writer_->flush(); }
-
- private:
-  NodalVectors set_up(const RunControls& controls, output::RunSummary& summary);
-  void open_writer(const RunControls& controls);
-  void set_initial_state(NodalVectors initial_velocity);
-  void begin_step();
-  void compute_forces();
-  void plan_time_step();
-  void update_velocities_and_energy();
-  void check_guards();
-  void check_inversion();
-  void warn_small_strain();
-  void write_output();
-  void update_positions();
-  void report_progress();
-  [[noreturn]] void stop_run(const std::string& message);
-  [[noreturn]] void step_back_and_stop(const std::string& message);
-  std::string when() const {
-    return " at step " + std::to_string(state_.step) + ", time " + format_time(state_.time);
-  }
-  output::HistoryRow history_row() const {
-    return {state_.time,
-            energy_.kinetic,
-            energy_.internal,
-            energy_.contact,
-            energy_.hourglass,
-            energy_.external_work,
-            energy_.total(),
-            energy_.plastic,
-            energy_.friction,
-            energy_.eroded,
-            0.0};
-  }
-  // The rigid walls' forces, then the boundary conditions' reactions.
-  std::vector<output::WallHistoryRow> force_rows() const {
-    std::vector<output::WallHistoryRow> rows = wall_history(contact_);
-    for (const auto& r : boundary_reaction_) rows.push_back({r});
-    return rows;
-  }
-
-  const input::Deck& deck_;
-  const RunControls& controls_;
-  output::RunSummary& summary_;
-  Model model_;
-  LocalRun local_;
-  Decomposition& d_ = local_.decomposition;
-  ContactModel contact_;
-  double critical_dt_ = 0.0;
-  std::unique_ptr<StepClock> clock_;
-  std::unique_ptr<output::ResultWriter> writer_;
-  std::unique_ptr<StepWriter> step_writer_;
-  State state_;
-  NodalUpdateFns nodal_update_{};
-  bool side_by_side_ = false;
-  bool output_step_ = false, last_ = false;
-  contact::ContactStatistics contact_statistics_;         // all pairs together, updated every step
-  std::vector<std::array<double, 3>> boundary_reaction_;  // each condition's, over all ranks, N
-  Energies energy_;
-  NodalUpdate update_;
-  VaryingStep varying_step_;
-  Stopwatch loop_watch_;
-  double last_progress_ = -1.0;
-  double initial_total_ = 0.0, largest_energy_ = 0.0, max_energy_error_ = 0.0;
-  long last_written_ = -1;  // the last step written to NAME.h5
-  // The inversion guard runs its element pass only when some element could have
-  // inverted: when the nodes may have moved (bound: sum of dt max|v|) as far as the
-  // safety radius of the last configuration checked (element_block.hpp). A stable
-  // run checks rarely (the plate case: once in about 4600 steps), a blowing-up one
-  // every step.
-  // The energy guard watches E_mean^n = 1/2 sum m |v^n|^2 + U^n + H^n + contact - work:
-  // bounded in a stable run, exponential in an unstable one (docs/stability.md).
-  double initial_mean_energy_ = 0.0, largest_mean_energy_ = 0.0, mean_energy_ = 0.0;
-  double moved_since_check_ = std::numeric_limits<double>::infinity(), safety_radius_ = 0.0,
-         largest_speed_ = 0.0;
-  // Following the deformation, the step's plan reads every element's corners: when the
-  // inversion check falls on that step it rides along (element::check_corners), each
-  // block's result kept here for check_inversion, stamped with the step.
-  std::vector<element::InvertedElement> planned_inversion_;
-  long planned_inversion_step_ = -1;
-  // What a prescribed velocity's start can show in E_mean (prescribed_jump_energy), J.
-  double start_jump_ = 0.0;
-  bool small_strain_warned_ = false;
-  // The elements failed on all ranks by the last step, and when the contact last
-  // followed erosion (opened_faces.hpp).
-  long failed_everywhere_ = 0, opened_for_eroded_ = 0;
-  int stop_requested_ = 0;  // the signal a rank has seen (SIGINT, SIGTERM), agreed by all every step
-};
 
 // The model, the step clock and the contact; returns the initial velocities. On many
 // ranks each rank sets up only its part (rank_setup.hpp: the chunks weighed by their
@@ -171,8 +76,6 @@ NodalVectors TimeLoop::set_up(const RunControls& controls, output::RunSummary& s
 // NAME.h5 with the mesh. One process writes its mesh; on many ranks each writes its
 // rows of it (mesh_rows), once the whole model is gone.
 void TimeLoop::open_writer(const RunControls& controls) {
-  const std::string directory =
-      controls.output_directory.empty() ? deck_.output.directory : controls.output_directory;
   output::HistoryGroups history_groups;
   for (const auto& pair : contact_.pairs) history_groups.contact_pairs.push_back(pair.name);
   for (const auto& wall : contact_.walls) history_groups.walls.push_back(wall.name);
@@ -195,14 +98,18 @@ void TimeLoop::open_writer(const RunControls& controls) {
     for (std::size_t e = 0; e < mesh.element_nodes.size(); ++e)
       mesh.element_nodes[e] = static_cast<std::uint8_t>(model_.mesh.nodes_of(e));
   }
+  // A restart writes on into the files of the run it goes on from.
+  output::WrittenPosition resume;
+  if (checkpoint_ != nullptr) resume = output::read_position(*checkpoint_);
   writer_ = std::make_unique<output::ResultWriter>(
-      directory, deck_.name,
+      directory_, deck_.name,
       output::MeshView{rows ? &mesh.x_ref : &model_.mesh.x_ref,
                        rows ? &mesh.connectivity : &model_.mesh.connectivity,
                        rows ? &mesh.element_part : &model_.mesh.element_part, &mesh.element_nodes},
       deck_.output.fields, history_groups,
       // steps 0, every, 2 every, ..., the last, and one more a stop may write
-      static_cast<std::size_t>(clock_->planned_steps() / std::max(deck_.output.every, 1) + 3), distribution);
+      static_cast<std::size_t>(clock_->planned_steps() / std::max(deck_.output.every, 1) + 3), distribution,
+      checkpoint_ != nullptr ? &resume : nullptr, first_step_);
   writer_->write_in_background(deck_.output.background);
 }
 
@@ -257,6 +164,11 @@ void TimeLoop::set_initial_state(NodalVectors initial_velocity) {
 TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output::RunSummary& summary)
     : deck_(deck), controls_(controls), summary_(summary) {
   NodalVectors initial_velocity = set_up(controls, summary);
+  directory_ = controls.output_directory.empty() ? deck_.output.directory : controls.output_directory;
+  if (controls.restart)
+    open_checkpoint(controls);    // checked before any file is touched
+  else if (controls.comm.root())  // a new run: checkpoints of an earlier one are not its own
+    for (const auto& [step, path] : list_checkpoints(directory_, deck_.name)) std::filesystem::remove(path);
   open_writer(controls);
   set_initial_state(std::move(initial_velocity));
   step_writer_ = std::make_unique<StepWriter>(*writer_, model_, d_);
@@ -274,12 +186,14 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
       });
   side_by_side_ =
       !contact_.empty() && max_threads() > 1 && element_pass_threaded && !controls.comm.distributed();
+  if (checkpoint_ != nullptr) restore_checkpoint();
 }
 
 // One step n, in the order of the algorithm.
 void TimeLoop::run() {
   loop_watch_ = Stopwatch();
-  for (state_.step = 0;; ++state_.step) {
+  for (state_.step = first_step_;; ++state_.step) {
+    step_started_ = run_watch_.seconds();
     begin_step();
     compute_forces();                // f_int(u^n), f_contact(x^n, v^{n-1/2})
     plan_time_step();                // dt^{n+1/2} from x^n
@@ -288,10 +202,14 @@ void TimeLoop::run() {
     write_output();                  // history row, fields of step n
     report_progress();
     if (last_) break;
-    if (stop_requested_ != 0)
+    if (stop_requested_ != 0 && controls_.comm.distributed())
       stop_run(std::string("interrupted by ") + (stop_requested_ == SIGINT ? "SIGINT" : "SIGTERM") + when() +
                "; the results up to this step are written");
-    update_positions();  // u^{n+1}, t^{n+1}
+    if (stop_requested_ != 0) stop_on_request(stop_requested_ == SIGINT ? "SIGINT" : "SIGTERM");
+    if (wall_limit_near()) stop_on_request("--wall-limit");
+    if (checkpoint_due()) save_checkpoint(writer_->position());  // step n, whole
+    update_positions();                                          // u^{n+1}, t^{n+1}
+    slowest_step_ = std::max(slowest_step_, run_watch_.seconds() - step_started_);
   }
   writer_->flush();
   summarise_ranks(d_, contact_, summary_.phase_seconds, summary_.mpi);
@@ -511,9 +429,11 @@ void TimeLoop::write_output() {
   if (state_.step % deck_.output.history_every == 0 || last_)
     writer_->add_history(history_row(), contact_history(contact_), force_rows());
   if (output_step_) {
+    const Stopwatch watch;
     step_writer_->write(state_, clock_->next());
     last_written_ = state_.step;
     warn_small_strain();
+    slowest_output_ = std::max(slowest_output_, watch.seconds());
   }
 }
 
@@ -570,8 +490,6 @@ void TimeLoop::step_back_and_stop(const std::string& message) {
   stop_run(message + " (the last finite state, step " + std::to_string(state_.step) + ", is written)");
 }
 
-}  // namespace
-
 output::RunSummary run_simulation(const input::Deck& deck, const RunControls& controls) {
   Stopwatch total_watch;
   output::RunSummary summary;
@@ -589,9 +507,23 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
     if (controls.comm.root()) output::write_summary(summary_path, summary);
   };
   summary.warnings = input::deck_warnings(deck);
+  if (controls.comm.distributed()) {  // checkpoints are one process's (docs/output.md, "Checkpoints")
+    if (controls.wall_limit > 0.0)
+      throw InputError("--wall-limit: stopping with a checkpoint on many MPI ranks is not supported yet");
+    if (deck.checkpoint.enabled())
+      summary.warnings.push_back("checkpoint: restart checkpoints are not written on many MPI ranks yet");
+  }
   TimeLoop loop(deck, controls, summary);
   try {
     loop.run();
+  } catch (const RunStopped& stopped) {
+    loop.flush();
+    summary.status = "stopped";
+    summary.message = stopped.what();
+    summary.steps = stopped.step();
+    summary.wall_seconds = total_watch.seconds();
+    write_summary();
+    throw;
   } catch (const RunFailure& failure) {
     loop.flush();
     summary.status = "failed";

@@ -69,6 +69,12 @@ std::string StepClock::plan(long step, const Decomposition& d, element::CurrentS
   return {};
 }
 
+void StepClock::restore(const Saved& s) {
+  time_ = s.time, previous_ = s.previous, next_ = s.next, first_ = s.first, smallest_ = s.smallest,
+  uncut_ = s.uncut;
+  if (follows_) planned_ = std::max(1L, long(std::ceil(end_time_ / first_ - 1e-9)));
+}
+
 void StepClock::advance(long step) {
   if (!follows_) {
     time_ = double(step + 1) * next_;  // t^n = n dt: the bits of a fixed step

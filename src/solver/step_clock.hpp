@@ -47,6 +47,15 @@ class StepClock {
   // t^{n+1} = t^n + dt^{n+1/2}.
   void advance(long step);
 
+  // What a checkpoint keeps of the clock (checkpoint.cpp), and putting it back: with a
+  // step that follows the deformation, the steps planned to end_time (which a restart
+  // may change) are counted again from the first step, as at step 0.
+  struct Saved {
+    double time = 0.0, previous = 0.0, next = 0.0, first = 0.0, smallest = 0.0, uncut = 0.0;
+  };
+  Saved saved() const { return {time_, previous_, next_, first_, smallest_, uncut_}; }
+  void restore(const Saved& s);
+
  private:
   double end_time_ = 0.0, courant_ = 0.0, min_ratio_ = 0.0;
   double fixed_part_ = 0.0;  // the stable step of the small-strain blocks, s (no Courant)

@@ -36,6 +36,8 @@ const BadDeck bad_decks[] = {
     {"mesh_with_elements.yaml", "parts[0].elements", 8, "elements does not apply to a mesh part"},
     {"wrong_type_density.yaml", "materials.steel.density", 4, "expected a number > 0, got heavy"},
     {"missing_time.yaml", "time", 2, "missing required key 'time'"},
+    {"checkpoint_without_rule.yaml", "checkpoint", 13, "give every (steps) or every_seconds"},
+    {"checkpoint_every_zero.yaml", "checkpoint.every", 12, "expected an integer >= 1 (steps), got 0"},
     {"unknown_key_typo.yaml", "materials.steel.densty", 4, "unknown key 'densty'; did you mean 'density'?"},
     {"negative_density.yaml", "materials.steel.density", 4, "expected a number > 0, got -7800"},
     {"poissons_ratio_half.yaml", "materials.steel.poissons_ratio", 4,

@@ -216,3 +216,43 @@ TEST(DeckWarnings, ContactOnAPartThatCanFailIsWarnedAbout) {
 
 }  // namespace
 }  // namespace exdyn::input
+
+namespace exdyn::input {
+namespace {
+
+// A checkpoint's deck against the deck a restart reads (docs/output.md, "Checkpoints").
+TEST(RestartDifference, OnlyEndTimeOutputAndCheckpointMayChange) {
+  const Deck deck = read_deck(testing::test_deck_path("decks/plate_impact.yaml"));
+  const std::string saved = to_yaml(deck);
+  EXPECT_EQ(restart_difference(saved, deck), "");
+  Deck further = deck;
+  further.time.end_time *= 2.0;
+  further.output.every = 7;
+  further.output.fields = {OutputField::displacement};
+  further.checkpoint = {10, 0.0, 3};
+  EXPECT_EQ(restart_difference(saved, further), "");
+  Deck other = deck;
+  other.materials[0].youngs_modulus *= 1.0 + 1e-15;  // the last bits count
+  EXPECT_NE(restart_difference(saved, other).find("materials." + other.materials[0].name + ".youngs_modulus"),
+            std::string::npos)
+      << restart_difference(saved, other);
+  other = deck;
+  other.time.courant = 0.5;
+  EXPECT_EQ(restart_difference(saved, other).rfind("time.courant (the checkpoint's ", 0), 0u)
+      << restart_difference(saved, other);
+  other = deck;
+  other.parts.push_back(other.parts[0]);
+  other.parts.back().name = "extra";
+  EXPECT_EQ(restart_difference(saved, other).rfind("parts", 0), 0u) << restart_difference(saved, other);
+}
+
+TEST(ToYaml, CheckpointRoundTripsAndIsLeftOutWhenNone) {
+  Deck deck = read_deck(testing::test_deck_path("decks/plate_impact.yaml"));
+  EXPECT_FALSE(contains(to_yaml(deck), "checkpoint:"));
+  deck.checkpoint = {100, 600.0, 3};
+  EXPECT_EQ(round_trip(deck), deck) << to_yaml(deck);
+  EXPECT_TRUE(contains(to_yaml(deck), "checkpoint:\n  every: 100\n  every_seconds: 600\n  keep: 3\n"));
+}
+
+}  // namespace
+}  // namespace exdyn::input

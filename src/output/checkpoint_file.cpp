@@ -1,0 +1,252 @@
+// A restart checkpoint on disk (checkpoint_file.hpp).
+#include "output/checkpoint_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include "common/errors.hpp"
+
+namespace exdyn::output {
+
+namespace {
+
+constexpr char head_magic[8] = {'E', 'X', 'D', 'Y', 'N', 'C', 'K', 'P'};
+constexpr char tail_magic[8] = {'E', 'X', 'D', 'Y', 'N', 'E', 'N', 'D'};
+constexpr std::size_t trailer_size = 8 + 3 * 8;
+constexpr std::size_t max_name = 256;
+
+inline std::uint64_t rotl(std::uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
+
+// The lane step: a bijection of x for a fixed word w (xor, multiply by an odd number,
+// rotate), so a change of any word of a lane reaches its final value.
+inline std::uint64_t mix(std::uint64_t x, std::uint64_t w) {
+  return rotl((x ^ w) * 0x9e3779b97f4a7c15ULL, 29);
+}
+
+std::uint64_t load_word(const unsigned char* p) {
+  std::uint64_t w;
+  std::memcpy(&w, p, 8);
+  return w;
+}
+
+std::string system_error(const std::string& what, const std::string& path) {
+  return what + " " + path + ": " + std::strerror(errno);
+}
+
+}  // namespace
+
+std::uint64_t hash_bytes(const void* data, std::size_t n) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  std::array<std::uint64_t, 4> lane{0x243f6a8885a308d3ULL, 0x13198a2e03707344ULL, 0xa4093822299f31d0ULL,
+                                    0x082efa98ec4e6c89ULL};
+  std::size_t i = 0;
+  for (; i + 32 <= n; i += 32)
+    for (std::size_t k = 0; k < 4; ++k) lane[k] = mix(lane[k], load_word(p + i + 8 * k));
+  // The tail, padded with zeros, then the length: a zero tail and a shorter one differ.
+  unsigned char tail[32] = {};
+  if (n > i) std::memcpy(tail, p + i, n - i);
+  for (std::size_t k = 0; k < 4; ++k) lane[k] = mix(lane[k], load_word(tail + 8 * k));
+  std::uint64_t h = std::uint64_t(n);
+  for (std::size_t k = 0; k < 4; ++k) h = mix(h, lane[k]);
+  return h ^ (h >> 31);
+}
+
+// ---------------------------------------------------------------------------
+
+CheckpointWriter::CheckpointWriter(std::string path) : path_(std::move(path)), temporary_(path_ + ".tmp") {
+  file_ = std::fopen(temporary_.c_str(), "wb");
+  if (file_ == nullptr) throw std::runtime_error(system_error("cannot create the checkpoint", temporary_));
+  put(head_magic, sizeof head_magic);
+  put(&checkpoint_format, sizeof checkpoint_format);
+}
+
+CheckpointWriter::~CheckpointWriter() {
+  if (file_ == nullptr) return;
+  std::fclose(file_);
+  std::remove(temporary_.c_str());
+}
+
+void CheckpointWriter::put(const void* data, std::size_t bytes) {
+  if (bytes > 0 && std::fwrite(data, 1, bytes, file_) != bytes)
+    throw std::runtime_error(system_error("cannot write the checkpoint", temporary_));
+  length_ += bytes;
+}
+
+void CheckpointWriter::add(std::string_view name, const void* data, std::size_t bytes) {
+  if (name.empty() || name.size() > max_name) throw std::logic_error("checkpoint section name of bad length");
+  const std::uint32_t name_length = std::uint32_t(name.size());
+  const std::uint64_t length = bytes, hash = hash_bytes(data, bytes);
+  put(&name_length, sizeof name_length);
+  put(name.data(), name.size());
+  put(&length, sizeof length);
+  put(&hash, sizeof hash);
+  put(data, bytes);
+  const auto* n = reinterpret_cast<const unsigned char*>(name.data());
+  headers_.insert(headers_.end(), n, n + name.size());
+  for (const std::uint64_t v : {length, hash}) {
+    const auto* b = reinterpret_cast<const unsigned char*>(&v);
+    headers_.insert(headers_.end(), b, b + 8);
+  }
+  ++sections_;
+}
+
+void CheckpointWriter::commit() {
+  const std::uint64_t total = length_ + trailer_size, hash = hash_bytes(headers_.data(), headers_.size());
+  put(tail_magic, sizeof tail_magic);
+  put(&sections_, sizeof sections_);
+  put(&total, sizeof total);
+  put(&hash, sizeof hash);
+  // On disk before it takes the name: a machine lost right after the rename keeps a whole file.
+  if (std::fflush(file_) != 0 || ::fdatasync(fileno(file_)) != 0)
+    throw std::runtime_error(system_error("cannot write the checkpoint", temporary_));
+  const int closed = std::fclose(file_);
+  file_ = nullptr;
+  if (closed != 0) {
+    std::remove(temporary_.c_str());
+    throw std::runtime_error(system_error("cannot write the checkpoint", temporary_));
+  }
+  if (std::rename(temporary_.c_str(), path_.c_str()) != 0) {
+    const std::string message = system_error("cannot rename the checkpoint to", path_);
+    std::remove(temporary_.c_str());
+    throw std::runtime_error(message);
+  }
+}
+
+// ---------------------------------------------------------------------------
+
+CheckpointReader::CheckpointReader(const std::string& path) : path_(path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw InputError("cannot read the checkpoint " + path + ": " + std::strerror(errno));
+  const std::streamoff size = in.tellg();
+  data_.resize(std::size_t(std::max<std::streamoff>(size, 0)));
+  in.seekg(0);
+  if (!data_.empty() && !in.read(reinterpret_cast<char*>(data_.data()), size))
+    throw InputError("cannot read the checkpoint " + path);
+  parse();
+}
+
+CheckpointReader::CheckpointReader(std::vector<unsigned char> bytes, std::string path)
+    : path_(std::move(path)), data_(std::move(bytes)) {
+  parse();
+}
+
+void CheckpointReader::fail(const std::string& what) const {
+  throw InputError("the checkpoint " + path_ + " " + what);
+}
+
+void CheckpointReader::parse() {
+  const std::size_t n = data_.size();
+  const unsigned char* p = data_.data();
+  if (n < sizeof head_magic + 4 + trailer_size || std::memcmp(p, head_magic, sizeof head_magic) != 0)
+    fail("is not an exdyn checkpoint (or is truncated to " + std::to_string(n) + " bytes)");
+  std::uint32_t format = 0;
+  std::memcpy(&format, p + 8, 4);
+  if (format != checkpoint_format)
+    fail("has format " + std::to_string(format) + "; this exdyn reads format " +
+         std::to_string(checkpoint_format));
+  const unsigned char* trailer = p + n - trailer_size;
+  std::uint64_t count = 0, total = 0, headers_hash = 0;
+  std::memcpy(&count, trailer + 8, 8);
+  std::memcpy(&total, trailer + 16, 8);
+  std::memcpy(&headers_hash, trailer + 24, 8);
+  if (std::memcmp(trailer, tail_magic, sizeof tail_magic) != 0 || total != n)
+    fail("is truncated or damaged: its end is not a checkpoint's end (" + std::to_string(n) + " bytes)");
+  std::vector<unsigned char> headers;
+  std::size_t at = 12;
+  const std::size_t end = n - trailer_size;
+  for (std::uint64_t s = 0; s < count; ++s) {
+    std::uint32_t name_length = 0;
+    std::uint64_t length = 0, hash = 0;
+    if (end - at < 4) fail("is damaged: section " + std::to_string(s) + " runs past the end");
+    std::memcpy(&name_length, p + at, 4);
+    at += 4;
+    if (name_length == 0 || name_length > max_name || end - at < std::size_t(name_length) + 16)
+      fail("is damaged: section " + std::to_string(s) + " has a bad header");
+    const std::string_view name(reinterpret_cast<const char*>(p + at), name_length);
+    at += name_length;
+    std::memcpy(&length, p + at, 8);
+    std::memcpy(&hash, p + at + 8, 8);
+    at += 16;
+    if (length > end - at) fail("is damaged: section '" + std::string(name) + "' runs past the end");
+    if (hash_bytes(p + at, std::size_t(length)) != hash)
+      fail("is damaged: section '" + std::string(name) + "' does not match its checksum");
+    headers.insert(headers.end(), name.begin(), name.end());
+    for (const std::uint64_t v : {length, hash}) {
+      const auto* b = reinterpret_cast<const unsigned char*>(&v);
+      headers.insert(headers.end(), b, b + 8);
+    }
+    if (!sections_.emplace(std::string(name), std::string_view(reinterpret_cast<const char*>(p + at), length))
+             .second)
+      fail("is damaged: section '" + std::string(name) + "' appears twice");
+    at += std::size_t(length);
+  }
+  if (at != end || hash_bytes(headers.data(), headers.size()) != headers_hash)
+    fail("is damaged: its sections do not match the checksum of its end");
+}
+
+std::string_view CheckpointReader::bytes(std::string_view name) const {
+  const auto found = sections_.find(name);
+  if (found == sections_.end()) fail("has no section '" + std::string(name) + "'");
+  return found->second;
+}
+
+void CheckpointReader::check_length(std::string_view name, std::size_t bytes, std::size_t size,
+                                    long expected) const {
+  if (bytes % size != 0 || (expected >= 0 && bytes != std::size_t(expected) * size))
+    fail("section '" + std::string(name) + "' has " + std::to_string(bytes) + " bytes, not " +
+         (expected >= 0 ? std::to_string(expected) : std::string("a whole number of")) + " values of " +
+         std::to_string(size) + " bytes: another model's checkpoint");
+}
+
+// ---------------------------------------------------------------------------
+
+// The field sets as longs: from_step, count, the fields' numbers, per set.
+void add_position(CheckpointWriter& file, const WrittenPosition& position) {
+  std::vector<long> sets;
+  for (const FieldSet& set : position.field_sets) {
+    sets.push_back(set.from_step);
+    sets.push_back(long(set.fields.size()));
+    for (const input::OutputField field : set.fields) sets.push_back(long(field));
+  }
+  file.add("output/steps", position.steps);
+  file.add("output/times", position.times);
+  file.add_value("output/history_rows", position.history_rows);
+  file.add("output/field_sets", sets);
+}
+
+WrittenPosition read_position(const CheckpointReader& file) {
+  const auto bad = [&](const std::string& what) {
+    return InputError("the checkpoint " + file.path() + " holds " + what);
+  };
+  WrittenPosition position;
+  position.steps = file.values<long>("output/steps");
+  position.times = file.values<double>("output/times", long(position.steps.size()));
+  position.history_rows = file.value<std::uint64_t>("output/history_rows");
+  for (std::size_t k = 1; k < position.steps.size(); ++k)
+    if (!(position.steps[k] > position.steps[k - 1]) || !(position.times[k] > position.times[k - 1]))
+      throw bad("written steps out of order");
+  if (!position.steps.empty() && position.steps[0] < 0) throw bad("a negative step");
+  const std::vector<long> sets = file.values<long>("output/field_sets");
+  for (std::size_t k = 0; k + 1 < sets.size();) {
+    FieldSet set{sets[k], {}};
+    const long count = sets[k + 1];
+    k += 2;
+    if (count < 0 || std::size_t(count) > sets.size() - k) throw bad("a bad list of output fields");
+    for (long f = 0; f < count; ++f, ++k) {
+      if (sets[k] < 0 || std::size_t(sets[k]) >= input::all_output_fields.size())
+        throw bad("an unknown output field");
+      set.fields.push_back(input::OutputField(sets[k]));
+    }
+    position.field_sets.push_back(std::move(set));
+  }
+  if (position.field_sets.empty()) throw bad("no output fields");
+  return position;
+}
+
+}  // namespace exdyn::output

@@ -1,0 +1,163 @@
+// What a checkpoint holds of the model's state (checkpoint_state.hpp). Scratch that a
+// step writes before it reads it (the projections of this step, the scatter's slots,
+// the bucket grid, the per-chunk sums) is not saved.
+#include "solver/checkpoint_state.hpp"
+
+#include "contact/mortar_pass.hpp"
+
+namespace exdyn::solver {
+
+namespace {
+
+std::string at(const std::string& prefix, std::size_t k) { return prefix + std::to_string(k) + "/"; }
+
+template <class Archive>
+void visit_pass(Archive& a, const std::string& p, contact::ContactSurfaces& s, contact::ContactPassState& t) {
+  // The surface as erosion has left it (opened_faces.hpp).
+  a(p + "segment_live", s.segment_live);
+  a(p + "point_live", s.point_live);
+  a(p + "edges", s.edges);
+  a(p + "edge_neighbours", s.edge_neighbours);
+  // The candidates of the last search and what decides the next (contact_pass.hpp).
+  a(p + "built", t.built);
+  a(p + "rebuilds", t.rebuilds);
+  a(p + "candidates", t.candidates);
+  a(p + "point_begin", t.point_begin);
+  a(p + "previous_xi", t.previous_xi);
+  a(p + "moving_at_build", t.moving_at_build);
+  a(p + "anchors", t.anchors);
+  a(p + "contacts", t.contacts);
+  a(p + "admitted", t.admitted);
+  a(p + "last_segment", t.last_segment);
+  a(p + "exposure_offset", t.exposure_offset);
+  // This step's forces and figures, which the history and the summary read.
+  a(p + "force_magnitude", t.force_magnitude);
+  a(p + "point_force", t.point_force);
+  a(p + "pair_stiffness", t.pair_stiffness);
+  a(p + "tangential_force", t.tangential_force);
+  a(p + "dissipation", t.dissipation);
+  a(p + "slave_force", t.slave_force);
+  a(p + "slave_normal_force", t.slave_normal_force);
+  a(p + "slave_tangential_force", t.slave_tangential_force);
+  a(p + "max_penetration", t.max_penetration);
+  a(p + "normal_force_sum", t.normal_force_sum);
+  a(p + "tangential_force_sum", t.tangential_force_sum);
+  a(p + "points_in_contact", t.points_in_contact);
+  a(p + "slipping", t.slipping);
+  a(p + "sticking", t.sticking);
+  a(p + "friction_work", t.friction_work);
+  // Mortar (mortar_pass.hpp): the segment pairs of the last search and the pieces of the
+  // last step, whose friction anchors the next step's points of the same piece take.
+  contact::MortarState& m = t.mortar;
+  a(p + "mortar/pairs", m.pairs);
+  a(p + "mortar/pair_begin", m.pair_begin);
+  a(p + "mortar/centres", m.centres);
+  a(p + "mortar/identity", m.identity);
+  a(p + "mortar/previous_identity", m.previous_identity);
+  a(p + "mortar/previous_anchors", m.previous_anchors);
+}
+
+}  // namespace
+
+template <class Archive>
+void visit_blocks(Archive& a, const std::vector<element::ElementBlock>& blocks) {
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const std::string p = at("block", b);
+    element::MaterialState& m = blocks[b].material_state;
+    a(p + "points", m.points);
+    a(p + "committed", m.committed);
+    a(p + "hourglass", m.hourglass);
+    a(p + "plastic_strain", m.plastic_strain);
+    a(p + "dt", m.dt);
+    element::ElementFailure& f = blocks[b].failure;
+    a(p + "status", f.status);
+    a(p + "damage", f.damage);
+    a(p + "failure_plastic_strain", f.plastic_strain);
+    a(p + "any_not_alive", f.any_not_alive);
+    a(p + "distorted", f.distorted);
+    a(p + "held", f.held);
+  }
+}
+
+template <class Archive>
+void visit_contact(Archive& a, ContactModel& contact) {
+  for (std::size_t k = 0; k < contact.pairs.size(); ++k) {
+    ContactPair& pair = contact.pairs[k];
+    const std::string p = at("pair", k);
+    a(p + "statistics", pair.statistics);
+    a(p + "seconds", pair.seconds);
+    a(p + "max_force", pair.max_force);
+    a(p + "peak_normal_force_sum", pair.peak_normal_force_sum);
+    a(p + "points_in_contact_at_peak", pair.points_in_contact_at_peak);
+    for (std::size_t q = 0; q < pair.passes.size(); ++q)
+      visit_pass(a, at(p + "pass", q), pair.passes[q], pair.states[q]);
+  }
+  for (std::size_t k = 0; k < contact.walls.size(); ++k) {
+    RigidWall& wall = contact.walls[k];
+    contact::WallState& s = wall.state;
+    const std::string p = at("wall", k);
+    a(p + "statistics", wall.statistics);
+    a(p + "seconds", wall.seconds);
+    a(p + "max_force", wall.max_force);
+    a(p + "anchors", s.anchors);
+    a(p + "anchored", s.anchored);
+    a(p + "point_force", s.point_force);
+    a(p + "dissipation", s.dissipation);
+    a(p + "stiffness", s.stiffness);
+    a(p + "force", s.force);
+    a(p + "normal_force", s.normal_force);
+    a(p + "tangential_force", s.tangential_force);
+    a(p + "previous_force", s.previous_force);
+    a(p + "max_penetration", s.max_penetration);
+    a(p + "slipping", s.slipping);
+    a(p + "sticking", s.sticking);
+    a(p + "friction_work", s.friction_work);
+  }
+}
+
+template <class Archive>
+void visit_state(Archive& a, State& s) {
+  a("state/step", s.step);
+  a("state/time", s.time);
+  a("state/displacement", s.displacement);
+  a("state/velocity", s.velocity);
+  a("state/flags", s.flags);
+  a("state/acceleration", s.acceleration);
+  a("state/internal_force", s.internal_force);
+  a("state/contact_force", s.contact_force);
+  a("state/previous_contact_force", s.previous_contact_force);
+  a("state/load_force", s.load_force);
+  a("state/gap", s.gap);
+  a("state/previous_gap", s.previous_gap);
+  a("state/stress", s.stress);
+  a("state/plastic_strain", s.plastic_strain);
+  a("state/damage", s.damage);
+  a("state/status", s.status);
+  a("state/eroded_energy", s.eroded_energy);
+  a("state/eroded_elements", s.eroded_elements);
+  a("state/stress_step", s.stress_step);
+  a("state/force_step", s.force_step);
+  a("state/internal_force_zero", s.internal_force_zero);
+  a("state/contact_energy", s.contact_energy);
+  a("state/external_work", s.external_work);
+  a("state/wall_work", s.wall_work);
+  a("state/reaction", s.reaction);
+  a("state/previous_reaction", s.previous_reaction);
+  a("state/reaction_error", s.reaction_error);
+}
+
+void finish_loading_contact(ContactModel& contact) {
+  for (ContactPair& pair : contact.pairs)
+    for (std::size_t q = 0; q < pair.passes.size(); ++q)
+      if (pair.passes[q].mortar && pair.states[q].built)
+        contact::set_mortar_view_segments(pair.passes[q], pair.states[q].mortar);
+}
+
+template void visit_blocks(StateSaver&, const std::vector<element::ElementBlock>&);
+template void visit_blocks(const StateLoader&, const std::vector<element::ElementBlock>&);
+template void visit_contact(StateSaver&, ContactModel&);
+template void visit_contact(const StateLoader&, ContactModel&);
+template void visit_state(StateSaver&, State&);
+template void visit_state(const StateLoader&, State&);
+
+}  // namespace exdyn::solver

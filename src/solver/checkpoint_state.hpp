@@ -1,0 +1,88 @@
+// What a checkpoint holds of the model's state (docs/output.md, "Checkpoints"): every
+// value a step reads that an earlier step wrote. One list per object, walked by a
+// saver (to a checkpoint) and by a loader (from one), so the two cannot disagree.
+// A value is saved as it is in memory (the point states in the packs of the element
+// kernels' instruction set: a restart runs the same set, checkpoint.cpp).
+#pragma once
+
+#include <array>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "common/nodal_vectors.hpp"
+#include "model/contact_setup.hpp"
+#include "model/model.hpp"
+#include "output/checkpoint_file.hpp"
+#include "solver/step_passes.hpp"
+
+namespace exdyn::solver {
+
+// Writes each value as a section named by its path.
+struct StateSaver {
+  output::CheckpointWriter& file;
+
+  template <class T>
+  void operator()(const std::string& name, const std::vector<T>& values) {
+    file.add(name, values);
+  }
+  void operator()(const std::string& name, const NodalVectors& v) {
+    for (int c = 0; c < 3; ++c) file.add(name + "." + char('x' + c), v.component(c));
+  }
+  template <class T, std::size_t N>
+  void operator()(const std::string& name, const std::array<std::vector<T>, N>& arrays) {
+    for (std::size_t k = 0; k < N; ++k) file.add(name + "[" + std::to_string(k) + "]", arrays[k]);
+  }
+  template <class T, class = std::enable_if_t<std::is_trivially_copyable_v<T>>>
+  void operator()(const std::string& name, const T& value) {
+    file.add_value(name, value);
+  }
+};
+
+// Reads each value back. A vector of the size it has is read into its own storage
+// (the element blocks keep pointers into some); nodal vectors must have the model's size.
+struct StateLoader {
+  const output::CheckpointReader& file;
+
+  template <class T>
+  void operator()(const std::string& name, std::vector<T>& values) const {
+    std::vector<T> read = file.values<T>(name);
+    if (read.size() == values.size())
+      std::copy(read.begin(), read.end(), values.begin());
+    else
+      values = std::move(read);
+  }
+  void operator()(const std::string& name, NodalVectors& v) const {
+    const long size = v.size() > 0 ? long(v.size()) : -1;
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> read = file.values<double>(name + "." + char('x' + c), size);
+      if (size < 0)
+        v.component(c) = std::move(read);
+      else
+        std::copy(read.begin(), read.end(), v.component(c).begin());
+    }
+  }
+  template <class T, std::size_t N>
+  void operator()(const std::string& name, std::array<std::vector<T>, N>& arrays) const {
+    for (std::size_t k = 0; k < N; ++k) (*this)(name + "[" + std::to_string(k) + "]", arrays[k]);
+  }
+  template <class T, class = std::enable_if_t<std::is_trivially_copyable_v<T>>>
+  void operator()(const std::string& name, T& value) const {
+    value = file.value<T>(name);
+  }
+};
+
+// The point states, damage and erosion of every block.
+template <class Archive>
+void visit_blocks(Archive& archive, const std::vector<element::ElementBlock>& blocks);
+// The pairs' and walls' search, friction and erosion state and their run figures.
+template <class Archive>
+void visit_contact(Archive& archive, ContactModel& contact);
+// The nodal fields, element fields and accumulators of the time loop's State.
+template <class Archive>
+void visit_state(Archive& archive, State& state);
+// After loading: what a pass's last search set beside its saved state (a mortar pass's
+// view of its segments).
+void finish_loading_contact(ContactModel& contact);
+
+}  // namespace exdyn::solver
