@@ -159,7 +159,7 @@ void TimeLoop::open_checkpoint(const RunControls& controls) {
 void TimeLoop::restore_checkpoint() {
   const output::CheckpointReader& file = *checkpoint_;
   const StateLoader loader{file};
-  visit_state(loader, state_);
+  visit_state(loader, state_, contact_.nodes);
   visit_blocks(loader, model_.blocks);
   visit_contact(loader, contact_);
   finish_loading_contact(contact_);
@@ -208,7 +208,7 @@ void TimeLoop::save_checkpoint(const output::WrittenPosition& position) {
     file.add_value("mesh", mesh_hash(model_.mesh));
     file.add_value("next_step", next_step);
     StateSaver saver{file};
-    visit_state(saver, state_);
+    visit_state(saver, state_, contact_.nodes);
     visit_blocks(saver, model_.blocks);
     visit_contact(saver, contact_);
     visit_loop(saver);

@@ -3,6 +3,9 @@
 // the bucket grid, the per-chunk sums) is not saved.
 #include "solver/checkpoint_state.hpp"
 
+#include <type_traits>
+
+#include "common/errors.hpp"
 #include "contact/mortar_pass.hpp"
 
 namespace exdyn::solver {
@@ -55,6 +58,27 @@ void visit_pass(Archive& a, const std::string& p, contact::ContactSurfaces& s, c
   a(p + "mortar/identity", m.identity);
   a(p + "mortar/previous_identity", m.previous_identity);
   a(p + "mortar/previous_anchors", m.previous_anchors);
+}
+
+// The values of `full` at the nodes `at`: a contact array's, whose other nodes keep what
+// set_initial_state gave them (0, or m g with loads) for the whole run.
+template <class Archive>
+void visit_at(Archive& a, const std::string& name, std::vector<double>& full,
+              const std::vector<std::uint32_t>& at) {
+  std::vector<double> values(at.size());
+  if constexpr (std::is_same_v<Archive, StateSaver>) {
+    for (std::size_t i = 0; i < at.size(); ++i) values[i] = full[at[i]];
+    a(name, values);
+  } else {
+    a(name, values);
+    if (values.size() != at.size()) throw InputError("the checkpoint's " + name + " is of another contact");
+    for (std::size_t i = 0; i < at.size(); ++i) full[at[i]] = values[i];
+  }
+}
+
+template <class Archive>
+void visit_at(Archive& a, const std::string& name, NodalVectors& full, const std::vector<std::uint32_t>& at) {
+  for (int c = 0; c < 3; ++c) visit_at(a, name + "." + char('x' + c), full.component(c), at);
 }
 
 }  // namespace
@@ -115,20 +139,21 @@ void visit_contact(Archive& a, ContactModel& contact) {
   }
 }
 
+// a^n and f_int(u^n) are not saved: whatever reads them next computes them first
+// (compute_accelerations, forces_of_this_step); the restored f_int is cleared by the
+// next element pass (internal_force_zero false).
 template <class Archive>
-void visit_state(Archive& a, State& s) {
+void visit_state(Archive& a, State& s, const std::vector<std::uint32_t>& contact_nodes) {
   a("state/step", s.step);
   a("state/time", s.time);
   a("state/displacement", s.displacement);
   a("state/velocity", s.velocity);
   a("state/flags", s.flags);
-  a("state/acceleration", s.acceleration);
-  a("state/internal_force", s.internal_force);
-  a("state/contact_force", s.contact_force);
-  a("state/previous_contact_force", s.previous_contact_force);
+  visit_at(a, "state/contact_force", s.contact_force, contact_nodes);
+  visit_at(a, "state/previous_contact_force", s.previous_contact_force, contact_nodes);
   a("state/load_force", s.load_force);
-  a("state/gap", s.gap);
-  a("state/previous_gap", s.previous_gap);
+  visit_at(a, "state/gap", s.gap, contact_nodes);
+  visit_at(a, "state/previous_gap", s.previous_gap, contact_nodes);
   a("state/stress", s.stress);
   a("state/plastic_strain", s.plastic_strain);
   a("state/damage", s.damage);
@@ -137,7 +162,7 @@ void visit_state(Archive& a, State& s) {
   a("state/eroded_elements", s.eroded_elements);
   a("state/stress_step", s.stress_step);
   a("state/force_step", s.force_step);
-  a("state/internal_force_zero", s.internal_force_zero);
+  if constexpr (!std::is_same_v<Archive, StateSaver>) s.internal_force_zero = false;
   a("state/contact_energy", s.contact_energy);
   a("state/external_work", s.external_work);
   a("state/wall_work", s.wall_work);
@@ -157,7 +182,7 @@ template void visit_blocks(StateSaver&, const std::vector<element::ElementBlock>
 template void visit_blocks(const StateLoader&, const std::vector<element::ElementBlock>&);
 template void visit_contact(StateSaver&, ContactModel&);
 template void visit_contact(const StateLoader&, ContactModel&);
-template void visit_state(StateSaver&, State&);
-template void visit_state(const StateLoader&, State&);
+template void visit_state(StateSaver&, State&, const std::vector<std::uint32_t>&);
+template void visit_state(const StateLoader&, State&, const std::vector<std::uint32_t>&);
 
 }  // namespace exdyn::solver

@@ -78,9 +78,10 @@ void visit_blocks(Archive& archive, const std::vector<element::ElementBlock>& bl
 // The pairs' and walls' search, friction and erosion state and their run figures.
 template <class Archive>
 void visit_contact(Archive& archive, ContactModel& contact);
-// The nodal fields, element fields and accumulators of the time loop's State.
+// The nodal fields, element fields and accumulators of the time loop's State; the
+// contact's arrays at contact_nodes only (ContactModel::nodes).
 template <class Archive>
-void visit_state(Archive& archive, State& state);
+void visit_state(Archive& archive, State& state, const std::vector<std::uint32_t>& contact_nodes);
 // After loading: what a pass's last search set beside its saved state (a mortar pass's
 // view of its segments).
 void finish_loading_contact(ContactModel& contact);
