@@ -188,10 +188,17 @@ TEST_P(ACWhoseSlotCloses, AsOneSurfaceGivesThePairsFields) {
   EXPECT_GT(mine.points_in_contact_at_peak, 0);
 }
 
-// 20-node bricks to 24 us: 8 us after the first touch (a hex20 step is a fifth of a hex8 one).
+// 20-node bricks to 24 us: 8 us after the first touch (a hex20 step is a fifth of a hex8
+// one). The sanitizer build, about 10 times slower, runs them to 18 us: the same paths,
+// 2 us of contact.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr const char* hex20_slot_end = "1.8e-5";
+#else
+constexpr const char* hex20_slot_end = "2.4e-5";
+#endif
 const std::vector<Override> hex20_slot{{"parts[0].mesh.file", "meshes/c_slot_hex20.msh"},
                                        {"parts[0].formulation", "hex20"},
-                                       {"time.end_time", "2.4e-5"}};
+                                       {"time.end_time", hex20_slot_end}};
 
 INSTANTIATE_TEST_SUITE_P(CSlot, ACWhoseSlotCloses,
                          ::testing::Values(SlotCase{"hex8_nodes", {}},
