@@ -121,9 +121,13 @@ void CheckpointWriter::commit() {
 // ---------------------------------------------------------------------------
 
 CheckpointReader::CheckpointReader(const std::string& path) : path_(path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw InputError("the checkpoint " + path + " is not a file");
   std::ifstream in(path, std::ios::binary | std::ios::ate);
   if (!in) throw InputError("cannot read the checkpoint " + path + ": " + std::strerror(errno));
   const std::streamoff size = in.tellg();
+  if (size < 0) throw InputError("cannot read the checkpoint " + path);
   data_.resize(std::size_t(std::max<std::streamoff>(size, 0)));
   in.seekg(0);
   if (!data_.empty() && !in.read(reinterpret_cast<char*>(data_.data()), size))

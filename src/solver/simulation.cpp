@@ -514,23 +514,22 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
       summary.warnings.push_back("checkpoint: restart checkpoints are not written on many MPI ranks yet");
   }
   TimeLoop loop(deck, controls, summary);
+  // A run that ends early: its files flushed, then the summary that says why.
+  const auto end_early = [&](const char* status, const std::exception& why, long step) {
+    loop.flush();
+    summary.status = status;
+    summary.message = why.what();
+    summary.steps = step;
+    summary.wall_seconds = total_watch.seconds();
+    write_summary();
+  };
   try {
     loop.run();
   } catch (const RunStopped& stopped) {
-    loop.flush();
-    summary.status = "stopped";
-    summary.message = stopped.what();
-    summary.steps = stopped.step();
-    summary.wall_seconds = total_watch.seconds();
-    write_summary();
+    end_early("stopped", stopped, stopped.step());
     throw;
   } catch (const RunFailure& failure) {
-    loop.flush();
-    summary.status = "failed";
-    summary.message = failure.what();
-    summary.steps = failure.step();
-    summary.wall_seconds = total_watch.seconds();
-    write_summary();
+    end_early("failed", failure, failure.step());
     throw;
   }
   summary.wall_seconds = total_watch.seconds();

@@ -96,6 +96,7 @@ TEST_F(CheckpointFileTest, TheMessageNamesTheFileAndTheFault) {
     EXPECT_NE(std::string(error.what()).find("checksum"), std::string::npos) << error.what();
   }
   EXPECT_THROW(CheckpointReader((directory_ / "none.restart").string()), InputError);
+  EXPECT_THROW(CheckpointReader(directory_.string()), InputError);  // a directory, not a file
 }
 
 // The hash's tail and length: inputs that differ only past a multiple of 32 bytes, or
