@@ -3,14 +3,15 @@
 "Checkpoints"): its size and wall time, for the plate impact at 20,000 and at 1.28 M
 bricks and for the punch-through.
 
-    /usr/bin/python3 scripts/checkpoint_cost.py --exdyn PATH [--threads N] [--repeats R] [--cases a,b]
+    /usr/bin/python3 scripts/checkpoint_cost.py --exdyn PATH [--threads N] [--ranks R] [--repeats R] [--cases a,b]
 
 Each case runs a few steps with a checkpoint and a field output every K steps (the
 output written on the time loop's thread, output.background: false, so its time is the
 write's); the checkpoint's time and size come from NAME.json (`checkpoints`), the field
 output's from `phase_seconds.output` over the steps written and the size of one step
 group of NAME.h5. Prints a Markdown table; the overhead of a checkpoint every 10 minutes
-is its time over 600 s.
+is its time over 600 s. --ranks R: under `mpirun -n R` (each rank --threads threads; the
+checkpoint gathered to rank 0, which writes it).
 """
 
 import argparse
@@ -34,9 +35,12 @@ CASES = {
 }
 
 
-def one_run(exdyn, deck, sets, threads, work):
+def one_run(exdyn, deck, sets, threads, work, ranks=0):
     out = tempfile.mkdtemp(dir=work)
-    cmd = [exdyn, "run", os.path.join(ROOT, "input", deck + ".yaml"), "--quiet", "--output", out, "--threads",
+    cmd = []
+    if ranks > 0:
+        cmd = ["mpirun", "-n", str(ranks), "--oversubscribe"] + (["--allow-run-as-root"] if os.geteuid() == 0 else [])
+    cmd += [exdyn, "run", os.path.join(ROOT, "input", deck + ".yaml"), "--quiet", "--output", out, "--threads",
            str(threads), "--set", "output.background=false", "--set", "checkpoint.keep=1"]
     for s in sets:
         cmd += ["--set", s]
@@ -63,6 +67,7 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--exdyn", required=True)
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--ranks", type=int, default=0)
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--cases", default=",".join(CASES))
     args = parser.parse_args()
@@ -73,7 +78,7 @@ def main():
     try:
         for name in args.cases.split(","):
             deck, sets = CASES[name]
-            runs = [one_run(args.exdyn, deck, sets, args.threads, work) for _ in range(args.repeats)]
+            runs = [one_run(args.exdyn, deck, sets, args.threads, work, args.ranks) for _ in range(args.repeats)]
             m = {k: statistics.median(r[k] for r in runs) for k in runs[0]}
             print(f"| {name} | {m['elements']:,.0f} | {m['checkpoint_bytes'] / 1e6:.1f} | "
                   f"{m['checkpoint_seconds']:.3f} ({min(r['checkpoint_seconds'] for r in runs):.3f}-"

@@ -21,7 +21,14 @@
 - two passes on two mirror-image cylinders stay mirror images to 1e-12 on 2 and 3 ranks;
 - the guards stop every rank with the message of one rank: an unstable run and an
   inverted element (exit 1, the same message as one process, the file readable);
-- SIGTERM to mpirun: the step is finished, written, and the run stops (exit 1);
+- restarts on another number of ranks: a run on 1, 2 or 3 ranks writes checkpoints, a
+  restart from one on 2, 3 or 1 ranks writes on, and every field of every step is one
+  process's bits (the plates 1 -> 2, 2 -> 3, 3 -> 1; quadrature points, friction on curved
+  segments, plasticity with folds, a single surface, a wall, a scattered mesh, erosion and
+  the faces it opens); a mortar deck refuses --restart and --wall-limit on many ranks;
+- SIGTERM to mpirun: the step is finished, written with a checkpoint, and the run stops
+  ("stopped", the ranks exit 3); --restart on 3 ranks gives one process's bits; so does
+  --wall-limit (exit 3) with a restart on one;
 - SIGKILL of one rank at random moments: the file still opens, every listed step the
   same bits as the one-process run's;
 - ParaView opens a result written by 3 ranks;
@@ -33,8 +40,9 @@
   scripts/test_mpi.py --exdyn build/release/src/app/exdyn [--quick]
 
 --quick (the sanitizer build): seven equal-fields cases (each kind of traffic once) and two
-partition cases, on shorter runs and on 3 ranks alone; the guards and the start errors; no
-mirror images, no kills.
+partition cases, on shorter runs and on 3 ranks alone; the guards and the start errors; two
+restarts (the plates 2 -> 3, the punch-through 3 -> 2) and the mortar refusals; no mirror
+images, no kills.
 Exit 0 when every check passes.
 """
 import argparse
@@ -91,12 +99,18 @@ def environment(ranks, threads):
     unloaded) at MPI_Finalize. Address and undefined-behaviour errors are still reported.
     More threads than cores in all: OpenMP's threads sleep while they wait
     (OMP_WAIT_POLICY=passive) instead of spinning on the cores the others need (3 ranks
-    x 2 threads on 2 cores: 16.6 s against 24.6 s for the Hertz ball to 3 us). The same bits."""
+    x 2 threads on 2 cores: 16.6 s against 24.6 s for the Hertz ball to 3 us). More ranks
+    than cores: a rank that waits in MPI yields its core (OMPI_MCA_mpi_yield_when_idle)
+    instead of polling (3 ranks x 1 thread beside one busy core: the plates 18.3 s against
+    46.7 s, the Hertz ball to 3 us 10.4 s against 24.3 s; with 2 ranks polling is faster:
+    the plates 1.6 s against 10.0 s). The same bits."""
     env = dict(os.environ)
     if ranks > 0:
         env["ASAN_OPTIONS"] = (env.get("ASAN_OPTIONS", "") + ":detect_leaks=0").lstrip(":")
     if max(ranks, 1) * threads > (os.cpu_count() or 1):
         env.setdefault("OMP_WAIT_POLICY", "passive")
+    if ranks > (os.cpu_count() or 1):
+        env.setdefault("OMPI_MCA_mpi_yield_when_idle", "1")
     return env
 
 
@@ -140,8 +154,9 @@ def compare(reference, other):
     return True, worst, ""
 
 
-def test_equal_fields(exdyn, work, quick):
-    cases = [("plate_impact", []),
+def field_cases(quick):
+    """(deck, sets[, label]) of the equal-fields cases."""
+    return [("plate_impact", []),
              ("contact_patch_hex20", ["time.end_time=3.0e-7"] if quick else []),
              # 8- and 20-node elements in one mesh: the mixed topology written in pieces; the
              # 20-node part graded: each rank's part takes the whole block's 16 groups of
@@ -213,6 +228,10 @@ def test_equal_fields(exdyn, work, quick):
              # crushed beside its rim eroded by the corner checks' marks
              ("perforation", ["parts[1].elements=[16, 16, 4]", "parts[0].elements=[4, 2, 16]",
                               "time.end_time=4.0e-5", "output.every=40"], "distortion_erosion")]
+
+
+def test_equal_fields(exdyn, work, quick):
+    cases = field_cases(quick)
     # Two chunks: two ranks at most. Surfaces that follow erosion: set up whole.
     two_ranks = ("eroding_column", "eroding_column_hex20")
     whole_setup = ("punch_through", "eroding_column", "eroding_column_hex20", "distortion_erosion")
@@ -368,10 +387,75 @@ def wait_for_step(proc, xmf, step, timeout=300.0):
     return False
 
 
+# Restarts on another number of ranks (docs/output.md, "Checkpoints"): (label of an
+# equal-fields case, ranks of the run that writes the checkpoints, ranks of the restart).
+RESTARTS = [("plate_impact", 1, 2), ("plate_impact", 2, 3), ("plate_impact", 3, 1),
+            ("contact_patch_hex20", 3, 2),  # quadrature points on 8-node segments
+            ("block_on_rail", 2, 3),  # friction anchors on curved segments, gravity
+            ("taylor_rods", 3, 1),  # plasticity, finite strain, contact at folds
+            ("plates_one_surface", 1, 3),  # a single surface: corners, neighbours, exposure offsets
+            ("oblique_impact", 2, 3),  # a rigid wall with friction
+            ("plate_impact_hex20_gmsh", 3, 2),  # a mesh scattered by rank 0
+            ("eroding_bar", 3, 2),  # erosion, the reactions' sums
+            ("punch_through", 2, 3)]  # faces erosion opens, set up whole
+QUICK_RESTARTS = [("plate_impact", 2, 3), ("punch_through", 3, 2)]
+
+
+def test_restarts(exdyn, work, quick):
+    """A run on R1 ranks writes two checkpoints (every 2/5 of its steps); a restart from the
+    first on R2 ranks writes on into its files: every field of every step is one process's
+    (the equal-fields case's reference), the history to 1e-12, the contact figures equal."""
+    cases = {(c[2] if len(c) > 2 else c[0]): c for c in field_cases(quick)}
+    for label, before, after in QUICK_RESTARTS if quick else RESTARTS:
+        deck, sets = cases[label][0], cases[label][1]
+        reference = os.path.join(work, f"{label}_1")
+        if not os.path.exists(os.path.join(reference, deck + ".json")):
+            check(f"restart {label}: the one-process reference exists", False)
+            continue
+        one = summary(reference, deck)
+        every = max(1, one["steps"] * 2 // 5)
+        out = os.path.join(work, f"{label}_restart_{before}_{after}")
+        checkpointing = list(sets) + [f"checkpoint={{every: {every}, keep: 100}}"]
+        code, text = run(exdyn, deck, out, before if before > 1 else 0, 1, checkpointing)
+        found = sorted(f for f in os.listdir(out) if f.endswith(".restart")) if os.path.isdir(out) else []
+        if not check(f"restart {label}: {before} rank(s) write checkpoints every {every} steps",
+                     code == 0 and len(found) >= 2, text[-600:] + str(found)):
+            continue
+        code, text = run(exdyn, deck, out, after if after > 1 else 0, 1, checkpointing,
+                         options=["--restart", os.path.join(out, found[0])])
+        if not check(f"restart {label}: {before} -> {after} rank(s) from step {every} runs", code == 0, text[-600:]):
+            continue
+        same, history, detail = compare(os.path.join(reference, deck + ".h5"), os.path.join(out, deck + ".h5"))
+        s = summary(out, deck)
+        check(f"restart {label}: {before} -> {after} rank(s): every field of every step the bits of one process, "
+              f"the history to 1e-12 ({history:.1e})", same and history <= 1e-12
+              and s.get("restart", {}).get("from_step") == every, detail)
+        check(f"restart {label}: {before} -> {after} rank(s): the contact figures of one process",
+              all(s["contact"][k] == one["contact"][k] for k in ("projections", "mean_iterations", "max_iterations",
+                                                                  "not_converged", "saddle_points",
+                                                                  "max_penetration_over_h")),
+              f"{s['contact']} vs {one['contact']}")
+    # Mortar pieces are not gathered: a mortar deck on many ranks refuses --wall-limit and
+    # --restart, and a deck's checkpoint key gives a warning.
+    deck, sets = cases["mortar_patch"][0], cases["mortar_patch"][1]
+    out = os.path.join(work, "mortar_checkpoint")
+    code, text = run(exdyn, deck, out, 2, 1, list(sets) + ["checkpoint={every: 50}"])
+    warned = code == 0 and any("mortar" in w for w in summary(out, deck).get("warnings", []))
+    check("mortar on 2 ranks: checkpoint gives a warning and no checkpoint", warned and not any(
+        f.endswith(".restart") for f in os.listdir(out)), text[-400:])
+    for option in (["--wall-limit", "100"], ["--restart"]):
+        code, text = run(exdyn, deck, out, 2, 1, sets, options=option)
+        check(f"mortar on 2 ranks: {option[0]} refused (exit 2, the reason named)",
+              code == 2 and "mortar" in text, text[-400:])
+
+
 LONG = ["time.end_time=4.0e-5", "output.every=16"]  # plate_impact: about 77,000 steps
 
 
 def test_sigterm(exdyn, work, reference_dir):
+    """SIGTERM to mpirun: every rank finishes the step, writes a checkpoint and the step, and
+    stops (the ranks exit 3; mpirun, signalled itself, exits non-zero); --restart on 3
+    ranks to the reference's end gives one process's bits."""
     out = os.path.join(work, "term")
     proc = subprocess.Popen(command(exdyn, "plate_impact", out, 2, 1, LONG), stdout=subprocess.PIPE,
                             stderr=subprocess.STDOUT, text=True, env=environment(2, 1))
@@ -379,14 +463,33 @@ def test_sigterm(exdyn, work, reference_dir):
     proc.send_signal(signal.SIGTERM)
     text, _ = proc.communicate(timeout=300)
     check("SIGTERM to mpirun: the run had started", started)
-    match = re.search(r"interrupted by SIGTERM at step (\d+)", text)
-    check("SIGTERM: exit 1, 'interrupted by SIGTERM at step N'", proc.returncode == 1 and match, text[-600:])
-    if match:
-        step = int(match.group(1))
-        steps = xmf_steps(os.path.join(out, "plate_impact.xmf"))
-        check(f"SIGTERM: step {step} is the last written", steps and steps[-1] == step, str(steps[-3:]))
-        with h5py.File(os.path.join(out, "plate_impact.h5"), "r") as f:
-            check("SIGTERM: the file opens with every step", len(f["steps"]) == len(steps))
+    match = re.search(r"stopped by SIGTERM after step (\d+)", text)
+    check("SIGTERM: exit non-zero, 'stopped by SIGTERM after step N', the checkpoint written",
+          proc.returncode != 0 and match and summary(out, "plate_impact")["status"] == "stopped"
+          and any(f.endswith(".restart") for f in os.listdir(out)), text[-600:])
+    if not match:
+        return
+    step = int(match.group(1))
+    steps = xmf_steps(os.path.join(out, "plate_impact.xmf"))
+    check(f"SIGTERM: step {step} is the last written", steps and steps[-1] == step, str(steps[-3:]))
+    with h5py.File(os.path.join(out, "plate_impact.h5"), "r") as f:
+        check("SIGTERM: the file opens with every step", len(f["steps"]) == len(steps))
+    code, text = run(exdyn, "plate_impact", out, 3, 1, LONG + ["time.end_time=2.0e-6"], options=["--restart"])
+    same, history, detail = (compare(os.path.join(reference_dir, "plate_impact.h5"),
+                                     os.path.join(out, "plate_impact.h5")) if code == 0 else (False, 0, text[-600:]))
+    check(f"SIGTERM: --restart on 3 ranks to 2 us: one process's bits, the history to 1e-12 ({history:.1e})",
+          same and history <= 1e-12, detail)
+    # --wall-limit on many ranks: agreed by all, exit 3 through mpirun, then the same bits.
+    out = os.path.join(work, "wall_limit")
+    started = time.time()
+    code, text = run(exdyn, "plate_impact", out, 2, 1, LONG, options=["--wall-limit", "4"])
+    check(f"--wall-limit 4 on 2 ranks: exit 3 after {time.time() - started:.1f} s with a checkpoint",
+          code == 3 and "stopped by --wall-limit" in text, text[-600:])
+    code, text = run(exdyn, "plate_impact", out, 0, 1, LONG + ["time.end_time=2.0e-6"], options=["--restart"])
+    same, history, detail = (compare(os.path.join(reference_dir, "plate_impact.h5"),
+                                     os.path.join(out, "plate_impact.h5")) if code == 0 else (False, 0, text[-600:]))
+    check(f"--wall-limit: --restart on 1 rank to 2 us: one process's bits ({history:.1e})",
+          same and history <= 1e-12, detail)
 
 
 def test_kills(exdyn, work, reference_dir, kills, rng):
@@ -500,6 +603,7 @@ def main():
         timed(test_equal_fields, args.exdyn, work, args.quick)
         timed(test_partitions, args.exdyn, work, args.quick)
         timed(test_guards, args.exdyn, work)
+        timed(test_restarts, args.exdyn, work, args.quick)
         if not args.quick:
             timed(test_mirror, args.exdyn, work)
             reference = os.path.join(work, "long")

@@ -105,4 +105,13 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
                   const NodalVectors& x_ref, const std::vector<double>& mass, const NodalVectors& u,
                   const NodalVectors& v);
 
+// A restart (checkpoint_ranks.cpp): the view made of the own segments and the segments
+// `needed` (whole-pass indices, ascending: every segment the pass's state names) from
+// the ranks that own them, with the store and the ghost links; the state, whose
+// segments are whole-pass indices, is renumbered to the view. Collective over dc.comm.
+void restore_view(DistributedContact& dc, PassShare& share, const std::vector<std::uint32_t>& needed,
+                  contact::ContactPassState& state, const std::vector<std::uint32_t>& global_node,
+                  const NodalVectors& x_ref, const std::vector<double>& mass, const NodalVectors& u,
+                  const NodalVectors& v);
+
 }  // namespace exdyn::solver::shares

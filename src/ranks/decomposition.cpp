@@ -167,6 +167,10 @@ void cut_blocks(const WholeModel& w, Model& m, Decomposition& d) {
     local.nodes_per_element = part.nodes_per_element;
     local.elements = part.elements;
   }
+  for (const element::ElementBlock& block : global.blocks) {
+    d.block_first_element.push_back(block.first_element);
+    d.block_elements.push_back(block.count);
+  }
   std::vector<std::vector<std::uint32_t>> my_chunks(blocks);
   w.for_each_chunk([&](std::size_t b, std::size_t c, int rank, int) {
     if (rank == w.me) my_chunks[b].push_back(std::uint32_t(c));

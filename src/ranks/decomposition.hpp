@@ -103,6 +103,9 @@ struct Decomposition {
   std::vector<std::uint32_t> global_node;     // local node -> global node, ascending
   std::vector<std::uint32_t> global_element;  // local element -> global element
   std::vector<std::uint8_t> owned;            // per local node: 1 if this rank owns it
+  // The whole model's blocks (one per part; a local block's is its elements' part): the
+  // first global element and the elements of each (a checkpoint's chunks).
+  std::vector<std::uint32_t> block_first_element, block_elements;
 
   // The force exchange of each block, per colour step k = 0 .. colours (the last:
   // the totals): the running sums received before colour k's waiting chunks, the

@@ -81,6 +81,45 @@ NodePayload payload_of(const ContactStore& store, std::uint32_t g) {
   return n;
 }
 
+// Own segments to other ranks: segment i to rank r where send(r, i), with its nodes
+// that rank does not hold. Collective over dc.comm.
+template <class Send>
+GhostExchange send_segments(DistributedContact& dc, const PassShare& share, const Send& send) {
+  const auto ranks = std::size_t(dc.comm.size);
+  std::vector<std::vector<SegmentPayload>> segments_out(ranks);
+  GhostExchange x;
+  x.nodes_out.resize(ranks);
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (int(r) == dc.comm.rank) continue;
+    std::vector<std::uint32_t> sent;  // global ids
+    for (std::size_t i = 0; i < share.own.segments.size(); ++i) {
+      if (!send(r, i) || !own_segment_on(share, i)) continue;
+      const contact::SegmentNodes& s = share.own.segments[i];
+      segments_out[r].push_back({share.segment_ids[i], s,
+                                 share.own.edges.empty() ? contact::SegmentEdges{} : share.own.edges[i],
+                                 share.own.mortar ? share.own.master_area_per_mass[i] : 0.0});
+      if (share.own.single_surface) {
+        segments_out[r].back().first_part = share.own.first_part_segment[i];
+        segments_out[r].back().neighbours = share.own.edge_neighbours[i];
+        if (!share.own.segment_face.empty()) segments_out[r].back().face = share.own.segment_face[i];
+      }
+      for (int k = 0; k < contact::node_count(s.type); ++k) {
+        const std::uint32_t g = s.nodes[std::size_t(k)];
+        const std::vector<int>& h = dc.holders[index_in(dc.held, g)];
+        if (!std::binary_search(h.begin(), h.end(), int(r))) sent.push_back(g);
+      }
+    }
+    std::sort(sent.begin(), sent.end());
+    sent.erase(std::unique(sent.begin(), sent.end()), sent.end());
+    for (const std::uint32_t g : sent) x.nodes_out[r].push_back(payload_of(share.store, g));
+  }
+  for (const auto& from : all_to_all(dc, segments_out))
+    x.ghosts.insert(x.ghosts.end(), from.begin(), from.end());
+  x.nodes_in = all_to_all(dc, x.nodes_out);
+  std::sort(x.ghosts.begin(), x.ghosts.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+  return x;
+}
+
 // The box exchange: each own segment goes to every rank whose points' box its capture
 // box overlaps, with the nodes that rank does not hold. The segment boxes are the
 // bucket search's. Collective over dc.comm.
@@ -108,40 +147,11 @@ GhostExchange exchange_ghosts(DistributedContact& dc, const PassShare& share,
                                      store.x_ref.z[node] + store.u.z[node]};
       },
       own_in_store, settings.search_distance + settings.margin, own_boxes);
-  std::vector<std::vector<SegmentPayload>> segments_out(ranks);
-  GhostExchange x;
-  x.nodes_out.resize(ranks);
-  for (std::size_t r = 0; r < ranks; ++r) {
-    if (int(r) == dc.comm.rank) continue;
+  return send_segments(dc, share, [&](std::size_t r, std::size_t i) {
     const contact::Box theirs{{boxes[6 * r], boxes[6 * r + 1], boxes[6 * r + 2]},
                               {boxes[6 * r + 3], boxes[6 * r + 4], boxes[6 * r + 5]}};
-    std::vector<std::uint32_t> sent;  // global ids
-    for (std::size_t i = 0; i < own_boxes.size(); ++i) {
-      if (!overlap(own_boxes[i], theirs) || !own_segment_on(share, i)) continue;
-      const contact::SegmentNodes& s = share.own.segments[i];
-      segments_out[r].push_back({share.segment_ids[i], s,
-                                 share.own.edges.empty() ? contact::SegmentEdges{} : share.own.edges[i],
-                                 share.own.mortar ? share.own.master_area_per_mass[i] : 0.0});
-      if (share.own.single_surface) {
-        segments_out[r].back().first_part = share.own.first_part_segment[i];
-        segments_out[r].back().neighbours = share.own.edge_neighbours[i];
-        if (!share.own.segment_face.empty()) segments_out[r].back().face = share.own.segment_face[i];
-      }
-      for (int k = 0; k < contact::node_count(s.type); ++k) {
-        const std::uint32_t g = s.nodes[std::size_t(k)];
-        const std::vector<int>& h = dc.holders[index_in(dc.held, g)];
-        if (!std::binary_search(h.begin(), h.end(), int(r))) sent.push_back(g);
-      }
-    }
-    std::sort(sent.begin(), sent.end());
-    sent.erase(std::unique(sent.begin(), sent.end()), sent.end());
-    for (const std::uint32_t g : sent) x.nodes_out[r].push_back(payload_of(store, g));
-  }
-  for (const auto& from : all_to_all(dc, segments_out))
-    x.ghosts.insert(x.ghosts.end(), from.begin(), from.end());
-  x.nodes_in = all_to_all(dc, x.nodes_out);
-  std::sort(x.ghosts.begin(), x.ghosts.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
-  return x;
+    return overlap(own_boxes[i], theirs);
+  });
 }
 
 // The new view's segments: own and ghost, by index in the whole pass (global node ids).
@@ -369,6 +379,30 @@ void search_again(DistributedContact& dc, PassShare& share, const contact::Conta
   if (!share.whole.segment_element.empty()) apply_life(share);
   share.opened = false;
   state.built = false;
+  share.ghost_segments = x.ghosts.size();
+  share.ghost_nodes = ghost_nodes;
+}
+
+void restore_view(DistributedContact& dc, PassShare& share, const std::vector<std::uint32_t>& needed,
+                  contact::ContactPassState& state, const std::vector<std::uint32_t>& global_node,
+                  const NodalVectors& x_ref, const std::vector<double>& mass, const NodalVectors& u,
+                  const NodalVectors& v) {
+  EXDYN_ASSERT(std::is_sorted(needed.begin(), needed.end()));
+  std::vector<std::vector<std::uint32_t>> asked(std::size_t(dc.comm.size), needed);
+  asked[std::size_t(dc.comm.rank)].clear();
+  const std::vector<std::vector<std::uint32_t>> wanted = all_to_all(dc, asked);
+  const GhostExchange x = send_segments(dc, share, [&](std::size_t r, std::size_t i) {
+    return std::binary_search(wanted[r].begin(), wanted[r].end(), share.segment_ids[i]);
+  });
+  KnownSegments known = merge_known(share, x.ghosts);
+  const std::size_t ghost_nodes = fill_store(share.store, dc, x.ghosts, global_node, x_ref, mass, u, v);
+  link_ghosts(share, x, global_node);
+  // The state names its segments by their whole-pass index: the old view is the whole pass.
+  share.known.resize(needed.empty() ? 0 : std::size_t(needed.back()) + 1);
+  for (std::size_t k = 0; k < share.known.size(); ++k) share.known[k] = std::uint32_t(k);
+  renumber_state(share, std::move(known), state);
+  if (!share.whole.segment_element.empty()) apply_life(share);
+  share.opened = false;
   share.ghost_segments = x.ghosts.size();
   share.ghost_nodes = ghost_nodes;
 }

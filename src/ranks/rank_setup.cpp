@@ -296,6 +296,10 @@ RankSetup build_part(const input::Deck& deck, const mpi::Communicator& comm, con
   d.global_elements = deck_parts.elements;
   d.partitioning = partitioning;
   d.set_up_by_rank = true;
+  for (const SetupPart& part : deck_parts.list) {
+    d.block_first_element.push_back(part.first_element);
+    d.block_elements.push_back(part.element_count);
+  }
 
   const MyChunks mine = chunks_of_rank(deck_parts, chunks, comm.rank);
   const std::size_t entries = list_elements_and_nodes(deck_parts, mine, d);

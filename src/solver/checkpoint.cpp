@@ -19,6 +19,8 @@
 #include "common/isa.hpp"
 #include "common/version.hpp"
 #include "input/deck_reader.hpp"
+#include "ranks/contact_checkpoint.hpp"
+#include "solver/checkpoint_ranks.hpp"
 #include "solver/checkpoint_state.hpp"
 #include "solver/time_loop.hpp"
 
@@ -29,17 +31,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* suffix = ".restart";
-
-// The reference mesh a checkpoint was written for: its coordinates and connectivity
-// hashed, so a restart on a changed mesh file is refused.
-std::uint64_t mesh_hash(const mesh::Mesh& mesh) {
-  std::uint64_t h = output::hash_bytes(mesh.connectivity.data(), mesh.connectivity.size() * 4);
-  for (int c = 0; c < 3; ++c) {
-    const std::vector<double>& x = mesh.x_ref.component(c);
-    h = h * 31 + output::hash_bytes(x.data(), x.size() * sizeof(double));
-  }
-  return h;
-}
 
 std::string join_lines(const std::vector<std::string>& lines) {
   std::string text;
@@ -114,10 +105,9 @@ void TimeLoop::visit_loop(Archive& a) {
 }
 
 void TimeLoop::open_checkpoint(const RunControls& controls) {
-  if (controls.comm.distributed())
-    throw InputError(
-        "--restart: going on from a checkpoint on many MPI ranks is not supported yet; restart "
-        "without mpirun");
+  if (!can_checkpoint_.empty())
+    throw InputError("--restart: a run on many MPI ranks does not go on from a checkpoint where " +
+                     can_checkpoint_ + "; restart without mpirun");
   std::string path = controls.restart_file;
   if (path.empty()) {
     const auto found = list_checkpoints(directory_, deck_.name);
@@ -147,7 +137,7 @@ void TimeLoop::open_checkpoint(const RunControls& controls) {
   if (!difference.empty())
     throw InputError(refused + "is of another deck: " + difference +
                      "; a restart may change time.end_time, output and checkpoint only");
-  if (file.value<std::uint64_t>("mesh") != mesh_hash(model_.mesh))
+  if (file.value<std::uint64_t>("mesh") != whole_mesh_hash(model_, d_))
     throw InputError(refused + "is of another mesh (a mesh file changed since it was written)");
   const fs::path h5 = fs::path(directory_) / (deck_.name + ".h5");
   if (!fs::exists(h5))
@@ -159,10 +149,14 @@ void TimeLoop::open_checkpoint(const RunControls& controls) {
 void TimeLoop::restore_checkpoint() {
   const output::CheckpointReader& file = *checkpoint_;
   const StateLoader loader{file};
-  visit_state(loader, state_, contact_.nodes);
-  visit_blocks(loader, model_.blocks);
-  visit_contact(loader, contact_);
-  finish_loading_contact(contact_);
+  if (controls_.comm.distributed()) {
+    load_whole_state(file, state_, model_, d_, contact_);
+  } else {
+    visit_state(loader, state_, contact_.nodes);
+    visit_blocks(loader, model_.blocks);
+    visit_contact(loader, contact_);
+    finish_loading_contact(contact_);
+  }
   visit_loop(loader);
   clock_->restore(file.value<StepClock::Saved>("loop/clock"));
   summary_.dt_min = clock_->smallest();
@@ -175,9 +169,15 @@ void TimeLoop::restore_checkpoint() {
 
 bool TimeLoop::checkpoint_due() const {
   const input::CheckpointOptions& c = deck_.checkpoint;
-  if (!c.enabled() || controls_.comm.distributed()) return false;
+  if (!c.enabled() || !can_checkpoint_.empty()) return false;
   if (c.every > 0 && (state_.step + 1) % c.every == 0) return true;
-  return c.every_seconds > 0.0 && run_watch_.seconds() - last_checkpoint_wall_ >= c.every_seconds;
+  // On many ranks the clock's rule is agreed by all (update_velocities_and_energy).
+  return controls_.comm.distributed() ? checkpoint_by_clock_ : checkpoint_clock_due();
+}
+
+bool TimeLoop::checkpoint_clock_due() const {
+  const double every = deck_.checkpoint.every_seconds;
+  return every > 0.0 && run_watch_.seconds() - last_checkpoint_wall_ >= every;
 }
 
 // Near the limit: less time left than the slowest checkpoint, two of the slowest steps
@@ -200,29 +200,43 @@ void TimeLoop::save_checkpoint(const output::WrittenPosition& position) {
   const long next_step = state_.step + 1;
   const std::string path = checkpoint_path(directory_, deck_.name, next_step);
   ++summary_.checkpoints.written;
-  {
+  if (mesh_hash_ == 0) mesh_hash_ = whole_mesh_hash(model_, d_);
+  // On many ranks: the whole state on rank 0, which writes the file one process writes.
+  const bool ranks = controls_.comm.distributed();
+  WholeState whole;
+  if (ranks) whole = gather_whole_state(state_, model_, d_, contact_);
+  if (controls_.comm.root()) {
     output::CheckpointWriter file(path);
     file.add("exdyn_version", std::string_view(exdyn::version));
     file.add("isa", std::string_view(isa_name(selected_isa())));
     file.add("deck", input::to_yaml(deck_));
-    file.add_value("mesh", mesh_hash(model_.mesh));
+    file.add_value("mesh", mesh_hash_);
     file.add_value("next_step", next_step);
     StateSaver saver{file};
-    visit_state(saver, state_, contact_.nodes);
-    visit_blocks(saver, model_.blocks);
-    visit_contact(saver, contact_);
+    if (ranks) {
+      visit_state(saver, whole.state, whole.contact_nodes);
+      visit_blocks(saver, whole.blocks);
+      visit_contact(saver, whole.contact, &whole.keys);
+    } else {
+      visit_state(saver, state_, contact_.nodes);
+      visit_blocks(saver, model_.blocks);
+      visit_contact(saver, contact_);
+    }
     visit_loop(saver);
     file.add_value("loop/clock", clock_->saved());
     file.add("summary/warnings", join_lines(summary_.warnings));
     output::add_position(file, position);
     file.commit();
     summary_.checkpoints.bytes = double(file.bytes_written());
+    // The oldest beyond `keep` go once the new one is whole.
+    const auto found = list_checkpoints(directory_, deck_.name);
+    const std::size_t keep = std::size_t(std::max(deck_.checkpoint.keep, 1));
+    for (std::size_t k = 0; k + keep < found.size(); ++k)
+      if (found[k].second != path) std::remove(found[k].second.c_str());
   }
-  // The oldest beyond `keep` go once the new one is whole.
-  const auto found = list_checkpoints(directory_, deck_.name);
-  const std::size_t keep = std::size_t(std::max(deck_.checkpoint.keep, 1));
-  for (std::size_t k = 0; k + keep < found.size(); ++k)
-    if (found[k].second != path) std::remove(found[k].second.c_str());
+  if (ranks) {  // the file is whole before any rank goes on (a kill after it leaves it)
+    summary_.checkpoints.bytes = mpi::max(controls_.comm, summary_.checkpoints.bytes);
+  }
   const double seconds = watch.seconds();
   summary_.checkpoints.seconds += seconds;
   summary_.checkpoints.largest_seconds = std::max(summary_.checkpoints.largest_seconds, seconds);
@@ -238,6 +252,11 @@ void TimeLoop::save_checkpoint(const output::WrittenPosition& position) {
 void TimeLoop::stop_on_request(const std::string& why) {
   const long step = state_.step;
   const double time = state_.time;
+  if (!can_checkpoint_.empty())
+    stop_run("interrupted by " + why + when() +
+             "; the results up to this step are written (no checkpoint "
+             "on many MPI ranks where " +
+             can_checkpoint_ + ")");
   save_checkpoint(writer_->position());
   if (!output_step_) {
     ScopedTimer timer(summary_.phase_seconds.output);

@@ -75,13 +75,20 @@ struct StateLoader {
 // The point states, damage and erosion of every block.
 template <class Archive>
 void visit_blocks(Archive& archive, const std::vector<element::ElementBlock>& blocks);
-// The pairs' and walls' search, friction and erosion state and their run figures.
+// The pairs' and walls' search, friction and erosion state and their run figures, each
+// pass in one process's numbering (its slave points by ascending key, its segments by
+// their index in the whole pass). keys: each pair pass's point keys (distributed_contact.hpp),
+// given to save a pass made for the file on many ranks and read back; without, they
+// are the surfaces' own.
 template <class Archive>
-void visit_contact(Archive& archive, ContactModel& contact);
+void visit_contact(Archive& archive, ContactModel& contact,
+                   std::vector<std::vector<std::uint64_t>>* keys = nullptr);
 // The nodal fields, element fields and accumulators of the time loop's State; the
-// contact's arrays at contact_nodes only (ContactModel::nodes).
+// contact's arrays at contact_nodes only (ContactModel::nodes, ascending global ids,
+// saved with them). Loading, an empty contact_nodes takes the saved ones (a whole
+// state made for the file on many ranks, its arrays the whole model's size).
 template <class Archive>
-void visit_state(Archive& archive, State& state, const std::vector<std::uint32_t>& contact_nodes);
+void visit_state(Archive& archive, State& state, std::vector<std::uint32_t>& contact_nodes);
 // After loading: what a pass's last search set beside its saved state (a mortar pass's
 // view of its segments).
 void finish_loading_contact(ContactModel& contact);

@@ -31,6 +31,7 @@
 #include "model/contact_setup.hpp"
 #include "model/model.hpp"
 #include "output/result_writer.hpp"
+#include "ranks/contact_checkpoint.hpp"
 #include "ranks/ranks.hpp"
 #include "solver/nodal_update.hpp"
 #include "solver/step_clock.hpp"
@@ -165,6 +166,14 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
     : deck_(deck), controls_(controls), summary_(summary) {
   NodalVectors initial_velocity = set_up(controls, summary);
   directory_ = controls.output_directory.empty() ? deck_.output.directory : controls.output_directory;
+  if (controls.comm.distributed() && !checkpoint_supported(contact_, can_checkpoint_)) {
+    if (controls.wall_limit > 0.0)
+      throw InputError("--wall-limit: a run on many MPI ranks does not stop with a checkpoint where " +
+                       can_checkpoint_ + "; run it without mpirun");
+    if (deck_.checkpoint.enabled())
+      summary.warnings.push_back("checkpoint: no checkpoints are written on many MPI ranks where " +
+                                 can_checkpoint_);
+  }
   if (controls.restart)
     open_checkpoint(controls);    // checked before any file is touched
   else if (controls.comm.root())  // a new run: checkpoints of an earlier one are not its own
@@ -202,11 +211,11 @@ void TimeLoop::run() {
     write_output();                  // history row, fields of step n
     report_progress();
     if (last_) break;
-    if (stop_requested_ != 0 && controls_.comm.distributed())
-      stop_run(std::string("interrupted by ") + (stop_requested_ == SIGINT ? "SIGINT" : "SIGTERM") + when() +
-               "; the results up to this step are written");
-    if (stop_requested_ != 0) stop_on_request(stop_requested_ == SIGINT ? "SIGINT" : "SIGTERM");
-    if (wall_limit_near()) stop_on_request("--wall-limit");
+    if (stop_requested_ != 0)
+      stop_on_request(stop_requested_ == stop_at_wall_limit ? "--wall-limit"
+                      : stop_requested_ == SIGINT           ? "SIGINT"
+                                                            : "SIGTERM");
+    if (!controls_.comm.distributed() && wall_limit_near()) stop_on_request("--wall-limit");
     if (checkpoint_due()) save_checkpoint(writer_->position());  // step n, whole
     update_positions();                                          // u^{n+1}, t^{n+1}
     slowest_step_ = std::max(slowest_step_, run_watch_.seconds() - step_started_);
@@ -321,8 +330,17 @@ void TimeLoop::update_velocities_and_energy() {
     const NodalUpdate mine = update_velocities(model_, state_, clock_->velocity_step(state_.step),
                                                state_.step == 0, output_step_, nodal_update_);
     if (!state_.reaction.empty()) boundary_reaction_ = state_.reaction;
+    // On many ranks the wall limit is agreed with the signals: every rank stops at one step.
+    // So is a checkpoint by every_seconds: every rank writes it at the same step.
+    int signal = controls_.stop_signal != nullptr ? int(*controls_.stop_signal) : 0;
+    if (controls_.comm.distributed()) {
+      if (signal == 0 && wall_limit_near()) signal = stop_at_wall_limit;
+      if (signal == 0 && checkpoint_clock_due()) signal = checkpoint_by_clock;
+    }
     update_ = reduce_over_ranks(controls_.comm, mine, energy_, boundary_reaction_, state_.reaction_error,
-                                controls_.stop_signal, stop_requested_);
+                                signal, stop_requested_);
+    checkpoint_by_clock_ = stop_requested_ == checkpoint_by_clock;
+    if (checkpoint_by_clock_) stop_requested_ = 0;
     if (!update_.finite) step_back_and_stop(describe_non_finite(model_, d_, state_) + when());
     varying_step_.add(state_.step, clock_->previous(), clock_->next(), update_.old_power, update_.new_power);
     energy_.kinetic = update_.kinetic - varying_step_.correction;
@@ -507,12 +525,6 @@ output::RunSummary run_simulation(const input::Deck& deck, const RunControls& co
     if (controls.comm.root()) output::write_summary(summary_path, summary);
   };
   summary.warnings = input::deck_warnings(deck);
-  if (controls.comm.distributed()) {  // checkpoints are one process's (docs/output.md, "Checkpoints")
-    if (controls.wall_limit > 0.0)
-      throw InputError("--wall-limit: stopping with a checkpoint on many MPI ranks is not supported yet");
-    if (deck.checkpoint.enabled())
-      summary.warnings.push_back("checkpoint: restart checkpoints are not written on many MPI ranks yet");
-  }
   TimeLoop loop(deck, controls, summary);
   // A run that ends early: its files flushed, then the summary that says why.
   const auto end_early = [&](const char* status, const std::exception& why, long step) {

@@ -253,12 +253,11 @@ double prescribed_jump_energy(const Model& model, const mpi::Communicator& comm)
 
 // The figures of a step summed over the ranks, in rank order (the same bits on every
 // rank, so all take the same decisions): the nodal update's sums, the element
-// energies (in `energy`) and the stop signal any rank has seen. Identity on one rank.
+// energies (in `energy`) and the stop any rank asks for (the largest). Identity on one rank.
 NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update, Energies& energy,
                               std::vector<std::array<double, 3>>& reactions,
-                              const std::vector<std::array<double, 3>>& reaction_errors,
-                              const volatile std::sig_atomic_t* stop_signal, int& stop_requested) {
-  const int signal = stop_signal != nullptr ? int(*stop_signal) : 0;
+                              const std::vector<std::array<double, 3>>& reaction_errors, int signal,
+                              int& stop_requested) {
   if (!comm.distributed()) {
     stop_requested = signal;
     for (std::size_t b = 0; b < reactions.size(); ++b)

@@ -58,11 +58,17 @@ std::string small_strain_warning(const input::Deck& deck, const Model& model, co
 // over the ranks).
 double prescribed_jump_energy(const Model& model, const mpi::Communicator& comm);
 // The nodal update's sums, the element energies, the boundary reactions (in: this
-// rank's sums and their compensations, out: the whole) and the stop signal over the ranks.
+// rank's sums and their compensations, out: the whole) and the stop asked for on any
+// rank (`signal`: a signal's number, stop_at_wall_limit, or 0; the largest over the ranks).
 NodalUpdate reduce_over_ranks(const mpi::Communicator& comm, NodalUpdate update, Energies& energy,
                               std::vector<std::array<double, 3>>& reactions,
-                              const std::vector<std::array<double, 3>>& reaction_errors,
-                              const volatile std::sig_atomic_t* stop_signal, int& stop_requested);
+                              const std::vector<std::array<double, 3>>& reaction_errors, int signal,
+                              int& stop_requested);
+
+// What a rank asks for beside a signal (above every signal's number; the largest
+// wins): a checkpoint by checkpoint.every_seconds (no stop), a stop at --wall-limit.
+inline constexpr int checkpoint_by_clock = 512;
+inline constexpr int stop_at_wall_limit = 1024;
 // The exchanges' figures over the ranks and each rank's (mpi.per_rank; one process:
 // its memory and contact).
 void summarise_ranks(const Decomposition& d, const ContactModel& contact, const output::PhaseSeconds& phases,

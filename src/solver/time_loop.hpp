@@ -54,6 +54,7 @@ class TimeLoop {
   void open_checkpoint(const RunControls& controls);
   void restore_checkpoint();
   bool checkpoint_due() const;
+  bool checkpoint_clock_due() const;
   bool wall_limit_near() const;
   void save_checkpoint(const output::WrittenPosition& position);
   [[noreturn]] void stop_on_request(const std::string& why);
@@ -134,6 +135,12 @@ class TimeLoop {
   // at the last checkpoint, and the slowest checkpoint, step and field output so far (s), for
   // every_seconds and --wall-limit.
   std::string directory_;
+  // Empty where this run can write and read checkpoints, else why not (a mortar pass
+  // on many ranks); on many ranks, whether the ranks agreed that every_seconds has
+  // passed; the whole mesh's hash, once computed.
+  std::string can_checkpoint_;
+  bool checkpoint_by_clock_ = false;
+  std::uint64_t mesh_hash_ = 0;
   std::unique_ptr<output::CheckpointReader> checkpoint_;
   long first_step_ = 0;
   Stopwatch run_watch_;
