@@ -5,6 +5,9 @@ For tests that need a checkpoint the program must refuse (another version, a cha
 section) with every checksum right, and for looking inside one:
 
     /usr/bin/python3 scripts/checkpoint_file.py CHECKPOINT      # lists the sections
+
+A section written in pieces by the ranks of a run on many ranks (NAME#0, NAME#1, ...) is
+listed joined, as the program reads it.
 """
 
 import struct
@@ -61,6 +64,23 @@ def read(path):
     return sections
 
 
+def joined(sections):
+    """The sections as the program reads them: those written in pieces (NAME#0, NAME#1, ...:
+    a run on many ranks) joined into NAME, with the number of pieces of each."""
+    whole, pieces = {}, {}
+    for name, body in sections.items():
+        base, mark, k = name.rpartition("#")
+        if mark and k.isdigit():
+            pieces.setdefault(base, {})[int(k)] = body
+        else:
+            whole[name] = (body, 1)
+    for base, parts in pieces.items():
+        if sorted(parts) != list(range(len(parts))) or base in whole:
+            raise ValueError(f"section {base}: pieces {sorted(parts)[:8]} do not make it whole")
+        whole[base] = (b"".join(parts[k] for k in range(len(parts))), len(parts))
+    return whole
+
+
 def write(path, sections):
     """Writes sections (name -> bytes, in order) as a checkpoint with every checksum right."""
     out = bytearray(HEAD + struct.pack("<I", FORMAT))
@@ -77,6 +97,7 @@ def write(path, sections):
 
 
 if __name__ == "__main__":
-    for section, value in read(sys.argv[1]).items():
+    for section, (value, count) in joined(read(sys.argv[1])).items():
         shown = value.decode(errors="replace")[:60].replace("\n", " ") if section in ("exdyn_version", "isa") else ""
-        print(f"{section:45s} {len(value):12d} bytes {shown}")
+        written = f" in {count} pieces" if count > 1 else ""
+        print(f"{section:45s} {len(value):12d} bytes{written} {shown}")

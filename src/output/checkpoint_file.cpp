@@ -4,8 +4,10 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -59,7 +61,12 @@ std::uint64_t hash_bytes(const void* data, std::size_t n) {
 
 // ---------------------------------------------------------------------------
 
-CheckpointWriter::CheckpointWriter(std::string path) : path_(std::move(path)), temporary_(path_ + ".tmp") {
+CheckpointWriter::CheckpointWriter(std::string path, const mpi::Communicator& comm)
+    : path_(std::move(path)), temporary_(path_ + ".tmp"), comm_(comm) {
+  if (comm_.distributed()) {  // in memory until commit (the head is rank 0's)
+    if (comm_.root()) length_ = sizeof head_magic + sizeof checkpoint_format;
+    return;
+  }
   file_ = std::fopen(temporary_.c_str(), "wb");
   if (file_ == nullptr) throw std::runtime_error(system_error("cannot create the checkpoint", temporary_));
   put(head_magic, sizeof head_magic);
@@ -67,18 +74,46 @@ CheckpointWriter::CheckpointWriter(std::string path) : path_(std::move(path)), t
 }
 
 CheckpointWriter::~CheckpointWriter() {
+  if (comm_.distributed() && mine_ > 0 && comm_.root()) std::remove(temporary_.c_str());
   if (file_ == nullptr) return;
   std::fclose(file_);
   std::remove(temporary_.c_str());
 }
 
 void CheckpointWriter::put(const void* data, std::size_t bytes) {
+  if (comm_.distributed()) {  // a span of the region (one with the span before, if that is the region's too)
+    if (bytes == 0) return;
+    const auto* b = static_cast<const unsigned char*>(data);
+    if (!spans_.empty() && spans_.back().external == nullptr)
+      spans_.back().bytes += bytes;
+    else
+      spans_.push_back({nullptr, region_.size(), bytes});
+    region_.insert(region_.end(), b, b + bytes);
+    mine_ += bytes;
+    return;
+  }
   if (bytes > 0 && std::fwrite(data, 1, bytes, file_) != bytes)
     throw std::runtime_error(system_error("cannot write the checkpoint", temporary_));
   length_ += bytes;
 }
 
+void CheckpointWriter::add_view(std::string_view name, const void* data, std::size_t bytes) {
+  if (!comm_.distributed()) {
+    add(name, data, bytes);
+    return;
+  }
+  add_header(name, data, bytes);
+  if (bytes == 0) return;
+  spans_.push_back({static_cast<const unsigned char*>(data), 0, bytes});
+  mine_ += bytes;
+}
+
 void CheckpointWriter::add(std::string_view name, const void* data, std::size_t bytes) {
+  add_header(name, data, bytes);
+  put(data, bytes);
+}
+
+void CheckpointWriter::add_header(std::string_view name, const void* data, std::size_t bytes) {
   if (name.empty() || name.size() > max_name) throw std::logic_error("checkpoint section name of bad length");
   const std::uint32_t name_length = std::uint32_t(name.size());
   const std::uint64_t length = bytes, hash = hash_bytes(data, bytes);
@@ -86,7 +121,6 @@ void CheckpointWriter::add(std::string_view name, const void* data, std::size_t 
   put(name.data(), name.size());
   put(&length, sizeof length);
   put(&hash, sizeof hash);
-  put(data, bytes);
   const auto* n = reinterpret_cast<const unsigned char*>(name.data());
   headers_.insert(headers_.end(), n, n + name.size());
   for (const std::uint64_t v : {length, hash}) {
@@ -97,6 +131,10 @@ void CheckpointWriter::add(std::string_view name, const void* data, std::size_t 
 }
 
 void CheckpointWriter::commit() {
+  if (comm_.distributed()) {
+    commit_ranks();
+    return;
+  }
   const std::uint64_t total = length_ + trailer_size, hash = hash_bytes(headers_.data(), headers_.size());
   put(tail_magic, sizeof tail_magic);
   put(&sections_, sizeof sections_);
@@ -116,6 +154,100 @@ void CheckpointWriter::commit() {
     std::remove(temporary_.c_str());
     throw std::runtime_error(message);
   }
+}
+
+void CheckpointWriter::commit_ranks() {
+  const MPI_Comm comm = comm_.comm;
+  const auto ranks = std::size_t(comm_.size);
+  // Where each rank's sections go: after the head, rank after rank.
+  const std::uint64_t mine = mine_;
+  std::vector<std::uint64_t> sizes(ranks);
+  mpi::check(MPI_Allgather(&mine, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, comm),
+             "MPI_Allgather of the checkpoint's parts");
+  std::uint64_t at = sizeof head_magic + sizeof checkpoint_format, offset = 0;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    if (int(r) == comm_.rank) offset = at;
+    at += sizes[r];
+  }
+  const std::uint64_t total = at + trailer_size;
+  // Every rank's headers and section counts on rank 0, in file order, for the trailer.
+  const int header_bytes = int(headers_.size());
+  std::vector<int> counts(ranks), displacements(ranks, 0);
+  mpi::check(MPI_Gather(&header_bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm),
+             "MPI_Gather of the checkpoint's headers");
+  for (std::size_t r = 1; r < ranks; ++r) displacements[r] = displacements[r - 1] + counts[r - 1];
+  std::vector<unsigned char> headers(comm_.root() ? std::size_t(displacements.back() + counts.back()) : 0);
+  mpi::check(MPI_Gatherv(headers_.data(), header_bytes, MPI_BYTE, headers.data(), counts.data(),
+                         displacements.data(), MPI_BYTE, 0, comm),
+             "MPI_Gatherv of the checkpoint's headers");
+  std::uint64_t sections = 0;
+  mpi::check(MPI_Reduce(&sections_, &sections, 1, MPI_UINT64_T, MPI_SUM, 0, comm),
+             "MPI_Reduce of the checkpoint's sections");
+  if (comm_.root()) std::remove(temporary_.c_str());  // MPI_MODE_CREATE keeps an old file's bytes
+  mpi::check(MPI_Barrier(comm), "MPI_Barrier before the checkpoint");
+  MPI_File file;
+  if (MPI_File_open(comm, temporary_.c_str(), MPI_MODE_CREATE | MPI_MODE_WRONLY, MPI_INFO_NULL, &file) !=
+      MPI_SUCCESS)
+    throw std::runtime_error("cannot create the checkpoint " + temporary_ + " on every rank");
+  const auto write = [&](std::uint64_t where, const unsigned char* data, std::uint64_t bytes) {
+    constexpr std::uint64_t most = std::uint64_t(1) << 30;  // an int's count of bytes
+    for (std::uint64_t done = 0; done < bytes;) {
+      const std::uint64_t n = std::min(most, bytes - done);
+      if (MPI_File_write_at(file, MPI_Offset(where + done), data + done, int(n), MPI_BYTE,
+                            MPI_STATUS_IGNORE) != MPI_SUCCESS)
+        throw std::runtime_error("cannot write the checkpoint " + temporary_);
+      done += n;
+    }
+  };
+  // This rank's spans (its headers and copied sections in the region, the viewed
+  // sections where they lie) in one write: an hindexed type of their addresses.
+  std::vector<int> lengths;
+  std::vector<MPI_Aint> addresses;
+  for (const Span& span : spans_) {
+    const unsigned char* data = span.external != nullptr ? span.external : region_.data() + span.at;
+    constexpr std::uint64_t most = std::uint64_t(1) << 30;
+    for (std::uint64_t done = 0; done < span.bytes; done += most) {
+      MPI_Aint address;
+      MPI_Get_address(data + done, &address);
+      addresses.push_back(address);
+      lengths.push_back(int(std::min(most, span.bytes - done)));
+    }
+  }
+  MPI_Datatype spans;
+  MPI_Type_create_hindexed(int(lengths.size()), lengths.data(), addresses.data(), MPI_BYTE, &spans);
+  MPI_Type_commit(&spans);
+  const int written =
+      lengths.empty() ? MPI_SUCCESS
+                      : MPI_File_write_at(file, MPI_Offset(offset), MPI_BOTTOM, 1, spans, MPI_STATUS_IGNORE);
+  MPI_Type_free(&spans);
+  if (written != MPI_SUCCESS) throw std::runtime_error("cannot write the checkpoint " + temporary_);
+  if (comm_.root()) {
+    unsigned char head[sizeof head_magic + sizeof checkpoint_format];
+    std::memcpy(head, head_magic, sizeof head_magic);
+    std::memcpy(head + sizeof head_magic, &checkpoint_format, sizeof checkpoint_format);
+    write(0, head, sizeof head);
+    unsigned char trailer[trailer_size];
+    const std::uint64_t hash = hash_bytes(headers.data(), headers.size());
+    std::memcpy(trailer, tail_magic, sizeof tail_magic);
+    std::memcpy(trailer + 8, &sections, 8);
+    std::memcpy(trailer + 16, &total, 8);
+    std::memcpy(trailer + 24, &hash, 8);
+    write(total - trailer_size, trailer, trailer_size);
+  }
+  // On disk, from every rank, before it takes the name.
+  const bool synced = MPI_File_sync(file) == MPI_SUCCESS;
+  const bool closed = MPI_File_close(&file) == MPI_SUCCESS;
+  if (!synced || !closed) throw std::runtime_error("cannot write the checkpoint " + temporary_);
+  length_ = total;
+  region_ = {};
+  spans_.clear();
+  mine_ = 0;
+  if (comm_.root() && std::rename(temporary_.c_str(), path_.c_str()) != 0) {
+    const std::string message = system_error("cannot rename the checkpoint to", path_);
+    std::remove(temporary_.c_str());
+    throw std::runtime_error(message);
+  }
+  mpi::check(MPI_Barrier(comm), "MPI_Barrier after the checkpoint");  // the name is there for every rank
 }
 
 // ---------------------------------------------------------------------------
@@ -192,6 +324,38 @@ void CheckpointReader::parse() {
   }
   if (at != end || hash_bytes(headers.data(), headers.size()) != headers_hash)
     fail("is damaged: its sections do not match the checksum of its end");
+  join_pieces();
+}
+
+// Sections written in pieces (NAME#0, NAME#1, ...) joined into NAME, in the order of
+// their numbers, which must run from 0 without a gap.
+void CheckpointReader::join_pieces() {
+  std::map<std::string, std::map<std::uint64_t, std::string_view>> pieces;
+  for (auto it = sections_.begin(); it != sections_.end();) {
+    const std::size_t hash_at = it->first.rfind('#');
+    if (hash_at == std::string::npos) {
+      ++it;
+      continue;
+    }
+    const std::string base = it->first.substr(0, hash_at), digits = it->first.substr(hash_at + 1);
+    std::uint64_t k = 0;
+    const auto [end, status] = std::from_chars(digits.data(), digits.data() + digits.size(), k);
+    if (base.empty() || digits.empty() || status != std::errc() || end != digits.data() + digits.size())
+      fail("is damaged: section '" + it->first + "' is no piece of a section");
+    pieces[base][k] = it->second;
+    it = sections_.erase(it);
+  }
+  for (const auto& [base, parts] : pieces) {
+    if (sections_.count(base) != 0) fail("is damaged: section '" + base + "' is whole and in pieces");
+    std::string joined;
+    std::uint64_t next = 0;
+    for (const auto& [k, part] : parts) {
+      if (k != next++) fail("is damaged: section '" + base + "' lacks piece " + std::to_string(next - 1));
+      joined.append(part.data(), part.size());
+    }
+    joined_.push_back(std::move(joined));
+    sections_.emplace(base, std::string_view(joined_.back()));
+  }
 }
 
 std::string_view CheckpointReader::bytes(std::string_view name) const {

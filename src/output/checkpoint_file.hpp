@@ -5,7 +5,9 @@
 //   per section: u32 name length, name, u64 bytes, u64 hash of the bytes, the bytes
 //   "EXDYNEND" u64 sections, u64 file length, u64 hash of every section's name, length and hash
 //
-// (little-endian, as the machine writes it). A reader takes nothing from a file before
+// (little-endian, as the machine writes it). A section named NAME#K (K = 0, 1, ...) is
+// piece K of section NAME: a reader joins the pieces in the order of K (a run on many
+// ranks writes a large array as the pieces its ranks hold). A reader takes nothing from a file before
 // every hash agrees: a truncated file, a flipped byte anywhere or a file of another
 // format is refused as a whole (InputError naming the file and what is wrong). What a
 // section holds is its writer's business (solver/checkpoint.cpp).
@@ -14,12 +16,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <map>
 #include <string>
 #include <string_view>
 #include <type_traits>
 #include <vector>
 
+#include "common/mpi.hpp"
 #include "output/result_writer.hpp"
 
 namespace exdyn::output {
@@ -34,14 +38,22 @@ std::uint64_t hash_bytes(const void* data, std::size_t n);
 // Writes a checkpoint section by section straight to PATH.tmp; commit() renames it to
 // PATH once it is whole and on disk (fdatasync), so a kill at any moment leaves the
 // old PATH or the new one. Destroyed without commit(), it removes PATH.tmp.
+// On many ranks (`comm` distributed) every rank adds its own sections (rank 0 the
+// whole ones, each rank its pieces), kept in memory; commit(), collective, writes
+// each rank's sections at its place in one file with MPI-IO (rank after rank), rank 0
+// the head and the trailer (the headers' hash over every rank's, in file order), and
+// renames the file once every rank's part is on disk.
 class CheckpointWriter {
  public:
-  explicit CheckpointWriter(std::string path);
+  explicit CheckpointWriter(std::string path, const mpi::Communicator& comm = {});
   ~CheckpointWriter();
   CheckpointWriter(const CheckpointWriter&) = delete;
   CheckpointWriter& operator=(const CheckpointWriter&) = delete;
 
   void add(std::string_view name, const void* data, std::size_t bytes);
+  // A section whose bytes stay where they are until commit() (on many ranks they are
+  // written from there; on one process as add).
+  void add_view(std::string_view name, const void* data, std::size_t bytes);
   template <class T>
   void add(std::string_view name, const std::vector<T>& values) {
     static_assert(std::is_trivially_copyable_v<T>);
@@ -54,12 +66,26 @@ class CheckpointWriter {
     add(name, &value, sizeof value);
   }
   void commit();
+  // The file's length once committed (before: what is written so far).
   std::uint64_t bytes_written() const { return length_; }
 
  private:
   void put(const void* data, std::size_t bytes);
+  void add_header(std::string_view name, const void* data, std::size_t bytes);
+  void commit_ranks();
   std::string path_, temporary_;
+  mpi::Communicator comm_;
   std::FILE* file_ = nullptr;
+  // Many ranks: this rank's part of the file, in order: spans of the region (headers and
+  // copied sections) and viewed sections; its length.
+  struct Span {
+    const unsigned char* external = nullptr;  // a viewed section's bytes; null: the region's
+    std::size_t at = 0;                       // in the region
+    std::uint64_t bytes = 0;
+  };
+  std::vector<Span> spans_;
+  std::vector<unsigned char> region_;
+  std::uint64_t mine_ = 0;
   std::uint64_t length_ = 0, sections_ = 0;
   std::vector<unsigned char> headers_;  // every section's name, length and hash, for the trailer's hash
 };
@@ -106,10 +132,12 @@ class CheckpointReader {
 
  private:
   void parse();
+  void join_pieces();
   void check_length(std::string_view name, std::size_t bytes, std::size_t size, long expected) const;
   [[noreturn]] void fail(const std::string& what) const;
   std::string path_;
   std::vector<unsigned char> data_;
+  std::deque<std::string> joined_;  // sections written in pieces, joined (views into them stay valid)
   std::map<std::string, std::string_view, std::less<>> sections_;
 };
 

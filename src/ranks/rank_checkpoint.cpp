@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <set>
+#include <string>
 
 #include "common/isa.hpp"
 #include "element/element_isa.hpp"
@@ -13,20 +15,21 @@ namespace exdyn::solver {
 
 namespace {
 
-// Each saved array of a block's states with whether it is interleaved in packs of the
-// ISA's lanes (else: the same number of values for each element).
+// Each saved array of a block's states, with its section's name (checkpoint_state.cpp's
+// visit_blocks) and whether it is interleaved in packs of the ISA's lanes (else: the
+// same number of values for each element).
 template <class State, class Failure, class F>
 void for_each_array(State& m, Failure& f, F&& visit) {
-  visit(m.points[0], true);
-  visit(m.points[1], true);
-  visit(m.hourglass[0], true);
-  visit(m.hourglass[1], true);
-  visit(m.plastic_strain, false);
-  visit(f.status, false);
-  visit(f.damage, false);
-  visit(f.plastic_strain, false);
-  visit(f.distorted, false);
-  visit(f.held, false);
+  visit("points[0]", m.points[0], true);
+  visit("points[1]", m.points[1], true);
+  visit("hourglass[0]", m.hourglass[0], true);
+  visit("hourglass[1]", m.hourglass[1], true);
+  visit("plastic_strain", m.plastic_strain, false);
+  visit("status", f.status, false);
+  visit("damage", f.damage, false);
+  visit("failure_plastic_strain", f.plastic_strain, false);
+  visit("distorted", f.distorted, false);
+  visit("held", f.held, false);
 }
 
 // The values [begin, end) of an array of `size` values over `count` elements that
@@ -69,70 +72,58 @@ std::vector<std::uint32_t> all_items(std::size_t count) {
   return items;
 }
 
-std::vector<element::ElementBlock> gather_blocks(const Decomposition& d, const Model& model) {
+std::vector<element::ElementBlock> gather_block_scalars(const Decomposition& d, const Model& model) {
   const std::size_t blocks = d.block_first_element.size();
   std::vector<element::ElementBlock> whole(d.comm.root() ? blocks : 0);
   for (std::size_t gb = 0; gb < blocks; ++gb) {
     const element::ElementBlock* mine = nullptr;
     for (const element::ElementBlock& block : model.blocks)
       if (global_block(model, block) == gb) mine = &block;
-    // The scalars from the ranks holding the block: which array is committed, the strain
+    // From the ranks holding the block: which array is committed, the strain
     // increment's step, whether an element is gone.
     std::vector<double> scalars;
     if (mine != nullptr)
       scalars = {double(mine->material_state.committed), mine->material_state.dt,
                  mine->failure.any_not_alive ? 1.0 : 0.0};
-    const auto all_scalars = gather_to_root(d.comm, scalars);
-    if (d.comm.root()) {
-      element::ElementBlock& w = whole[gb];
-      bool first = true;
-      for (const auto& s : all_scalars) {
-        if (s.empty()) continue;
-        if (first) w.material_state.committed = int(s[0]), w.material_state.dt = s[1];
-        w.failure.any_not_alive = w.failure.any_not_alive || s[2] != 0.0;
-        first = false;
-      }
+    const auto all = gather_to_root(d.comm, scalars);
+    if (!d.comm.root()) continue;
+    element::ElementBlock& w = whole[gb];
+    bool first = true;
+    for (const auto& from : all) {
+      if (from.empty()) continue;
+      if (first) w.material_state.committed = int(from[0]), w.material_state.dt = from[1];
+      w.failure.any_not_alive = w.failure.any_not_alive || from[2] != 0.0;
+      first = false;
     }
-    // Each array: the chunks' pieces, in chunk order.
-    std::vector<void*> targets;
-    if (d.comm.root())
-      for_each_array(whole[gb].material_state, whole[gb].failure,
-                     [&](auto& out, bool) { targets.push_back(&out); });
-    const element::ElementBlock empty;
-    const element::ElementBlock& source = mine != nullptr ? *mine : empty;
-    std::size_t index = 0;
-    for_each_array(source.material_state, source.failure, [&](const auto& local, bool packed) {
-      using V = std::decay_t<decltype(local)>;
-      std::vector<std::uint32_t> chunks;  // (global chunk, values) of each piece
-      V values;
-      if (mine != nullptr && !local.empty())
-        for (std::size_t k = 0; k + 1 < mine->chunk_begin.size(); ++k) {
-          const auto [begin, end] =
-              range_of(local.size(), mine->count, packed, mine->chunk_begin[k], mine->chunk_begin[k + 1]);
-          chunks.push_back(std::uint32_t(global_chunk(d, *mine, gb, k)));
-          chunks.push_back(std::uint32_t(end - begin));
-          values.insert(values.end(), local.begin() + std::ptrdiff_t(begin),
-                        local.begin() + std::ptrdiff_t(end));
-        }
-      const auto all_chunks = gather_to_root(d.comm, chunks);
-      const auto all_values = gather_to_root(d.comm, values);
-      if (d.comm.root()) {
-        std::vector<std::array<std::size_t, 4>> pieces;  // chunk, rank, first value, values
-        for (std::size_t r = 0; r < all_chunks.size(); ++r)
-          for (std::size_t j = 0, at = 0; j < all_chunks[r].size(); j += 2) {
-            pieces.push_back({all_chunks[r][j], r, at, all_chunks[r][j + 1]});
-            at += all_chunks[r][j + 1];
-          }
-        std::sort(pieces.begin(), pieces.end());
-        V& out = *static_cast<V*>(targets[index]);
-        for (const auto& [c, r, at, n] : pieces)
-          out.insert(out.end(), all_values[r].begin() + std::ptrdiff_t(at),
-                     all_values[r].begin() + std::ptrdiff_t(at + n));
-      }
-      ++index;
-    });
   }
   return whole;
+}
+
+void add_block_pieces(output::CheckpointWriter& file, const Decomposition& d, const Model& model,
+                      std::set<std::string>& pieced) {
+  element::ElementBlock names;
+  for (std::size_t gb = 0; gb < d.block_first_element.size(); ++gb)
+    for_each_array(names.material_state, names.failure, [&](const char* name, const auto&, bool) {
+      pieced.insert("block" + std::to_string(gb) + "/" + name);
+    });
+  for (const element::ElementBlock& block : model.blocks) {
+    const std::size_t gb = global_block(model, block);
+    const std::string prefix = "block" + std::to_string(gb) + "/";
+    for_each_array(
+        block.material_state, block.failure, [&](const char* name, const auto& local, bool packed) {
+          using T = typename std::decay_t<decltype(local)>::value_type;
+          for (std::size_t k = 0; k + 1 < block.chunk_begin.size(); ++k) {
+            const std::string piece = prefix + name + "#" + std::to_string(global_chunk(d, block, gb, k));
+            if (local.empty()) {
+              file.add(piece, nullptr, 0);
+              continue;
+            }
+            const auto [begin, end] =
+                range_of(local.size(), block.count, packed, block.chunk_begin[k], block.chunk_begin[k + 1]);
+            file.add_view(piece, local.data() + begin, (end - begin) * sizeof(T));
+          }
+        });
+  }
 }
 
 void pick_blocks(const Decomposition& d, const std::vector<element::ElementBlock>& whole, Model& model) {
@@ -145,9 +136,10 @@ void pick_blocks(const Decomposition& d, const std::vector<element::ElementBlock
     block.material_state.committed = w.material_state.committed;
     block.material_state.dt = w.material_state.dt;
     std::vector<const void*> sources;
-    for_each_array(w.material_state, w.failure, [&](auto& source, bool) { sources.push_back(&source); });
+    for_each_array(w.material_state, w.failure,
+                   [&](const char*, auto& source, bool) { sources.push_back(&source); });
     std::size_t index = 0;
-    for_each_array(block.material_state, block.failure, [&](auto& local, bool packed) {
+    for_each_array(block.material_state, block.failure, [&](const char*, auto& local, bool packed) {
       using V = std::decay_t<decltype(local)>;
       const V& source = *static_cast<const V*>(sources[index++]);
       if (local.empty() && source.empty()) return;

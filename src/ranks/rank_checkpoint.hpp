@@ -1,19 +1,23 @@
 // A restart checkpoint on many ranks (docs/output.md, "Checkpoints"): the model's state
-// in one process's numbering. The ranks' values are gathered to rank 0, which writes
-// the file a run on one process writes; a restart on any number of ranks reads it on
-// every rank and takes its own nodes, elements and chunks from it. The nodes and
+// in one process's numbering, in the file a run on one process writes. The large
+// arrays are written by the ranks in pieces (the output's rows, the chunks), the rest
+// gathered to rank 0; a restart on any number of ranks reads the file on every rank and
+// takes its own nodes, elements and chunks from it. The nodes and
 // elements by their global ids (the owners' values: every holder of a node has the
 // same bits), the integration-point states chunk by chunk (a rank holds whole chunks,
 // whose packs are those of the whole block), the contact in contact_checkpoint.hpp.
 #pragma once
 
 #include <cstdint>
+#include <set>
+#include <string>
 #include <type_traits>
 #include <vector>
 
 #include "common/errors.hpp"
 #include "common/mpi.hpp"
 #include "element/element_block.hpp"
+#include "output/checkpoint_file.hpp"
 #include "ranks/decomposition.hpp"
 
 namespace exdyn::solver {
@@ -91,9 +95,15 @@ void pick_rows(const std::vector<T>& whole, const std::vector<std::uint32_t>& gl
 std::vector<std::uint32_t> owned_nodes(const Decomposition& d);
 std::vector<std::uint32_t> all_items(std::size_t count);
 
-// The whole model's blocks' point states, damage and erosion (ElementBlock::material_state
-// and failure only) on rank 0, from the ranks' chunks. Collective.
-std::vector<element::ElementBlock> gather_blocks(const Decomposition& d, const Model& model);
+// The whole model's blocks' scalars (ElementBlock::material_state's committed and dt,
+// failure.any_not_alive) on rank 0. Collective.
+std::vector<element::ElementBlock> gather_block_scalars(const Decomposition& d, const Model& model);
+
+// This rank's chunks of each block's point states, damage and erosion as pieces of the
+// whole block's sections (NAME#CHUNK, checkpoint_file.hpp), and the names of every
+// block's sections so written (the same on every rank).
+void add_block_pieces(output::CheckpointWriter& file, const Decomposition& d, const Model& model,
+                      std::set<std::string>& pieced);
 
 // This rank's blocks' point states, damage and erosion from the whole blocks'.
 void pick_blocks(const Decomposition& d, const std::vector<element::ElementBlock>& whole, Model& model);

@@ -13,6 +13,7 @@
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <string>
 
 #include "common/errors.hpp"
@@ -20,6 +21,7 @@
 #include "common/version.hpp"
 #include "input/deck_reader.hpp"
 #include "ranks/contact_checkpoint.hpp"
+#include "ranks/rank_checkpoint.hpp"
 #include "solver/checkpoint_ranks.hpp"
 #include "solver/checkpoint_state.hpp"
 #include "solver/time_loop.hpp"
@@ -201,20 +203,26 @@ void TimeLoop::save_checkpoint(const output::WrittenPosition& position) {
   const std::string path = checkpoint_path(directory_, deck_.name, next_step);
   ++summary_.checkpoints.written;
   if (mesh_hash_ == 0) mesh_hash_ = whole_mesh_hash(model_, d_);
-  // On many ranks: the whole state on rank 0, which writes the file one process writes.
+  // On many ranks the file one process writes, written by all: each rank its rows of the
+  // nodal and element arrays and its chunks' point states, rank 0 the rest, made whole.
   const bool ranks = controls_.comm.distributed();
+  output::CheckpointWriter file(path, controls_.comm);
+  std::set<std::string> pieced;
   WholeState whole;
-  if (ranks) whole = gather_whole_state(state_, model_, d_, contact_);
+  if (ranks) {
+    add_state_pieces(file, state_, d_, pieced);
+    add_block_pieces(file, d_, model_, pieced);
+    whole = gather_whole_state(state_, model_, d_, contact_);
+  }
   if (controls_.comm.root()) {
-    output::CheckpointWriter file(path);
     file.add("exdyn_version", std::string_view(exdyn::version));
     file.add("isa", std::string_view(isa_name(selected_isa())));
     file.add("deck", input::to_yaml(deck_));
     file.add_value("mesh", mesh_hash_);
     file.add_value("next_step", next_step);
-    StateSaver saver{file};
+    StateSaver saver{file, ranks ? &pieced : nullptr};
     if (ranks) {
-      visit_state(saver, whole.state, whole.contact_nodes);
+      visit_state(saver, whole.state, whole.contact_nodes, &whole.contact_rows);
       visit_blocks(saver, whole.blocks);
       visit_contact(saver, whole.contact, &whole.keys);
     } else {
@@ -226,16 +234,15 @@ void TimeLoop::save_checkpoint(const output::WrittenPosition& position) {
     file.add_value("loop/clock", clock_->saved());
     file.add("summary/warnings", join_lines(summary_.warnings));
     output::add_position(file, position);
-    file.commit();
-    summary_.checkpoints.bytes = double(file.bytes_written());
+  }
+  file.commit();  // on many ranks every rank's part on disk before the name
+  summary_.checkpoints.bytes = double(file.bytes_written());
+  if (controls_.comm.root()) {
     // The oldest beyond `keep` go once the new one is whole.
     const auto found = list_checkpoints(directory_, deck_.name);
     const std::size_t keep = std::size_t(std::max(deck_.checkpoint.keep, 1));
     for (std::size_t k = 0; k + keep < found.size(); ++k)
       if (found[k].second != path) std::remove(found[k].second.c_str());
-  }
-  if (ranks) {  // the file is whole before any rank goes on (a kill after it leaves it)
-    summary_.checkpoints.bytes = mpi::max(controls_.comm, summary_.checkpoints.bytes);
   }
   const double seconds = watch.seconds();
   summary_.checkpoints.seconds += seconds;

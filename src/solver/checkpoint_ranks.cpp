@@ -3,6 +3,8 @@
 #include "solver/checkpoint_ranks.hpp"
 
 #include <algorithm>
+#include <set>
+#include <string>
 
 #include "common/errors.hpp"
 #include "common/parallel.hpp"
@@ -13,14 +15,6 @@
 namespace exdyn::solver {
 
 namespace {
-
-// Each component of the owners' rows of a nodal vector field, as the whole model's.
-void gather_nodal(const Decomposition& d, const std::vector<std::uint32_t>& owned, const NodalVectors& local,
-                  NodalVectors& whole) {
-  for (int c = 0; c < 3; ++c)
-    whole.component(c) =
-        gather_rows(d.comm, local.component(c), owned, d.global_node, d.global_node.size(), d.global_nodes);
-}
 
 void pick_nodal(const Decomposition& d, const NodalVectors& whole, NodalVectors& local, const char* what) {
   for (int c = 0; c < 3; ++c)
@@ -40,37 +34,121 @@ void pick_contact(const Decomposition& d, const std::vector<std::uint32_t>& save
 
 }  // namespace
 
+namespace {
+
+// The runs of items whose values this rank writes (local ids ascending by global id, each
+// run consecutive global ids: consecutive local ids too), and each run's place among
+// every rank's runs by global id: the number of its piece. Collective.
+struct Runs {
+  std::vector<std::size_t> first, count;  // local ids
+  std::vector<std::size_t> piece;
+};
+Runs runs_of(const mpi::Communicator& comm, const std::vector<std::uint32_t>& global,
+             const std::vector<std::uint8_t>* owned) {
+  Runs runs;
+  std::vector<std::uint32_t> starts;
+  for (std::size_t i = 0; i < global.size(); ++i) {
+    if (owned != nullptr && (*owned)[i] == 0) continue;
+    const bool goes_on =
+        !runs.first.empty() && runs.first.back() + runs.count.back() == i && global[i - 1] + 1 == global[i];
+    if (goes_on) {
+      ++runs.count.back();
+    } else {
+      runs.first.push_back(i), runs.count.push_back(1);
+      starts.push_back(global[i]);
+    }
+  }
+  std::vector<std::uint32_t> every = mpi::all_gather_varying(comm, starts);
+  std::sort(every.begin(), every.end());
+  for (const std::uint32_t start : starts)
+    runs.piece.push_back(std::size_t(std::lower_bound(every.begin(), every.end(), start) - every.begin()));
+  return runs;
+}
+
+// A local array of k values an item (k from its size) as the pieces of section `name`.
+template <class T>
+void add_runs(output::CheckpointWriter& file, const std::string& name, const std::vector<T>& local,
+              std::size_t items, const Runs& runs) {
+  const std::size_t k = items == 0 ? 0 : local.size() / items;
+  for (std::size_t r = 0; r < runs.first.size(); ++r)
+    file.add_view(name + "#" + std::to_string(runs.piece[r]), local.data() + k * runs.first[r],
+                  k * runs.count[r] * sizeof(T));
+}
+
+}  // namespace
+
+void add_state_pieces(output::CheckpointWriter& file, const State& s, Decomposition& d,
+                      std::set<std::string>& pieced) {
+  // Each node by its owner, each element by its rank: runs of the whole arrays as they
+  // lie in memory, no value moved.
+  const Runs nodes = runs_of(d.comm, d.global_node, &d.owned);
+  const std::size_t node_count = d.global_node.size();
+  const auto nodal = [&](const std::string& name, const NodalVectors& local) {
+    for (int c = 0; c < 3; ++c) {
+      const std::string section = name + "." + char('x' + c);
+      pieced.insert(section);
+      add_runs(file, section, local.component(c), node_count, nodes);
+    }
+  };
+  nodal("state/displacement", s.displacement);
+  nodal("state/velocity", s.velocity);
+  nodal("state/load_force", s.load_force);
+  for (std::size_t c = 0; c < 3; ++c) {
+    const std::string section = "state/flags[" + std::to_string(c) + "]";
+    pieced.insert(section);
+    add_runs(file, section, s.flags[c], node_count, nodes);
+  }
+  const Runs elements = runs_of(d.comm, d.global_element, nullptr);
+  for (const auto& [name, local] : {std::pair{"state/stress", &s.stress},
+                                    {"state/plastic_strain", &s.plastic_strain},
+                                    {"state/damage", &s.damage},
+                                    {"state/status", &s.status}}) {
+    pieced.insert(name);
+    add_runs(file, name, *local, d.global_element.size(), elements);
+  }
+}
+
 WholeState gather_whole_state(const State& s, const Model& model, Decomposition& d,
                               const ContactModel& contact) {
   WholeState w;
   State& t = w.state;
-  const std::vector<std::uint32_t> owned = owned_nodes(d);
-  gather_nodal(d, owned, s.displacement, t.displacement);
-  gather_nodal(d, owned, s.velocity, t.velocity);
-  gather_nodal(d, owned, s.load_force, t.load_force);
-  gather_nodal(d, owned, s.contact_force, t.contact_force);
-  gather_nodal(d, owned, s.previous_contact_force, t.previous_contact_force);
-  for (int c = 0; c < 3; ++c)
-    t.flags[std::size_t(c)] = gather_rows(d.comm, s.flags[std::size_t(c)], owned, d.global_node,
-                                          d.global_node.size(), d.global_nodes);
-  t.gap = gather_rows(d.comm, s.gap, owned, d.global_node, d.global_node.size(), d.global_nodes);
-  t.previous_gap =
-      gather_rows(d.comm, s.previous_gap, owned, d.global_node, d.global_node.size(), d.global_nodes);
-  const std::vector<std::uint32_t> elements = all_items(d.global_element.size());
-  const auto per_element = [&](const std::vector<double>& local) {
-    return gather_rows(d.comm, local, elements, d.global_element, elements.size(), d.global_elements);
-  };
-  t.stress = per_element(s.stress);
-  t.plastic_strain = per_element(s.plastic_strain);
-  t.damage = per_element(s.damage);
-  t.status = per_element(s.status);
-  // The contact nodes the owners hold.
+  // The contact arrays at the contact nodes their owners hold, on rank 0 compact (row k
+  // the k-th contact node by global id).
   std::vector<std::uint32_t> mine;
-  for (const std::uint32_t l : contact.nodes)
-    if (d.owned[l] != 0) mine.push_back(d.global_node[l]);
-  for (const auto& from : gather_to_root(d.comm, mine))
-    w.contact_nodes.insert(w.contact_nodes.end(), from.begin(), from.end());
-  std::sort(w.contact_nodes.begin(), w.contact_nodes.end());
+  std::vector<double> values;
+  for (const std::uint32_t l : contact.nodes) {
+    if (d.owned[l] == 0) continue;
+    mine.push_back(d.global_node[l]);
+    for (const NodalVectors* v : {&s.contact_force, &s.previous_contact_force})
+      for (int c = 0; c < 3; ++c) values.push_back(v->component(c)[l]);
+    values.push_back(s.gap[l]);
+    values.push_back(s.previous_gap[l]);
+  }
+  const auto all_ids = gather_to_root(d.comm, mine);
+  const auto all_values = gather_to_root(d.comm, values);
+  if (d.comm.root()) {
+    std::vector<std::pair<std::uint32_t, const double*>> nodes;
+    for (std::size_t r = 0; r < all_ids.size(); ++r)
+      for (std::size_t i = 0; i < all_ids[r].size(); ++i)
+        nodes.emplace_back(all_ids[r][i], all_values[r].data() + 8 * i);
+    std::sort(nodes.begin(), nodes.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    const std::size_t m = nodes.size();
+    t.contact_force.resize(m);
+    t.previous_contact_force.resize(m);
+    t.gap.resize(m);
+    t.previous_gap.resize(m);
+    for (std::size_t k = 0; k < m; ++k) {
+      const double* f = nodes[k].second;
+      for (int c = 0; c < 3; ++c) {
+        t.contact_force.component(c)[k] = f[c];
+        t.previous_contact_force.component(c)[k] = f[3 + c];
+      }
+      t.gap[k] = f[6];
+      t.previous_gap[k] = f[7];
+      w.contact_nodes.push_back(nodes[k].first);
+      w.contact_rows.push_back(std::uint32_t(k));
+    }
+  }
   // The step's and the run's values, the same on every rank; the sums each rank keeps
   // of its own (the energy of eroded elements, the loads' work, the reactions) added
   // in rank order.
@@ -96,7 +174,7 @@ WholeState gather_whole_state(const State& s, const Model& model, Decomposition&
       }
       t.reaction[b][c] = sum + error;
     }
-  w.blocks = gather_blocks(d, model);
+  w.blocks = gather_block_scalars(d, model);
   gather_contact(contact, d.contact, w.contact, w.keys);
   return w;
 }

@@ -1,10 +1,13 @@
 // A restart checkpoint on many ranks (docs/output.md, "Checkpoints"): the state in one
-// process's numbering, made on rank 0 from every rank's part for the file a run on one
-// process writes, and each rank's part taken from it on a restart on any number of
-// ranks (ranks/rank_checkpoint.hpp, ranks/contact_checkpoint.hpp).
+// process's numbering, in the file a run on one process writes: the nodal and element
+// arrays and the point states written by the ranks in pieces, the rest made on rank 0;
+// and each rank's part taken from it on a restart on any number of ranks
+// (ranks/rank_checkpoint.hpp, ranks/contact_checkpoint.hpp).
 #pragma once
 
 #include <cstdint>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "model/contact_setup.hpp"
@@ -19,12 +22,20 @@ namespace exdyn::solver {
 struct WholeState {
   State state;
   std::vector<std::uint32_t> contact_nodes;  // global ids, ascending
+  std::vector<std::uint32_t> contact_rows;   // each one's row in the contact arrays (saving: compact)
   std::vector<element::ElementBlock> blocks;
   ContactModel contact;
   std::vector<std::vector<std::uint64_t>> keys;  // each pass's point keys
 };
 
-// The whole state on rank 0 (elsewhere: unset). Collective over d.comm.
+// This rank's output rows of the state's nodal and element arrays as pieces of their
+// sections (NAME#RANK, checkpoint_file.hpp), and the names of the sections so written
+// (the same on every rank). Collective over d.comm.
+void add_state_pieces(output::CheckpointWriter& file, const State& state, Decomposition& d,
+                      std::set<std::string>& pieced);
+
+// The rest of the whole state on rank 0 (elsewhere: unset; the arrays written in
+// pieces left empty). Collective over d.comm.
 WholeState gather_whole_state(const State& state, const Model& model, Decomposition& d,
                               const ContactModel& contact);
 

@@ -206,7 +206,8 @@ void visit_contact(Archive& a, ContactModel& contact, std::vector<std::vector<st
 // (compute_accelerations, forces_of_this_step); the restored f_int is cleared by the
 // next element pass (internal_force_zero false).
 template <class Archive>
-void visit_state(Archive& a, State& s, std::vector<std::uint32_t>& contact_nodes) {
+void visit_state(Archive& a, State& s, std::vector<std::uint32_t>& contact_nodes,
+                 const std::vector<std::uint32_t>* rows) {
   // The contact nodes by global id; `where` places this run's among them.
   std::vector<std::uint32_t> saved = contact_nodes;
   a("state/contact_nodes", saved);
@@ -216,16 +217,17 @@ void visit_state(Archive& a, State& s, std::vector<std::uint32_t>& contact_nodes
     const auto at = std::lower_bound(saved.begin(), saved.end(), contact_nodes[i]);
     if (at != saved.end() && *at == contact_nodes[i]) where[i] = at - saved.begin();
   }
+  const std::vector<std::uint32_t>& at = rows != nullptr ? *rows : contact_nodes;
   a("state/step", s.step);
   a("state/time", s.time);
   a("state/displacement", s.displacement);
   a("state/velocity", s.velocity);
   a("state/flags", s.flags);
-  visit_at(a, "state/contact_force", s.contact_force, contact_nodes, where);
-  visit_at(a, "state/previous_contact_force", s.previous_contact_force, contact_nodes, where);
+  visit_at(a, "state/contact_force", s.contact_force, at, where);
+  visit_at(a, "state/previous_contact_force", s.previous_contact_force, at, where);
   a("state/load_force", s.load_force);
-  visit_at(a, "state/gap", s.gap, contact_nodes, where);
-  visit_at(a, "state/previous_gap", s.previous_gap, contact_nodes, where);
+  visit_at(a, "state/gap", s.gap, at, where);
+  visit_at(a, "state/previous_gap", s.previous_gap, at, where);
   a("state/stress", s.stress);
   a("state/plastic_strain", s.plastic_strain);
   a("state/damage", s.damage);
@@ -254,7 +256,9 @@ template void visit_blocks(StateSaver&, const std::vector<element::ElementBlock>
 template void visit_blocks(const StateLoader&, const std::vector<element::ElementBlock>&);
 template void visit_contact(StateSaver&, ContactModel&, std::vector<std::vector<std::uint64_t>>*);
 template void visit_contact(const StateLoader&, ContactModel&, std::vector<std::vector<std::uint64_t>>*);
-template void visit_state(StateSaver&, State&, std::vector<std::uint32_t>&);
-template void visit_state(const StateLoader&, State&, std::vector<std::uint32_t>&);
+template void visit_state(StateSaver&, State&, std::vector<std::uint32_t>&,
+                          const std::vector<std::uint32_t>*);
+template void visit_state(const StateLoader&, State&, std::vector<std::uint32_t>&,
+                          const std::vector<std::uint32_t>*);
 
 }  // namespace exdyn::solver

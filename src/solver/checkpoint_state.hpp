@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <set>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -18,24 +19,28 @@
 
 namespace exdyn::solver {
 
-// Writes each value as a section named by its path.
+// Writes each value as a section named by its path, but those the ranks write in pieces
+// (`pieced`, on many ranks: checkpoint_ranks.hpp).
 struct StateSaver {
   output::CheckpointWriter& file;
+  const std::set<std::string>* pieced = nullptr;
 
+  bool whole(const std::string& name) const { return pieced == nullptr || pieced->count(name) == 0; }
   template <class T>
   void operator()(const std::string& name, const std::vector<T>& values) {
-    file.add(name, values);
+    if (whole(name)) file.add(name, values);
   }
   void operator()(const std::string& name, const NodalVectors& v) {
-    for (int c = 0; c < 3; ++c) file.add(name + "." + char('x' + c), v.component(c));
+    for (int c = 0; c < 3; ++c)
+      if (whole(name + "." + char('x' + c))) file.add(name + "." + char('x' + c), v.component(c));
   }
   template <class T, std::size_t N>
   void operator()(const std::string& name, const std::array<std::vector<T>, N>& arrays) {
-    for (std::size_t k = 0; k < N; ++k) file.add(name + "[" + std::to_string(k) + "]", arrays[k]);
+    for (std::size_t k = 0; k < N; ++k) (*this)(name + "[" + std::to_string(k) + "]", arrays[k]);
   }
   template <class T, class = std::enable_if_t<std::is_trivially_copyable_v<T>>>
   void operator()(const std::string& name, const T& value) {
-    file.add_value(name, value);
+    if (whole(name)) file.add_value(name, value);
   }
 };
 
@@ -85,10 +90,12 @@ void visit_contact(Archive& archive, ContactModel& contact,
                    std::vector<std::vector<std::uint64_t>>* keys = nullptr);
 // The nodal fields, element fields and accumulators of the time loop's State; the
 // contact's arrays at contact_nodes only (ContactModel::nodes, ascending global ids,
-// saved with them). Loading, an empty contact_nodes takes the saved ones (a whole
-// state made for the file on many ranks, its arrays the whole model's size).
+// saved with them; `rows`: each one's place in the arrays, where not its id: a whole
+// state made for the file on many ranks holds them compact). Loading, an empty
+// contact_nodes takes the saved ones (its arrays the whole model's size).
 template <class Archive>
-void visit_state(Archive& archive, State& state, std::vector<std::uint32_t>& contact_nodes);
+void visit_state(Archive& archive, State& state, std::vector<std::uint32_t>& contact_nodes,
+                 const std::vector<std::uint32_t>* rows = nullptr);
 // After loading: what a pass's last search set beside its saved state (a mortar pass's
 // view of its segments).
 void finish_loading_contact(ContactModel& contact);

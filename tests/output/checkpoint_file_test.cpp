@@ -101,6 +101,44 @@ TEST_F(CheckpointFileTest, TheMessageNamesTheFileAndTheFault) {
 
 // The hash's tail and length: inputs that differ only past a multiple of 32 bytes, or
 // only in their length (a zero byte more), hash apart.
+// A section written in pieces (NAME#K, as the ranks of a run write their rows and
+// chunks) reads as the whole, in the order of K, whatever the order in the file; a gap
+// in the pieces, a section both whole and in pieces, or a piece number that is none are
+// refused.
+TEST_F(CheckpointFileTest, PiecesReadAsTheWholeSectionInTheirOrder) {
+  {
+    CheckpointWriter file(path_);
+    file.add("u#2", std::vector<double>{5.0});
+    file.add("u#0", std::vector<double>{1.0, 2.0});
+    file.add("u#1", std::vector<double>{});
+    file.add("u#3", std::vector<double>{6.0, 7.0});
+    file.add("empty#0", std::vector<double>{});
+    file.add_value("next_step", 3L);
+    file.commit();
+  }
+  const CheckpointReader reader(path_);
+  EXPECT_EQ(reader.values<double>("u"), (std::vector<double>{1.0, 2.0, 5.0, 6.0, 7.0}));
+  EXPECT_TRUE(reader.values<double>("empty").empty());
+  EXPECT_FALSE(reader.has("u#0"));
+  const auto refused = [&](const std::vector<std::string>& names, const std::string& fault) {
+    {
+      CheckpointWriter file(path_);
+      for (const std::string& name : names) file.add(name, std::vector<double>{1.0});
+      file.commit();
+    }
+    try {
+      const CheckpointReader bad(path_);
+      ADD_FAILURE() << "read: " << names.front();
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find(fault), std::string::npos) << error.what();
+    }
+  };
+  refused({"u#0", "u#2"}, "lacks piece 1");
+  refused({"u", "u#0"}, "is whole and in pieces");
+  refused({"u#x"}, "is no piece of a section");
+  refused({"#0"}, "is no piece of a section");
+}
+
 TEST(HashBytes, TheTailAndTheLengthCount) {
   std::vector<unsigned char> a(37, 0), b(38, 0);
   EXPECT_NE(hash_bytes(a.data(), a.size()), hash_bytes(b.data(), b.size()));
