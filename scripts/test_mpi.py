@@ -25,7 +25,7 @@
   restart from one on 2, 3 or 1 ranks writes on, and every field of every step is one
   process's bits (the plates 1 -> 2, 2 -> 3, 3 -> 1; quadrature points, friction on curved
   segments, plasticity with folds, a single surface, a wall, a scattered mesh, erosion and
-  the faces it opens); a mortar deck refuses --restart and --wall-limit on many ranks;
+  the faces it opens, mortar with friction and on a single surface);
 - SIGTERM to mpirun: the step is finished, written with a checkpoint, and the run stops
   ("stopped", the ranks exit 3); --restart on 3 ranks gives one process's bits; so does
   --wall-limit (exit 3) with a restart on one;
@@ -40,9 +40,9 @@
   scripts/test_mpi.py --exdyn build/release/src/app/exdyn [--quick]
 
 --quick (the sanitizer build): seven equal-fields cases (each kind of traffic once) and two
-partition cases, on shorter runs and on 3 ranks alone; the guards and the start errors; two
-restarts (the plates 2 -> 3, the punch-through 3 -> 2) and the mortar refusals; no mirror
-images, no kills.
+partition cases, on shorter runs and on 3 ranks alone; the guards and the start errors; three
+restarts (the plates 2 -> 3, the punch-through 3 -> 2, mortar 1 -> 2); no mirror images, no
+kills.
 Exit 0 when every check passes.
 """
 import argparse
@@ -397,8 +397,10 @@ RESTARTS = [("plate_impact", 1, 2), ("plate_impact", 2, 3), ("plate_impact", 3, 
             ("oblique_impact", 2, 3),  # a rigid wall with friction
             ("plate_impact_hex20_gmsh", 3, 2),  # a mesh scattered by rank 0
             ("eroding_bar", 3, 2),  # erosion, the reactions' sums
-            ("punch_through", 2, 3)]  # faces erosion opens, set up whole
-QUICK_RESTARTS = [("plate_impact", 2, 3), ("punch_through", 3, 2)]
+            ("punch_through", 2, 3),  # faces erosion opens, set up whole
+            ("mortar_patch", 2, 1),  # mortar: segment pairs, pieces and their friction anchors
+            ("plates_one_surface_mortar", 3, 2)]  # mortar on a single surface
+QUICK_RESTARTS = [("plate_impact", 2, 3), ("punch_through", 3, 2), ("mortar_patch", 1, 2)]
 
 
 def test_restarts(exdyn, work, quick):
@@ -435,18 +437,6 @@ def test_restarts(exdyn, work, quick):
                                                                   "not_converged", "saddle_points",
                                                                   "max_penetration_over_h")),
               f"{s['contact']} vs {one['contact']}")
-    # Mortar pieces are not gathered: a mortar deck on many ranks refuses --wall-limit and
-    # --restart, and a deck's checkpoint key gives a warning.
-    deck, sets = cases["mortar_patch"][0], cases["mortar_patch"][1]
-    out = os.path.join(work, "mortar_checkpoint")
-    code, text = run(exdyn, deck, out, 2, 1, list(sets) + ["checkpoint={every: 50}"])
-    warned = code == 0 and any("mortar" in w for w in summary(out, deck).get("warnings", []))
-    check("mortar on 2 ranks: checkpoint gives a warning and no checkpoint", warned and not any(
-        f.endswith(".restart") for f in os.listdir(out)), text[-400:])
-    for option in (["--wall-limit", "100"], ["--restart"]):
-        code, text = run(exdyn, deck, out, 2, 1, sets, options=option)
-        check(f"mortar on 2 ranks: {option[0]} refused (exit 2, the reason named)",
-              code == 2 and "mortar" in text, text[-400:])
 
 
 LONG = ["time.end_time=4.0e-5", "output.every=16"]  # plate_impact: about 77,000 steps

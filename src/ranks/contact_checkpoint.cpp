@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "common/errors.hpp"
+#include "contact/mortar_pass.hpp"
 #include "ranks/contact_share.hpp"
 #include "ranks/rank_checkpoint.hpp"
 
@@ -139,12 +140,19 @@ std::int64_t whole_index(const PassShare& share, std::int64_t segment) {
   return segment < 0 ? segment : std::int64_t(share.known[std::size_t(segment)]);
 }
 
+void gather_point_state(const mpi::Communicator& comm, const PointOrder& order, const PassShare& share,
+                        const contact::ContactPassState& state, contact::ContactPassState& w);
+void gather_mortar(const mpi::Communicator& comm, const PointOrder& order, const PassShare& share,
+                   const contact::ContactPassState& state, contact::ContactPassState& w);
+void restore_mortar(DistributedContact& dc, PassShare& share, std::size_t whole_segments,
+                    const contact::ContactPassState& w, const std::vector<std::size_t>& place,
+                    contact::ContactPassState& state, const RestartNodes& nodes);
+
 void gather_pass(const mpi::Communicator& comm, const PassShare& share,
                  const contact::ContactPassState& state, contact::ContactSurfaces& whole_surfaces,
                  contact::ContactPassState& whole, std::vector<std::uint64_t>& keys) {
   const PointOrder order = point_order(comm, share.point_keys);
   keys = order.keys;
-  const std::size_t points = share.point_keys.size();
   contact::ContactPassState& w = whole;
   // The scalars are every rank's (the figures summed over the ranks each step).
   w.built = state.built, w.rebuilds = state.rebuilds;
@@ -153,6 +161,28 @@ void gather_pass(const mpi::Communicator& comm, const PassShare& share,
   w.normal_force_sum = state.normal_force_sum, w.tangential_force_sum = state.tangential_force_sum;
   w.points_in_contact = state.points_in_contact, w.slipping = state.slipping, w.sticking = state.sticking;
   w.friction_work = state.friction_work;
+  if (share.own.mortar)
+    gather_mortar(comm, order, share, state, w);
+  else
+    gather_point_state(comm, order, share, state, w);
+  gather_moving(comm, share, state, whole_surfaces.moving_nodes, w.moving_at_build);
+  // The surface as erosion left it: the whole pass every rank keeps; otherwise the own
+  // segments' edges and neighbours (whole-pass indices), set up once.
+  if (!share.whole.segment_element.empty()) {
+    whole_surfaces.segment_live = share.whole.segment_live;
+    whole_surfaces.point_live = share.whole.point_live;
+    whole_surfaces.edges = share.whole.edges;
+    whole_surfaces.edge_neighbours = share.whole.edge_neighbours;
+  } else {
+    whole_surfaces.edges = gather_segments(comm, share.segment_ids, share.own.edges);
+    whole_surfaces.edge_neighbours = gather_segments(comm, share.segment_ids, share.own.edge_neighbours);
+  }
+}
+
+// The candidates of the last search and each point's arrays of the last step.
+void gather_point_state(const mpi::Communicator& comm, const PointOrder& order, const PassShare& share,
+                        const contact::ContactPassState& state, contact::ContactPassState& w) {
+  const std::size_t points = share.point_keys.size();
   gather_candidates(comm, order, share, state, w);
   std::vector<contact::ContactPassState::Contact> contacts = state.contacts;
   for (auto& c : contacts) c.segment = whole_index(share, c.segment);
@@ -169,17 +199,61 @@ void gather_pass(const mpi::Communicator& comm, const PassShare& share,
   gather_points(comm, order, state.pair_stiffness, points, w.pair_stiffness);
   gather_points(comm, order, state.tangential_force, points, w.tangential_force);
   gather_points(comm, order, state.dissipation, points, w.dissipation);
-  gather_moving(comm, share, state, whole_surfaces.moving_nodes, w.moving_at_build);
-  // The surface as erosion left it: the whole pass every rank keeps; otherwise the own
-  // segments' edges and neighbours (whole-pass indices), set up once.
-  if (!share.whole.segment_element.empty()) {
-    whole_surfaces.segment_live = share.whole.segment_live;
-    whole_surfaces.point_live = share.whole.point_live;
-    whole_surfaces.edges = share.whole.edges;
-    whole_surfaces.edge_neighbours = share.whole.edge_neighbours;
-  } else {
-    whole_surfaces.edges = gather_segments(comm, share.segment_ids, share.own.edges);
-    whole_surfaces.edge_neighbours = gather_segments(comm, share.segment_ids, share.own.edge_neighbours);
+}
+
+// Mortar (mortar_pass.hpp): a point is a piece of a slave segment, cut again each step,
+// so what the next step reads of the last is the segment pairs of the last search (by
+// slave segment, its key its index in the whole pass) and the pieces of the last step
+// with their friction anchors, which the next step's points of the same piece take. The
+// pieces in one process's order: by slave segment, master segment, place.
+void gather_mortar(const mpi::Communicator& comm, const PointOrder& order, const PassShare& share,
+                   const contact::ContactPassState& state, contact::ContactPassState& w) {
+  const contact::MortarState& m = state.mortar;
+  const std::size_t segments = share.point_keys.size();
+  std::vector<std::uint32_t> counts(segments, 0), masters;
+  if (m.pair_begin.size() == segments + 1)
+    for (std::size_t s = 0; s < segments; ++s)
+      counts[s] = std::uint32_t(m.pair_begin[s + 1] - m.pair_begin[s]);
+  for (const contact::CandidatePair& pair : m.pairs) masters.push_back(share.known[pair.segment]);
+  const auto all_counts = gather_to_root(comm, counts);
+  const auto all_masters = gather_to_root(comm, masters);
+  struct Piece {
+    contact::MortarState::Identity identity;  // slave: the key; master: the whole-pass index
+    contact::Anchor anchor;                   // segment: the whole-pass index
+  };
+  const bool anchored = !m.identity.empty() && state.anchors.size() == m.identity.size();
+  std::vector<Piece> pieces;
+  for (std::size_t p = 0; p < m.identity.size(); ++p) {
+    const contact::MortarState::Identity& id = m.identity[p];
+    Piece piece{{std::uint32_t(share.point_keys[id.slave]), share.known[id.master], id.index}, {}};
+    if (anchored) piece.anchor = {whole_index(share, state.anchors[p].segment), state.anchors[p].xi};
+    pieces.push_back(piece);
+  }
+  const auto all_pieces = gather_to_root(comm, pieces);
+  const auto any_anchored = gather_to_root(comm, std::vector<std::uint8_t>{std::uint8_t(anchored ? 1 : 0)});
+  contact::MortarState& wm = w.mortar;
+  if (!comm.root()) return;
+  std::vector<std::vector<std::size_t>> begin(all_counts.size());
+  for (std::size_t r = 0; r < all_counts.size(); ++r) {
+    begin[r].assign(1, 0);
+    for (const std::uint32_t n : all_counts[r]) begin[r].push_back(begin[r].back() + n);
+  }
+  wm.pair_begin.assign(1, 0);
+  for (std::size_t k = 0; k < order.from.size(); ++k) {
+    const auto [r, i] = order.from[k];
+    for (std::size_t c = begin[r][i]; c < begin[r][i + 1]; ++c)
+      wm.pairs.push_back({std::uint32_t(order.keys[k]), all_masters[r][c]});
+    wm.pair_begin.push_back(wm.pairs.size());
+  }
+  std::vector<Piece> every;
+  for (const auto& from : all_pieces) every.insert(every.end(), from.begin(), from.end());
+  std::sort(every.begin(), every.end(),
+            [](const Piece& a, const Piece& b) { return a.identity < b.identity; });
+  const bool with_anchors = std::any_of(any_anchored.begin(), any_anchored.end(),
+                                        [](const std::vector<std::uint8_t>& a) { return a[0] != 0; });
+  for (const Piece& piece : every) {
+    wm.identity.push_back(piece.identity);
+    if (with_anchors) w.anchors.push_back(piece.anchor);
   }
 }
 
@@ -232,6 +306,21 @@ void restore_pass(DistributedContact& dc, PassShare& share, const contact::Conta
   state.points_in_contact = w.points_in_contact, state.slipping = w.slipping, state.sticking = w.sticking;
   state.friction_work = w.friction_work;
   share.local_friction_work = dc.comm.root() ? w.friction_work : 0.0;  // the sum over the ranks goes on
+  // The positions at the last search of the own moving nodes, by global id.
+  state.moving_at_build = NodalVectors();
+  if (w.moving_at_build.size() > 0) {
+    const std::vector<std::uint32_t>& ids = whole_surfaces.moving_nodes;
+    state.moving_at_build.resize(share.view.moving_nodes.size());
+    for (std::size_t i = 0; i < share.view.moving_nodes.size(); ++i) {
+      const std::size_t k = index_in(ids, share.store.global[share.view.moving_nodes[i]]);
+      if (k == ids.size()) throw InputError("the checkpoint's contact lacks a moving node of this run");
+      for (int c = 0; c < 3; ++c) state.moving_at_build.component(c)[i] = w.moving_at_build.component(c)[k];
+    }
+  }
+  if (share.own.mortar) {
+    restore_mortar(dc, share, keys.size(), w, place, state, nodes);
+    return;
+  }
   pick_points(w.contacts, place, points, state.contacts);
   pick_points(w.anchors, place, points, state.anchors);
   pick_points(w.last_segment, place, points, state.last_segment);
@@ -252,17 +341,6 @@ void restore_pass(DistributedContact& dc, PassShare& share, const contact::Conta
         if (admitted) state.admitted.push_back(w.admitted[c]);
       }
       state.point_begin.push_back(state.candidates.size());
-    }
-  }
-  // The positions at the last search of the own moving nodes, by global id.
-  state.moving_at_build = NodalVectors();
-  if (w.moving_at_build.size() > 0) {
-    const std::vector<std::uint32_t>& ids = whole_surfaces.moving_nodes;
-    state.moving_at_build.resize(share.view.moving_nodes.size());
-    for (std::size_t i = 0; i < share.view.moving_nodes.size(); ++i) {
-      const std::size_t k = index_in(ids, share.store.global[share.view.moving_nodes[i]]);
-      if (k == ids.size()) throw InputError("the checkpoint's contact lacks a moving node of this run");
-      for (int c = 0; c < 3; ++c) state.moving_at_build.component(c)[i] = w.moving_at_build.component(c)[k];
     }
   }
   // A surface that follows erosion: the whole pass as the checkpoint left it, and the
@@ -308,6 +386,52 @@ void restore_pass(DistributedContact& dc, PassShare& share, const contact::Conta
   state.contacts = std::move(contacts);
 }
 
+// Mortar (gather_mortar): the own slave segments' pairs and pieces, with their anchors,
+// and a view of every master segment they name; the pass's view of its segments.
+void restore_mortar(DistributedContact& dc, PassShare& share, std::size_t whole_segments,
+                    const contact::ContactPassState& w, const std::vector<std::size_t>& place,
+                    contact::ContactPassState& state, const RestartNodes& nodes) {
+  const contact::MortarState& wm = w.mortar;
+  contact::MortarState& m = state.mortar;
+  const std::size_t segments = place.size();
+  m.pairs.clear(), m.identity.clear(), m.previous_identity.clear(), m.previous_anchors.clear();
+  m.pair_begin.clear();
+  state.anchors.clear();
+  state.candidates.clear(), state.previous_xi.clear(), state.point_begin.clear(), state.contacts.clear(),
+      state.last_segment.clear();
+  std::vector<std::uint32_t> needed;
+  if (wm.pair_begin.size() == whole_segments + 1) {
+    m.pair_begin.assign(1, 0);
+    for (std::size_t s = 0; s < segments; ++s) {
+      for (std::size_t c = wm.pair_begin[place[s]]; c < wm.pair_begin[place[s] + 1]; ++c) {
+        m.pairs.push_back({std::uint32_t(s), wm.pairs[c].segment});
+        needed.push_back(wm.pairs[c].segment);
+      }
+      m.pair_begin.push_back(m.pairs.size());
+    }
+  }
+  const bool anchored = w.anchors.size() == wm.identity.size() && !wm.identity.empty();
+  for (std::size_t k = 0; k < wm.identity.size(); ++k) {
+    const contact::MortarState::Identity& id = wm.identity[k];
+    const std::size_t s = index_in(share.point_keys, std::uint64_t(id.slave));
+    if (s == share.point_keys.size()) continue;  // another rank's slave segment
+    m.identity.push_back({std::uint32_t(s), id.master, id.index});
+    needed.push_back(id.master);
+    if (!anchored) continue;
+    state.anchors.push_back(w.anchors[k]);
+    if (w.anchors[k].segment >= 0) needed.push_back(std::uint32_t(w.anchors[k].segment));
+  }
+  std::sort(needed.begin(), needed.end());
+  needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
+  restore_view(dc, share, needed, state, nodes.global_node, nodes.x_ref, nodes.mass, nodes.u, nodes.v);
+  for (contact::CandidatePair& pair : m.pairs) {  // the view's numbering (restore_view renumbers the pieces)
+    const std::size_t k = index_in(share.known, pair.segment);
+    EXDYN_ASSERT(k < share.known.size());
+    pair.segment = std::uint32_t(k);
+  }
+  contact::set_mortar_view_segments(share.view, m);
+}
+
 void restore_wall(const mpi::Communicator& comm, PassShare& share, const contact::WallState& w,
                   const std::vector<std::uint64_t>& keys, contact::WallState& state) {
   const std::vector<std::size_t> place = places_of(share, keys);
@@ -324,16 +448,6 @@ void restore_wall(const mpi::Communicator& comm, PassShare& share, const contact
 }
 
 }  // namespace
-
-bool checkpoint_supported(const ContactModel& contact, std::string& why) {
-  for (const ContactPair& pair : contact.pairs)
-    for (const contact::ContactSurfaces& pass : pair.passes)
-      if (pass.mortar) {
-        why = "contact pair " + pair.name + " is mortar (slave_points: mortar)";
-        return false;
-      }
-  return true;
-}
 
 void gather_contact(const ContactModel& contact, DistributedContact& dc, ContactModel& whole,
                     std::vector<std::vector<std::uint64_t>>& keys) {

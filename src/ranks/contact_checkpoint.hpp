@@ -19,11 +19,6 @@
 
 namespace exdyn::solver {
 
-// Whether the contact's state can be checkpointed on many ranks; if not, `why`. (A
-// mortar pass's pieces are cut on the ranks of their slave segments and are not
-// gathered: such a run checkpoints on one process.)
-bool checkpoint_supported(const ContactModel& contact, std::string& why);
-
 // The contact's state in one process's numbering on rank 0 (`whole`: each pair's passes
 // and states, each wall's state, their figures; elsewhere unset), with each pass's
 // point keys (pairs' passes, then the walls). Collective over dc.comm.

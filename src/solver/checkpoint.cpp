@@ -107,9 +107,6 @@ void TimeLoop::visit_loop(Archive& a) {
 }
 
 void TimeLoop::open_checkpoint(const RunControls& controls) {
-  if (!can_checkpoint_.empty())
-    throw InputError("--restart: a run on many MPI ranks does not go on from a checkpoint where " +
-                     can_checkpoint_ + "; restart without mpirun");
   std::string path = controls.restart_file;
   if (path.empty()) {
     const auto found = list_checkpoints(directory_, deck_.name);
@@ -171,7 +168,7 @@ void TimeLoop::restore_checkpoint() {
 
 bool TimeLoop::checkpoint_due() const {
   const input::CheckpointOptions& c = deck_.checkpoint;
-  if (!c.enabled() || !can_checkpoint_.empty()) return false;
+  if (!c.enabled()) return false;
   if (c.every > 0 && (state_.step + 1) % c.every == 0) return true;
   // On many ranks the clock's rule is agreed by all (update_velocities_and_energy).
   return controls_.comm.distributed() ? checkpoint_by_clock_ : checkpoint_clock_due();
@@ -259,11 +256,6 @@ void TimeLoop::save_checkpoint(const output::WrittenPosition& position) {
 void TimeLoop::stop_on_request(const std::string& why) {
   const long step = state_.step;
   const double time = state_.time;
-  if (!can_checkpoint_.empty())
-    stop_run("interrupted by " + why + when() +
-             "; the results up to this step are written (no checkpoint "
-             "on many MPI ranks where " +
-             can_checkpoint_ + ")");
   save_checkpoint(writer_->position());
   if (!output_step_) {
     ScopedTimer timer(summary_.phase_seconds.output);

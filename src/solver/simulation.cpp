@@ -31,7 +31,6 @@
 #include "model/contact_setup.hpp"
 #include "model/model.hpp"
 #include "output/result_writer.hpp"
-#include "ranks/contact_checkpoint.hpp"
 #include "ranks/ranks.hpp"
 #include "solver/nodal_update.hpp"
 #include "solver/step_clock.hpp"
@@ -166,14 +165,6 @@ TimeLoop::TimeLoop(const input::Deck& deck, const RunControls& controls, output:
     : deck_(deck), controls_(controls), summary_(summary) {
   NodalVectors initial_velocity = set_up(controls, summary);
   directory_ = controls.output_directory.empty() ? deck_.output.directory : controls.output_directory;
-  if (controls.comm.distributed() && !checkpoint_supported(contact_, can_checkpoint_)) {
-    if (controls.wall_limit > 0.0)
-      throw InputError("--wall-limit: a run on many MPI ranks does not stop with a checkpoint where " +
-                       can_checkpoint_ + "; run it without mpirun");
-    if (deck_.checkpoint.enabled())
-      summary.warnings.push_back("checkpoint: no checkpoints are written on many MPI ranks where " +
-                                 can_checkpoint_);
-  }
   if (controls.restart)
     open_checkpoint(controls);    // checked before any file is touched
   else if (controls.comm.root())  // a new run: checkpoints of an earlier one are not its own

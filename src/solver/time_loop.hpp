@@ -135,10 +135,8 @@ class TimeLoop {
   // at the last checkpoint, and the slowest checkpoint, step and field output so far (s), for
   // every_seconds and --wall-limit.
   std::string directory_;
-  // Empty where this run can write and read checkpoints, else why not (a mortar pass
-  // on many ranks); on many ranks, whether the ranks agreed that every_seconds has
-  // passed; the whole mesh's hash, once computed.
-  std::string can_checkpoint_;
+  // On many ranks, whether the ranks agreed that every_seconds has passed; the whole
+  // mesh's hash, once computed.
   bool checkpoint_by_clock_ = false;
   std::uint64_t mesh_hash_ = 0;
   std::unique_ptr<output::CheckpointReader> checkpoint_;
