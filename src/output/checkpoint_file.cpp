@@ -41,6 +41,26 @@ std::string system_error(const std::string& what, const std::string& path) {
   return what + " " + path + ": " + std::strerror(errno);
 }
 
+// Every rank's section headers on rank 0, rank after rank (the file's order), for the
+// trailer's hash, and the ranks' sections counted (`sections`, rank 0). Collective.
+std::vector<unsigned char> gather_headers(const mpi::Communicator& comm,
+                                          const std::vector<unsigned char>& mine, std::uint64_t count,
+                                          std::uint64_t& sections) {
+  const auto ranks = std::size_t(comm.size);
+  const int bytes = int(mine.size());
+  std::vector<int> counts(ranks), displacements(ranks, 0);
+  mpi::check(MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm.comm),
+             "MPI_Gather of the checkpoint's headers");
+  for (std::size_t r = 1; r < ranks; ++r) displacements[r] = displacements[r - 1] + counts[r - 1];
+  std::vector<unsigned char> headers(comm.root() ? std::size_t(displacements.back() + counts.back()) : 0);
+  mpi::check(MPI_Gatherv(mine.data(), bytes, MPI_BYTE, headers.data(), counts.data(), displacements.data(),
+                         MPI_BYTE, 0, comm.comm),
+             "MPI_Gatherv of the checkpoint's headers");
+  mpi::check(MPI_Reduce(&count, &sections, 1, MPI_UINT64_T, MPI_SUM, 0, comm.comm),
+             "MPI_Reduce of the checkpoint's sections");
+  return headers;
+}
+
 }  // namespace
 
 std::uint64_t hash_bytes(const void* data, std::size_t n) {
@@ -170,19 +190,8 @@ void CheckpointWriter::commit_ranks() {
     at += sizes[r];
   }
   const std::uint64_t total = at + trailer_size;
-  // Every rank's headers and section counts on rank 0, in file order, for the trailer.
-  const int header_bytes = int(headers_.size());
-  std::vector<int> counts(ranks), displacements(ranks, 0);
-  mpi::check(MPI_Gather(&header_bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm),
-             "MPI_Gather of the checkpoint's headers");
-  for (std::size_t r = 1; r < ranks; ++r) displacements[r] = displacements[r - 1] + counts[r - 1];
-  std::vector<unsigned char> headers(comm_.root() ? std::size_t(displacements.back() + counts.back()) : 0);
-  mpi::check(MPI_Gatherv(headers_.data(), header_bytes, MPI_BYTE, headers.data(), counts.data(),
-                         displacements.data(), MPI_BYTE, 0, comm),
-             "MPI_Gatherv of the checkpoint's headers");
   std::uint64_t sections = 0;
-  mpi::check(MPI_Reduce(&sections_, &sections, 1, MPI_UINT64_T, MPI_SUM, 0, comm),
-             "MPI_Reduce of the checkpoint's sections");
+  const std::vector<unsigned char> headers = gather_headers(comm_, headers_, sections_, sections);
   if (comm_.root()) std::remove(temporary_.c_str());  // MPI_MODE_CREATE keeps an old file's bytes
   mpi::check(MPI_Barrier(comm), "MPI_Barrier before the checkpoint");
   MPI_File file;
